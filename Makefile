@@ -1,0 +1,58 @@
+# terrasprite: set-up, build, demo and tests.  `make demo` and `make test` are
+# the two commands a fresh Debian machine needs; both install what is missing.
+SHELL := /bin/bash
+BUILD ?= build
+JOBS ?= $(shell nproc)
+
+# Debian packages the build, the tests and the reports need.  llvmpipe
+# (libegl-mesa0, libgl1-mesa-dri) is only a Recommends elsewhere, so it is named.
+PACKAGES := build-essential cmake pkg-config git \
+  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev libglm-dev \
+  libgdal-dev libstb-dev libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev \
+  libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox ffmpeg python3 python3-skimage
+
+.PHONY: all deps build build-all demo test test-asan consumer clean
+
+all: build
+
+deps:
+	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
+	if [ -z "$$missing" ]; then echo "deps: all packages present"; exit 0; fi; \
+	line="apt-get install -y --no-install-recommends $$(echo $$missing)"; \
+	if [ "$$(id -u)" != 0 ]; then echo "deps: missing packages; run as root: $$line"; exit 1; fi; \
+	export DEBIAN_FRONTEND=noninteractive; \
+	echo "deps: $$line"; \
+	$$line || { apt-get update && $$line; }
+
+$(BUILD)/CMakeCache.txt:
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+
+# The demo needs only the CLI: build just that target on a fresh machine.
+build: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) --target terrasprite_cli -j $(JOBS)
+
+build-all: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS)
+
+demo: build
+	$(BUILD)/terrasprite demo --out out/demo
+
+test: build-all
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+	$(MAKE) consumer
+
+# The installed package must stay usable from another project.
+consumer: build-all
+	rm -rf $(BUILD)/_install $(BUILD)/_consumer
+	cmake --install $(BUILD) --prefix $(BUILD)/_install >/dev/null
+	cmake -S tests/consumer -B $(BUILD)/_consumer -DCMAKE_PREFIX_PATH=$(CURDIR)/$(BUILD)/_install >/dev/null
+	cmake --build $(BUILD)/_consumer -j $(JOBS) >/dev/null
+	$(BUILD)/_consumer/consumer
+
+test-asan: deps
+	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTERRASPRITE_SANITIZE=ON -DTERRASPRITE_BUILD_BENCH=OFF
+	cmake --build build-asan -j $(JOBS)
+	cd build-asan && ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure -j $(JOBS)
+
+clean:
+	rm -rf $(BUILD) build-asan out

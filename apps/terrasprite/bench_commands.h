@@ -1,0 +1,11 @@
+// SPDX-License-Identifier: MIT
+// The benchmarks under `terrasprite bench`, one file each.
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace terrasprite::cli {
+
+/// bench render: full resolution against plain LOD on one path (median ms).
+void add_bench_render(CLI::App& bench);
+
+}  // namespace terrasprite::cli

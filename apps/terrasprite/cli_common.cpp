@@ -1,0 +1,101 @@
+// SPDX-License-Identifier: MIT
+#include "cli_common.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fmt/format.h>
+#include <fstream>
+#include <sstream>
+
+#include "terrasprite/error.h"
+
+namespace terrasprite::cli {
+
+void add_terrain_options(CLI::App& cmd, TerrainOptions& o) {
+  cmd.add_option("--dem", o.dem, "height raster (GeoTIFF, .hgt, 16-bit PNG, terrain-RGB, ...); default: synthetic");
+  cmd.add_option("--texture", o.texture, "drape texture file, 'checker' or 'derived' (default)");
+  cmd.add_option("--z-scale", o.z_scale, "multiply raw height samples (e.g. 0.1 for decimetres)");
+  cmd.add_option("--spacing", o.spacing, "sample spacing in metres (overrides the file's)");
+  cmd.add_option("--nodata", o.nodata, "nodata value for rasters that do not tag one");
+  cmd.add_option_function<std::string>(
+         "--encoding",
+         [&o](const std::string& e) {
+           o.encoding = e == "terrain-rgb" ? HeightEncoding::kTerrainRgb
+                        : e == "terrarium" ? HeightEncoding::kTerrarium
+                                           : HeightEncoding::kAuto;
+         },
+         "RGB height encoding: auto|terrain-rgb|terrarium")
+      ->check(CLI::IsMember({"auto", "terrain-rgb", "terrarium"}));
+  cmd.add_option("--exaggeration", o.exaggeration, "vertical exaggeration for display (default 1)");
+  cmd.add_option("--resample", o.resample, "resample heights to N x N samples (e.g. 513 for the paper setup)");
+  cmd.add_option("--seed", o.seed, "synthetic terrain seed");
+  cmd.add_option("--synthetic-size", o.synthetic_size, "synthetic terrain samples per side (default 513)");
+  cmd.add_option("--erosion", o.erosion_passes, "synthetic terrain erosion passes (default 2)");
+}
+
+Terrain load_terrain_verbose(const TerrainOptions& o) {
+  std::vector<std::string> warnings;
+  Terrain t = load_terrain(o, &warnings);
+  for (const auto& w : warnings) fmt::print(stderr, "warning: {}\n", w);
+  return t;
+}
+
+std::pair<int, int> parse_size(const std::string& text, const char* option) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X'))
+    throw InputError(fmt::format("{} {}: expected WIDTHxHEIGHT, e.g. 512x512", option, text));
+  if (w <= 0 || h <= 0 || w > 16384 || h > 16384)
+    throw InputError(fmt::format("{} {}: width and height must be between 1 and 16384", option, text));
+  return {w, h};
+}
+
+std::vector<double> parse_list(const std::string& text, const char* option) {
+  std::vector<double> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    char* end = nullptr;
+    double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0' || !std::isfinite(v))
+      throw InputError(fmt::format("{} {}: expected comma-separated numbers", option, text));
+    out.push_back(v);
+  }
+  if (out.empty()) throw InputError(fmt::format("{}: empty list", option));
+  return out;
+}
+
+void write_json(const nlohmann::json& j, const std::string& path) {
+  std::ofstream out(path);
+  out << j.dump(2) << "\n";
+  if (!out) throw InputError(fmt::format("{}: cannot write JSON", path));
+}
+
+nlohmann::json terrain_json(const Terrain& t) {
+  const Heightfield& h = t.heights;
+  return {{"name", h.name},
+          {"samples", {h.width, h.height}},
+          {"quads", {h.width - 1, h.height - 1}},
+          {"spacing_m", {h.spacing_x, h.spacing_y}},
+          {"extent_m", {h.extent_x(), h.extent_y()}},
+          {"height_min", h.min_height()},
+          {"height_max", h.max_height()},
+          {"texture", t.texture_name}};
+}
+
+Progress::Progress(std::string label) : label_(std::move(label)), tty_(isatty(STDERR_FILENO) == 1) {}
+
+void Progress::operator()(int done, int total) {
+  if (!tty_ || total <= 0) return;
+  const int width = 30, fill = done * width / total;
+  fmt::print(stderr, "\r{} [{}{}] {}/{}", label_, std::string(fill, '#'), std::string(width - fill, '.'), done, total);
+  drawn_ = true;
+}
+
+Progress::~Progress() {
+  if (drawn_) fmt::print(stderr, "\n");
+}
+
+}  // namespace terrasprite::cli

@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: MIT
+// Options and helpers shared by the sub-commands.
+#pragma once
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+
+#include "terrasprite/terrain.h"
+
+namespace terrasprite::cli {
+
+/// --dem --texture --z-scale --spacing --nodata --encoding --exaggeration
+/// --resample --seed --synthetic-size --erosion
+void add_terrain_options(CLI::App& cmd, TerrainOptions& o);
+
+/// Loads the terrain, printing loader warnings on stderr (one line each).
+Terrain load_terrain_verbose(const TerrainOptions& o);
+
+/// "WxH" -> {w, h}; throws InputError naming `option` for a zero, negative,
+/// absurd (> 16384) or malformed size.
+std::pair<int, int> parse_size(const std::string& text, const char* option);
+
+/// Comma-separated list of numbers; throws InputError naming `option`.
+std::vector<double> parse_list(const std::string& text, const char* option);
+
+/// Writes pretty JSON; throws InputError naming the file on failure.
+void write_json(const nlohmann::json& j, const std::string& path);
+
+/// JSON description of a terrain: name, samples, quads, spacing_m, extent_m, heights.
+nlohmann::json terrain_json(const Terrain& t);
+
+/// A one-line progress bar on stderr, drawn only when stderr is a terminal.
+class Progress {
+ public:
+  explicit Progress(std::string label);
+  void operator()(int done, int total);
+  ~Progress();
+
+ private:
+  std::string label_;
+  bool tty_;
+  bool drawn_ = false;
+};
+
+}  // namespace terrasprite::cli

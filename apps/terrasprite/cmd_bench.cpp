@@ -1,0 +1,14 @@
+// SPDX-License-Identifier: MIT
+// terrasprite bench: whole-system benchmarks, each a sub-command printing JSON.
+#include "bench_commands.h"
+#include "commands.h"
+
+namespace terrasprite::cli {
+
+void add_bench(CLI::App& app) {
+  auto* bench = app.add_subcommand("bench", "whole-system benchmarks (JSON + plots)");
+  bench->require_subcommand(1);
+  add_bench_render(*bench);
+}
+
+}  // namespace terrasprite::cli

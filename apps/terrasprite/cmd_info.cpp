@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+// terrasprite info: what was loaded (size, spacing, extent, heights, nodata).
+#include <fmt/format.h>
+
+#include "cli_common.h"
+#include "commands.h"
+
+namespace terrasprite::cli {
+
+void add_info(CLI::App& app) {
+  auto* cmd = app.add_subcommand("info", "describe a terrain: size, spacing, extent, height range, nodata");
+  struct Opts {
+    TerrainOptions terrain;
+    std::string json;
+  };
+  auto o = std::make_shared<Opts>();
+  add_terrain_options(*cmd, o->terrain);
+  cmd->add_option("--json", o->json, "write the description as JSON");
+  cmd->callback([o] {
+    Terrain t = load_terrain_verbose(o->terrain);
+    const Heightfield& h = t.heights;
+    nlohmann::json j = {{"name", h.name},
+                        {"samples", {h.width, h.height}},
+                        {"spacing_m", {h.spacing_x, h.spacing_y}},
+                        {"extent_m", {h.extent_x(), h.extent_y()}},
+                        {"height_min", h.min_height()},
+                        {"height_max", h.max_height()},
+                        {"nodata_count", h.nodata_count},
+                        {"resampled_to", nullptr},
+                        {"texture", t.texture_name},
+                        {"texture_size", {t.texture.width, t.texture.height}},
+                        {"georeferenced", h.geo.has_value()}};
+    if (h.resampled_to) j["resampled_to"] = {h.resampled_to->first, h.resampled_to->second};
+    if (!o->json.empty()) write_json(j, o->json);
+    fmt::print("{}: {} x {} samples, spacing {:.3f} x {:.3f} m, extent {:.1f} x {:.1f} m\n", h.name, h.width,
+               h.height, h.spacing_x, h.spacing_y, h.extent_x(), h.extent_y());
+    fmt::print("heights {:.2f} .. {:.2f} m, {} nodata cells filled{}\n", h.min_height(), h.max_height(),
+               h.nodata_count, h.resampled_to ? fmt::format(", resampled to {} x {}", h.resampled_to->first, h.resampled_to->second) : "");
+  });
+}
+
+}  // namespace terrasprite::cli

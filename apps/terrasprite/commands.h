@@ -1,0 +1,16 @@
+// SPDX-License-Identifier: MIT
+// Each sub-command registers itself on the app; main.cpp lists them in the
+// order of the pipeline they show.
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace terrasprite::cli {
+
+void add_info(CLI::App& app);
+void add_render(CLI::App& app);
+void add_compare(CLI::App& app);
+void add_demo(CLI::App& app);
+/// `bench` groups the benchmarks; each adds itself under it.
+void add_bench(CLI::App& app);
+
+}  // namespace terrasprite::cli

@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+// Quadtree LOD levels of a height grid and the grid meshes drawn from them.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "terrasprite/heightfield.h"
+
+namespace terrasprite {
+
+/// Sample indices along one axis of n samples for pyramid level k: every
+/// 2^k-th sample plus the last one (a narrower last quad when n - 1 is not a
+/// multiple of 2^k), so no input size loses data. n >= 1, level >= 0.
+std::vector<int> level_indices(int n, int level);
+
+/// Sample indices along one axis for a coarse grid of `quads` quads:
+/// round(q * (n - 1) / quads) for q = 0..quads. For n - 1 a multiple of
+/// `quads` these are exactly every ((n - 1) / quads)-th sample (the paper's
+/// 513 samples, 16 quads: every 32nd). quads is clamped to [1, n - 1].
+std::vector<int> quad_indices(int n, int quads);
+
+/// Number of pyramid levels down to (and including) the first level with
+/// at most `min_quads` quads along the longer axis.
+int level_count(const Heightfield& h, int min_quads = 1);
+
+/// A triangle grid over the samples picked by xs (columns) and ys (rows).
+/// vertices: x, y, z (metres, Heightfield's world frame) and a unit normal
+/// from the full-resolution grid, 6 floats each. indices: 2 triangles per
+/// quad, counter-clockwise seen from above, one list for one draw call.
+struct GridMesh {
+  std::vector<float> vertices;
+  std::vector<std::uint32_t> indices;
+  int columns = 0;  ///< vertices along x
+  int rows = 0;     ///< vertices along y
+  long long triangles() const { return static_cast<long long>(indices.size() / 3); }
+};
+
+/// Builds the mesh; xs and ys must be increasing sample indices (>= 2 each).
+GridMesh build_grid_mesh(const Heightfield& h, std::span<const int> xs, std::span<const int> ys);
+
+}  // namespace terrasprite

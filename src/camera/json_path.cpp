@@ -1,0 +1,140 @@
+// SPDX-License-Identifier: MIT
+// JSON keyframe paths: Catmull-Rom positions, slerped orientations.
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
+
+#include "terrasprite/camera_path.h"
+#include "terrasprite/error.h"
+
+namespace terrasprite {
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+struct Key {
+  double t;
+  glm::dvec3 pos;
+  glm::dquat orient;  // camera-local (right, up, back) -> world
+  double fov;
+};
+
+glm::dquat orientation_of(const Camera& c) {
+  glm::dmat3 m(c.right(), c.up(), -c.forward());
+  return glm::normalize(glm::quat_cast(m));
+}
+
+void set_orientation(Camera& c, const glm::dquat& q) {
+  glm::dvec3 f = -(q * glm::dvec3(0, 0, 1)), u = q * glm::dvec3(0, 1, 0);
+  Camera tmp = Camera::look_at(glm::dvec3(0), f, c.fov_y_deg, c.aspect, c.yaw_deg);
+  c.yaw_deg = tmp.yaw_deg;
+  c.pitch_deg = tmp.pitch_deg;
+  c.roll_deg = 0;
+  glm::dvec3 r0 = c.right(), u0 = c.up();
+  c.roll_deg = std::atan2(glm::dot(u, r0), glm::dot(u, u0)) / kDeg;
+}
+
+glm::dvec3 vec3_of(const nlohmann::json& j, const std::string& where) {
+  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
+    throw InputError(where + " must be an array of 3 numbers");
+  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
+
+double number_of(const nlohmann::json& k, const char* key, double fallback, const std::string& where) {
+  if (!k.contains(key)) return fallback;
+  if (!k[key].is_number()) throw InputError(fmt::format("{}.{} must be a number", where, key));
+  double v = k[key].get<double>();
+  if (!std::isfinite(v)) throw InputError(fmt::format("{}.{} must be finite", where, key));
+  return v;
+}
+
+std::vector<Key> parse(const std::string& path, double aspect) {
+  std::ifstream in(path);
+  if (!in) throw InputError(fmt::format("{}: cannot open path file", path));
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(fmt::format("{}: malformed JSON at byte {}", path, e.byte));
+  }
+  if (!doc.is_object() || !doc.contains("keyframes") || !doc["keyframes"].is_array() || doc["keyframes"].empty())
+    throw InputError(fmt::format("{}: needs a non-empty \"keyframes\" array", path));
+  std::vector<Key> keys;
+  for (std::size_t i = 0; i < doc["keyframes"].size(); ++i) {
+    const auto& k = doc["keyframes"][i];
+    std::string where = fmt::format("{}: keyframes[{}]", path, i);
+    if (!k.is_object()) throw InputError(where + " must be an object");
+    if (!k.contains("t") || !k["t"].is_number()) throw InputError(where + ".t must be a number (seconds)");
+    if (!k.contains("position")) throw InputError(where + " has no position");
+    Key key;
+    key.t = k["t"].get<double>();
+    key.pos = vec3_of(k["position"], where + ".position");
+    key.fov = number_of(k, "fov_deg", 60.0, where);
+    if (!(key.fov > 0 && key.fov < 180)) throw InputError(where + ".fov_deg must be in (0, 180)");
+    Camera c;
+    if (k.contains("target")) {
+      glm::dvec3 target = vec3_of(k["target"], where + ".target");
+      if (glm::length(target - key.pos) <= 0) throw InputError(where + ".target equals its position");
+      c = Camera::look_at(key.pos, target, key.fov, aspect, keys.empty() ? 0.0 : 0.0);
+      c.roll_deg = number_of(k, "roll_deg", 0.0, where);
+    } else if (k.contains("yaw_deg") || k.contains("pitch_deg")) {
+      c.yaw_deg = number_of(k, "yaw_deg", 0.0, where);
+      c.pitch_deg = number_of(k, "pitch_deg", 0.0, where);
+      c.roll_deg = number_of(k, "roll_deg", 0.0, where);
+      if (std::abs(c.pitch_deg) > 90) throw InputError(where + ".pitch_deg must be in [-90, 90]");
+    } else {
+      throw InputError(where + " needs \"target\" or \"yaw_deg\"/\"pitch_deg\"");
+    }
+    key.orient = orientation_of(c);
+    if (!keys.empty() && !(key.t > keys.back().t))
+      throw InputError(where + ".t must be greater than the previous keyframe's");
+    if (!keys.empty() && glm::dot(keys.back().orient, key.orient) < 0) key.orient = -key.orient;  // shortest arc
+    keys.push_back(key);
+  }
+  return keys;
+}
+
+glm::dvec3 catmull_rom(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2, const glm::dvec3& p3, double u) {
+  double u2 = u * u, u3 = u2 * u;
+  return 0.5 * ((2.0 * p1) + (-p0 + p2) * u + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * u2 + (-p0 + 3.0 * p1 - 3.0 * p2 + p3) * u3);
+}
+
+}  // namespace
+
+std::vector<Camera> load_path_file(const std::string& path, const Heightfield& h, int frames, double aspect) {
+  if (frames < 1) throw InputError(fmt::format("--frames {}: must be at least 1", frames));
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such path file", path));
+  std::vector<Key> keys = parse(path, aspect);
+  std::vector<Camera> out;
+  const double t0 = keys.front().t, t1 = keys.back().t;
+  const int n = int(keys.size());
+  for (int f = 0; f < frames; ++f) {
+    double t = frames == 1 ? t0 : t0 + (t1 - t0) * f / (frames - 1);
+    int k = 0;
+    while (k + 2 < n && t > keys[k + 1].t) ++k;
+    Camera c;
+    c.aspect = aspect;
+    if (n == 1) {
+      c.position = keys[0].pos;
+      c.fov_y_deg = keys[0].fov;
+      set_orientation(c, keys[0].orient);
+    } else {
+      const Key &a = keys[k], &b = keys[k + 1];
+      double u = std::clamp((t - a.t) / (b.t - a.t), 0.0, 1.0);
+      const glm::dvec3& p0 = k > 0 ? keys[k - 1].pos : a.pos;
+      const glm::dvec3& p3 = k + 2 < n ? keys[k + 2].pos : b.pos;
+      c.position = catmull_rom(p0, a.pos, b.pos, p3, u);
+      c.fov_y_deg = a.fov + (b.fov - a.fov) * u;
+      set_orientation(c, glm::slerp(a.orient, b.orient, u));
+    }
+    fit_clip_planes(c, h);
+    out.push_back(c);
+  }
+  return out;
+}
+
+}  // namespace terrasprite

@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+// GlTerrain's insides, shared by the raster and sprite renderers.
+#pragma once
+#include <glm/glm.hpp>
+#include <map>
+
+#include "gl/gl_objects.h"
+#include "terrasprite/mesh_renderer.h"
+#include "terrasprite/terrain_mesh.h"
+
+namespace terrasprite {
+
+/// A grid mesh in GPU buffers: attribute 0 = position (vec3, metres),
+/// attribute 1 = normal (vec3), one uint32 index list.
+struct GpuMesh {
+  gl::VertexArray vao;
+  gl::Buffer vertices;
+  gl::Buffer indices;
+  GLsizei index_count = 0;
+  long long triangles = 0;
+  int columns = 0, rows = 0;
+};
+
+struct GlTerrain::Impl {
+  const Terrain* terrain = nullptr;
+  gl::Texture drape{GL_TEXTURE_2D};
+  gl::Program program;  // the plain textured terrain shader
+  std::map<int, GpuMesh> meshes;  // by quads per side; 0 = full resolution
+
+  /// The mesh of `quads` quads per side (0 = full), uploaded on first use.
+  const GpuMesh& mesh(int quads);
+  /// Draws `m` with the plain terrain shader: drape texture by world
+  /// position, optional sun lighting. The target must be bound.
+  void draw(const GpuMesh& m, const glm::mat4& view_projection, bool lighting);
+  /// Uniforms mapping world (x, y) to drape texture coordinates: uv = xy * scale + offset.
+  glm::vec4 uv_transform() const;
+};
+
+/// GLSL helper text: `vec2 drape_uv(vec2 world_xy)` using uniform vec4 u_uv (scale.xy, offset.xy).
+extern const char* const kDrapeUvGlsl;
+
+}  // namespace terrasprite

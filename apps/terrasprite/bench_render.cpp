@@ -13,7 +13,8 @@
 namespace terrasprite::cli {
 
 void add_bench_render(CLI::App& bench) {
-  auto* cmd = bench.add_subcommand("render", "full-resolution vs LOD frame times on one path (JSON on stdout)");
+  auto* cmd = bench.add_subcommand(
+      "render", "full-resolution vs LOD frame times on one path (JSON on stdout)");
   struct Opts {
     TerrainOptions terrain;
     int lod_quads = 16;
@@ -54,13 +55,28 @@ void add_bench_render(CLI::App& bench) {
       l_tri = b.triangles;
       progress(int(i) + 1, int(path.size()));
     }
-    auto total = [](const std::vector<double>& v) { double s = 0; for (double x : v) s += x; return s; };
-    nlohmann::json j = {
-        {"gl_renderer", gl.renderer()}, {"terrain", terrain_json(terrain)}, {"size", {w, h}},
-        {"frames", int(path.size())}, {"path", o->path},
-        {"full", {{"median_ms", median(f_ms)}, {"total_ms", total(f_ms)}, {"median_gpu_ms", median(f_gpu)}, {"triangles", f_tri}}},
-        {"lod", {{"lod_quads", o->lod_quads}, {"median_ms", median(l_ms)}, {"total_ms", total(l_ms)}, {"median_gpu_ms", median(l_gpu)}, {"triangles", l_tri}}},
-        {"full_over_lod_median", median(f_ms) / std::max(median(l_ms), 1e-9)}};
+    auto total = [](const std::vector<double>& v) {
+      double s = 0;
+      for (double x : v) s += x;
+      return s;
+    };
+    nlohmann::json j = {{"gl_renderer", gl.renderer()},
+                        {"terrain", terrain_json(terrain)},
+                        {"size", {w, h}},
+                        {"frames", int(path.size())},
+                        {"path", o->path},
+                        {"full",
+                         {{"median_ms", median(f_ms)},
+                          {"total_ms", total(f_ms)},
+                          {"median_gpu_ms", median(f_gpu)},
+                          {"triangles", f_tri}}},
+                        {"lod",
+                         {{"lod_quads", o->lod_quads},
+                          {"median_ms", median(l_ms)},
+                          {"total_ms", total(l_ms)},
+                          {"median_gpu_ms", median(l_gpu)},
+                          {"triangles", l_tri}}},
+                        {"full_over_lod_median", median(f_ms) / std::max(median(l_ms), 1e-9)}};
     if (!o->json.empty()) write_json(j, o->json);
     fmt::print("{}\n", j.dump(2));
   });

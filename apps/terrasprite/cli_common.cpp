@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "cli_common.h"
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
-#include <fmt/format.h>
 #include <fstream>
 #include <sstream>
 
@@ -14,7 +14,8 @@
 namespace terrasprite::cli {
 
 void add_terrain_options(CLI::App& cmd, TerrainOptions& o) {
-  cmd.add_option("--dem", o.dem, "height raster (GeoTIFF, .hgt, 16-bit PNG, terrain-RGB, ...); default: synthetic");
+  cmd.add_option("--dem", o.dem,
+                 "height raster (GeoTIFF, .hgt, 16-bit PNG, terrain-RGB, ...); default: synthetic");
   cmd.add_option("--texture", o.texture, "drape texture file, 'checker' or 'derived' (default)");
   cmd.add_option("--z-scale", o.z_scale, "multiply raw height samples (e.g. 0.1 for decimetres)");
   cmd.add_option("--spacing", o.spacing, "sample spacing in metres (overrides the file's)");
@@ -29,9 +30,11 @@ void add_terrain_options(CLI::App& cmd, TerrainOptions& o) {
          "RGB height encoding: auto|terrain-rgb|terrarium")
       ->check(CLI::IsMember({"auto", "terrain-rgb", "terrarium"}));
   cmd.add_option("--exaggeration", o.exaggeration, "vertical exaggeration for display (default 1)");
-  cmd.add_option("--resample", o.resample, "resample heights to N x N samples (e.g. 513 for the paper setup)");
+  cmd.add_option("--resample", o.resample,
+                 "resample heights to N x N samples (e.g. 513 for the paper setup)");
   cmd.add_option("--seed", o.seed, "synthetic terrain seed");
-  cmd.add_option("--synthetic-size", o.synthetic_size, "synthetic terrain samples per side (default 513)");
+  cmd.add_option("--synthetic-size", o.synthetic_size,
+                 "synthetic terrain samples per side (default 513)");
   cmd.add_option("--erosion", o.erosion_passes, "synthetic terrain erosion passes (default 2)");
 }
 
@@ -48,7 +51,8 @@ std::pair<int, int> parse_size(const std::string& text, const char* option) {
   if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X'))
     throw InputError(fmt::format("{} {}: expected WIDTHxHEIGHT, e.g. 512x512", option, text));
   if (w <= 0 || h <= 0 || w > 16384 || h > 16384)
-    throw InputError(fmt::format("{} {}: width and height must be between 1 and 16384", option, text));
+    throw InputError(
+        fmt::format("{} {}: width and height must be between 1 and 16384", option, text));
   return {w, h};
 }
 
@@ -85,12 +89,14 @@ nlohmann::json terrain_json(const Terrain& t) {
           {"texture", t.texture_name}};
 }
 
-Progress::Progress(std::string label) : label_(std::move(label)), tty_(isatty(STDERR_FILENO) == 1) {}
+Progress::Progress(std::string label)
+    : label_(std::move(label)), tty_(isatty(STDERR_FILENO) == 1) {}
 
 void Progress::operator()(int done, int total) {
   if (!tty_ || total <= 0) return;
   const int width = 30, fill = done * width / total;
-  fmt::print(stderr, "\r{} [{}{}] {}/{}", label_, std::string(fill, '#'), std::string(width - fill, '.'), done, total);
+  fmt::print(stderr, "\r{} [{}{}] {}/{}", label_, std::string(fill, '#'),
+             std::string(width - fill, '.'), done, total);
   drawn_ = true;
 }
 

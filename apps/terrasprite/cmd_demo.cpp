@@ -13,7 +13,8 @@
 namespace terrasprite::cli {
 
 void add_demo(CLI::App& app) {
-  auto* cmd = app.add_subcommand("demo", "fly the paper path over the default terrain, writing frames and stats");
+  auto* cmd = app.add_subcommand(
+      "demo", "fly the paper path over the default terrain, writing frames and stats");
   struct Opts {
     TerrainOptions terrain;
     std::string out = "out/demo";
@@ -34,21 +35,29 @@ void add_demo(CLI::App& app) {
     Progress progress("demo");
     auto stats = fly(
         *stack.renderer, path,
-        [&](int i, const Frame& f) { save_png(f.color, out.file(fmt::format("frames/frame_{:04d}.png", i))); },
+        [&](int i, const Frame& f) {
+          save_png(f.color, out.file(fmt::format("frames/frame_{:04d}.png", i)));
+        },
         std::ref(progress));
     nlohmann::json frames = nlohmann::json::array();
     std::vector<double> ms;
     for (const auto& s : stats) {
-      frames.push_back({{"frame", s.frame}, {"class", s.cls}, {"ms", s.ms}, {"triangles", s.triangles}});
+      frames.push_back(
+          {{"frame", s.frame}, {"class", s.cls}, {"ms", s.ms}, {"triangles", s.triangles}});
       ms.push_back(s.ms);
     }
-    nlohmann::json j = {{"gl_renderer", stack.device}, {"mode", "full"}, {"size", {w, h}},
-                        {"terrain", terrain_json(terrain)}, {"path", "paper"}, {"median_ms", median(ms)},
+    nlohmann::json j = {{"gl_renderer", stack.device},
+                        {"mode", "full"},
+                        {"size", {w, h}},
+                        {"terrain", terrain_json(terrain)},
+                        {"path", "paper"},
+                        {"median_ms", median(ms)},
                         {"frames", frames}};
     write_json(j, out.file("stats.json"));
     out.commit();
-    fmt::print("demo: {} paper-path frames of {} at {}x{}, median {:.2f} ms/frame on {} -> {}\n", stats.size(),
-               terrain.heights.name, w, h, median(ms), stack.device, out.final_path().string());
+    fmt::print("demo: {} paper-path frames of {} at {}x{}, median {:.2f} ms/frame on {} -> {}\n",
+               stats.size(), terrain.heights.name, w, h, median(ms), stack.device,
+               out.final_path().string());
   });
 }
 

@@ -8,7 +8,8 @@
 namespace terrasprite::cli {
 
 void add_info(CLI::App& app) {
-  auto* cmd = app.add_subcommand("info", "describe a terrain: size, spacing, extent, height range, nodata");
+  auto* cmd =
+      app.add_subcommand("info", "describe a terrain: size, spacing, extent, height range, nodata");
   struct Opts {
     TerrainOptions terrain;
     std::string json;
@@ -32,10 +33,13 @@ void add_info(CLI::App& app) {
                         {"georeferenced", h.geo.has_value()}};
     if (h.resampled_to) j["resampled_to"] = {h.resampled_to->first, h.resampled_to->second};
     if (!o->json.empty()) write_json(j, o->json);
-    fmt::print("{}: {} x {} samples, spacing {:.3f} x {:.3f} m, extent {:.1f} x {:.1f} m\n", h.name, h.width,
-               h.height, h.spacing_x, h.spacing_y, h.extent_x(), h.extent_y());
-    fmt::print("heights {:.2f} .. {:.2f} m, {} nodata cells filled{}\n", h.min_height(), h.max_height(),
-               h.nodata_count, h.resampled_to ? fmt::format(", resampled to {} x {}", h.resampled_to->first, h.resampled_to->second) : "");
+    fmt::print("{}: {} x {} samples, spacing {:.3f} x {:.3f} m, extent {:.1f} x {:.1f} m\n", h.name,
+               h.width, h.height, h.spacing_x, h.spacing_y, h.extent_x(), h.extent_y());
+    fmt::print("heights {:.2f} .. {:.2f} m, {} nodata cells filled{}\n", h.min_height(),
+               h.max_height(), h.nodata_count,
+               h.resampled_to ? fmt::format(", resampled to {} x {}", h.resampled_to->first,
+                                            h.resampled_to->second)
+                              : "");
   });
 }
 

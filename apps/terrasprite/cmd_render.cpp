@@ -32,14 +32,18 @@ struct RenderOpts {
 void save_depth(const Frame& f, double m_per_unit, const std::string& file) {
   std::vector<std::uint16_t> v(f.depth.size());
   for (std::size_t i = 0; i < v.size(); ++i)
-    v[i] = std::isfinite(f.depth[i]) ? std::uint16_t(std::clamp(std::lround(f.depth[i] / m_per_unit), 0L, 65534L)) : 65535;
+    v[i] = std::isfinite(f.depth[i])
+               ? std::uint16_t(std::clamp(std::lround(f.depth[i] / m_per_unit), 0L, 65534L))
+               : 65535;
   save_png16(v, f.width(), f.height(), file);
 }
 
 void run(const RenderOpts& o) {
   // Validate everything before any output exists.
+  if (o.out.empty()) throw InputError("--out: an output directory is required");
   auto [w, h] = parse_size(o.size, "--size");
-  if (o.frames < 1 || o.frames > 1000000) throw InputError(fmt::format("--frames {}: must be between 1 and 1000000", o.frames));
+  if (o.frames < 1 || o.frames > 1000000)
+    throw InputError(fmt::format("--frames {}: must be between 1 and 1000000", o.frames));
   Terrain terrain = load_terrain_verbose(o.terrain);
   std::vector<Camera> path = make_path(o.path, terrain.heights, o.frames, double(w) / h);
   RenderStack stack = make_render_stack(o.mode, terrain, w, h, o.lod_quads);
@@ -59,33 +63,45 @@ void run(const RenderOpts& o) {
   nlohmann::json frames = nlohmann::json::array();
   std::vector<double> ms;
   for (const auto& s : stats) {
-    frames.push_back({{"frame", s.frame}, {"class", s.cls}, {"ms", s.ms}, {"gpu_ms", s.gpu_ms}, {"triangles", s.triangles}});
+    frames.push_back({{"frame", s.frame},
+                      {"class", s.cls},
+                      {"ms", s.ms},
+                      {"gpu_ms", s.gpu_ms},
+                      {"triangles", s.triangles}});
     ms.push_back(s.ms);
   }
-  nlohmann::json j = {{"gl_renderer", stack.device}, {"mode", o.mode}, {"size", {w, h}},
-                      {"terrain", terrain_json(terrain)}, {"path", o.path}, {"median_ms", median(ms)},
+  nlohmann::json j = {{"gl_renderer", stack.device},
+                      {"mode", o.mode},
+                      {"size", {w, h}},
+                      {"terrain", terrain_json(terrain)},
+                      {"path", o.path},
+                      {"median_ms", median(ms)},
                       {"frames", frames}};
   if (o.depth) j["depth_m_per_unit"] = m_per_unit;
   write_json(j, out.file("stats.json"));  // JSON last: the directory is complete
   out.commit();
   if (!o.json.empty()) write_json(j, o.json);
-  fmt::print("{}: {} frames {}x{} ({}), median {:.2f} ms/frame on {} -> {}\n", o.mode, stats.size(), w, h,
-             terrain.heights.name, median(ms), stack.device, out.final_path().string());
+  fmt::print("{}: {} frames {}x{} ({}), median {:.2f} ms/frame on {} -> {}\n", o.mode, stats.size(),
+             w, h, terrain.heights.name, median(ms), stack.device, out.final_path().string());
 }
 
 }  // namespace
 
 void add_render(CLI::App& app) {
-  auto* cmd = app.add_subcommand("render", "render a camera path with one renderer: PNG frames + stats JSON");
+  auto* cmd = app.add_subcommand("render",
+                                 "render a camera path with one renderer: PNG frames + stats JSON");
   auto o = std::make_shared<RenderOpts>();
   add_terrain_options(*cmd, o->terrain);
   cmd->add_option("--mode", o->mode, "renderer")->check(CLI::IsMember(render_modes()));
-  cmd->add_option("--lod-quads", o->lod_quads, "coarse grid quads per side for lod modes (default 16)");
+  cmd->add_option("--lod-quads", o->lod_quads,
+                  "coarse grid quads per side for lod modes (default 16)");
   cmd->add_option("--path", o->path, "'paper' or a JSON path file");
   cmd->add_option("--frames", o->frames, "frames along the path (default 460)");
   cmd->add_option("--size", o->size, "image size WxH (default 512x512)");
-  cmd->add_option("--out", o->out, "output directory")->required();
-  cmd->add_flag("--depth", o->depth, "also write linear depth as 16-bit PNG (depth_m_per_unit in the JSON)");
+  // Checked in run(), so a parse error (e.g. an unknown option) is reported first.
+  cmd->add_option("--out", o->out, "output directory (required)");
+  cmd->add_flag("--depth", o->depth,
+                "also write linear depth as 16-bit PNG (depth_m_per_unit in the JSON)");
   cmd->add_option("--json", o->json, "also write the stats JSON here");
   cmd->callback([o] { run(*o); });
 }

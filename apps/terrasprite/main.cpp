@@ -3,9 +3,10 @@
 // info (load terrain) -> render (fly a path) -> compare (score images) ->
 // bench (whole-system figures) -> demo (all of it on the default terrain).
 
+#include <fmt/format.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <fmt/format.h>
 
 #include "commands.h"
 #include "terrasprite/error.h"

@@ -7,16 +7,21 @@
 
 namespace terrasprite::cli {
 
-std::vector<std::string> render_modes() { return {"full", "lod"}; }
+std::vector<std::string> render_modes() {
+  return {"full", "lod"};
+}
 
-RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width, int height, int lod_quads) {
+RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
+                              int height, int lod_quads) {
   RenderStack s;
   if (mode == "full" || mode == "lod") {
-    if (mode == "lod" && lod_quads < 1) throw InputError(fmt::format("--lod-quads {}: must be at least 1", lod_quads));
+    if (mode == "lod" && lod_quads < 1)
+      throw InputError(fmt::format("--lod-quads {}: must be at least 1", lod_quads));
     s.gl = std::make_unique<GlContext>();
     s.device = s.gl->renderer();
     s.scene = std::make_unique<GlTerrain>(terrain);
-    s.renderer = std::make_unique<MeshRenderer>(*s.scene, width, height, mode == "full" ? 0 : lod_quads);
+    s.renderer =
+        std::make_unique<MeshRenderer>(*s.scene, width, height, mode == "full" ? 0 : lod_quads);
     return s;
   }
   throw InputError(fmt::format("--mode {}: unknown mode", mode));

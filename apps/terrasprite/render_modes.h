@@ -12,15 +12,16 @@
 namespace terrasprite::cli {
 
 struct RenderStack {
-  std::unique_ptr<GlContext> gl;        // null for CPU renderers
-  std::unique_ptr<GlTerrain> scene;     // null for CPU renderers
-  std::unique_ptr<Renderer> renderer;   // destroyed first
-  std::string device;                   // GL_RENDERER, or the CPU renderer's description
+  std::unique_ptr<GlContext> gl;       // null for CPU renderers
+  std::unique_ptr<GlTerrain> scene;    // null for CPU renderers
+  std::unique_ptr<Renderer> renderer;  // destroyed first
+  std::string device;                  // GL_RENDERER, or the CPU renderer's description
 };
 
 /// Modes: full, lod. Throws InputError for an unknown mode, DeviceError when
 /// a GL mode finds no GL device. `terrain` must outlive the stack.
-RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width, int height, int lod_quads);
+RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
+                              int height, int lod_quads);
 
 /// The modes make_render_stack accepts, for CLI11's check.
 std::vector<std::string> render_modes();

@@ -17,7 +17,8 @@ namespace terrasprite {
 /// elevation and distance; 360-459 move in along the view to 0.35 E. Another
 /// frame count samples the same flight. The camera keeps at least 0.03 E above
 /// the ground below it. Near/far planes are fitted per frame.
-std::vector<Camera> paper_path(const Heightfield& h, int frames, double aspect, double fov_y_deg = 60.0);
+std::vector<Camera> paper_path(const Heightfield& h, int frames, double aspect,
+                               double fov_y_deg = 60.0);
 
 /// Reads a JSON path file (format in the README):
 /// {"keyframes": [{"t": s, "position": [x,y,z], "target": [x,y,z] | "yaw_deg",
@@ -25,9 +26,11 @@ std::vector<Camera> paper_path(const Heightfield& h, int frames, double aspect, 
 /// z up, origin at the terrain centre at height 0). Samples `frames` frames
 /// uniformly in t (Catmull-Rom positions, slerped orientations).
 /// Throws InputError naming the file for a missing or malformed file.
-std::vector<Camera> load_path_file(const std::string& path, const Heightfield& h, int frames, double aspect);
+std::vector<Camera> load_path_file(const std::string& path, const Heightfield& h, int frames,
+                                   double aspect);
 
 /// "paper" or a JSON file name: dispatches to the two above.
-std::vector<Camera> make_path(const std::string& spec, const Heightfield& h, int frames, double aspect);
+std::vector<Camera> make_path(const std::string& spec, const Heightfield& h, int frames,
+                              double aspect);
 
 }  // namespace terrasprite

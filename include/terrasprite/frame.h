@@ -12,12 +12,13 @@ namespace terrasprite {
 
 /// A rendered image with its linear depth and timings. Rows top to bottom.
 struct Frame {
-  Image color;               ///< RGBA8, alpha 255
-  std::vector<float> depth;  ///< width*height, metres along the view axis; +inf = sky; empty if not read
-  double ms = 0.0;           ///< rendering work, wall clock, pipeline drained (read-back excluded)
-  double gpu_ms = -1.0;      ///< GL timer-query time, or -1 when unavailable
-  long long triangles = 0;   ///< triangles submitted (0 for non-raster renderers)
-  std::string cls;           ///< frame class: full, lod, key, sprite, voxel, warp
+  Image color;  ///< RGBA8, alpha 255
+  std::vector<float>
+      depth;        ///< width*height, metres along the view axis; +inf = sky; empty if not read
+  double ms = 0.0;  ///< rendering work, wall clock, pipeline drained (read-back excluded)
+  double gpu_ms = -1.0;     ///< GL timer-query time, or -1 when unavailable
+  long long triangles = 0;  ///< triangles submitted (0 for non-raster renderers)
+  std::string cls;          ///< frame class: full, lod, key, sprite, voxel, warp
 
   static constexpr float kSky = std::numeric_limits<float>::infinity();
   int width() const { return color.width; }

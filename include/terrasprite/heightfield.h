@@ -16,12 +16,12 @@ namespace terrasprite {
 /// so the grid is centred on the origin. All heights are valid (nodata cells
 /// have been filled by the loader and counted in `nodata_count`).
 struct Heightfield {
-  int width = 0;   ///< samples along x (>= 1)
-  int height = 0;  ///< samples along y (>= 1)
-  double spacing_x = 1.0;  ///< metres between samples along x (> 0)
-  double spacing_y = 1.0;  ///< metres between samples along y (> 0)
-  std::vector<float> heights;  ///< width * height values, metres
-  long long nodata_count = 0;  ///< cells that were nodata in the source (filled)
+  int width = 0;                    ///< samples along x (>= 1)
+  int height = 0;                   ///< samples along y (>= 1)
+  double spacing_x = 1.0;           ///< metres between samples along x (> 0)
+  double spacing_y = 1.0;           ///< metres between samples along y (> 0)
+  std::vector<float> heights;       ///< width * height values, metres
+  long long nodata_count = 0;       ///< cells that were nodata in the source (filled)
   std::optional<GeoTransform> geo;  ///< source georeferencing, when known
   std::optional<std::pair<int, int>> resampled_to;  ///< set when the grid was resampled
   std::string name = "unnamed";

@@ -26,21 +26,25 @@ struct ImageView {
   int stride = 0;    ///< bytes per row
   int channels = 4;  ///< 1 (grey), 3 (RGB) or 4 (RGBA)
 
-  const std::uint8_t* row(int y) const { return data.data() + static_cast<std::size_t>(y) * stride; }
+  const std::uint8_t* row(int y) const {
+    return data.data() + static_cast<std::size_t>(y) * stride;
+  }
 };
 
 /// An owning RGBA8 image, rows top to bottom, tightly packed (stride = 4 * width).
 struct Image {
   int width = 0;
   int height = 0;
-  std::vector<std::uint8_t> rgba;  ///< width * height * 4 bytes
+  std::vector<std::uint8_t> rgba;   ///< width * height * 4 bytes
   std::optional<GeoTransform> geo;  ///< set when loaded from a georeferenced file
 
   Image() = default;
   Image(int w, int h) : width(w), height(h), rgba(static_cast<std::size_t>(w) * h * 4, 0) {}
 
   bool empty() const { return width <= 0 || height <= 0; }
-  std::uint8_t* px(int x, int y) { return rgba.data() + (static_cast<std::size_t>(y) * width + x) * 4; }
+  std::uint8_t* px(int x, int y) {
+    return rgba.data() + (static_cast<std::size_t>(y) * width + x) * 4;
+  }
   const std::uint8_t* px(int x, int y) const {
     return rgba.data() + (static_cast<std::size_t>(y) * width + x) * 4;
   }
@@ -57,6 +61,7 @@ Image load_image(const std::string& path);
 void save_png(const Image& image, const std::string& path);
 
 /// Writes a single-channel 16-bit PNG (row 0 on top). Throws InputError on failure.
-void save_png16(std::span<const std::uint16_t> grey, int width, int height, const std::string& path);
+void save_png16(std::span<const std::uint16_t> grey, int width, int height,
+                const std::string& path);
 
 }  // namespace terrasprite

@@ -31,7 +31,8 @@ class GlTerrain {
 };
 
 struct RasterOptions {
-  bool lighting = false;   ///< simple diffuse sun; off by default (the derived texture carries hillshade)
+  bool lighting =
+      false;  ///< simple diffuse sun; off by default (the derived texture carries hillshade)
   bool read_depth = true;  ///< read linear depth back into Frame::depth
 };
 

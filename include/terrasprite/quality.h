@@ -41,7 +41,8 @@ struct SsimResult {
   double ssim = 0;  ///< Wang: on luma; ffmpeg: its 'All' (weighted over channels)
   std::array<double, 3> channels{0, 0, 0};  ///< per R, G, B (when options.channels)
 };
-SsimResult ssim(const ImageView& reference, const ImageView& test, const SsimOptions& options = {}, Mask mask = {});
+SsimResult ssim(const ImageView& reference, const ImageView& test, const SsimOptions& options = {},
+                Mask mask = {});
 
 /// MS-SSIM (Wang, Simoncelli, Bovik 2003), 5 scales on luma. Throws InputError
 /// for images under 176 pixels on the shorter side.
@@ -57,6 +58,7 @@ struct FlipResult {
   std::vector<float> map;  ///< width*height per-pixel error in [0, 1] when asked for
 };
 /// LDR-FLIP (Andersson et al. 2020).
-FlipResult flip(const ImageView& reference, const ImageView& test, const FlipOptions& options = {}, Mask mask = {});
+FlipResult flip(const ImageView& reference, const ImageView& test, const FlipOptions& options = {},
+                Mask mask = {});
 
 }  // namespace terrasprite::quality

@@ -29,17 +29,17 @@ enum class HeightEncoding { kAuto, kTerrainRgb, kTerrarium };
 
 /// Options of every command that loads a terrain (the CLI's common options).
 struct TerrainOptions {
-  std::string dem;              ///< height file; empty = synthetic terrain
-  std::string texture;          ///< file, "checker", "derived" or empty (= derived)
-  double z_scale = 1.0;         ///< multiplies raw samples (after the band's own scale/offset)
+  std::string dem;                ///< height file; empty = synthetic terrain
+  std::string texture;            ///< file, "checker", "derived" or empty (= derived)
+  double z_scale = 1.0;           ///< multiplies raw samples (after the band's own scale/offset)
   std::optional<double> spacing;  ///< metres between samples; overrides the file's
   std::optional<double> nodata;   ///< nodata value for files that do not tag one
   HeightEncoding encoding = HeightEncoding::kAuto;
-  double exaggeration = 1.0;    ///< display scale of heights
-  int resample = 0;             ///< 0 = keep; else resample to N x N samples (N >= 2)
-  unsigned seed = 1;            ///< synthetic terrain seed
-  int synthetic_size = 513;     ///< synthetic terrain samples per side
-  int erosion_passes = 2;       ///< synthetic terrain erosion passes
+  double exaggeration = 1.0;  ///< display scale of heights
+  int resample = 0;           ///< 0 = keep; else resample to N x N samples (N >= 2)
+  unsigned seed = 1;          ///< synthetic terrain seed
+  int synthetic_size = 513;   ///< synthetic terrain samples per side
+  int erosion_passes = 2;     ///< synthetic terrain erosion passes
 };
 
 /// Loads (or synthesises) heights, applies resampling and exaggeration, and

@@ -38,12 +38,13 @@ inline double decode_terrarium(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
 /// growing inwards wave by wave. Returns the number of cells filled.
 /// `heights` and `valid` hold width*height entries. Throws InputError
 /// ("all cells are nodata") when no cell is valid.
-long long fill_nodata(std::span<float> heights, std::span<std::uint8_t> valid, int width, int height);
+long long fill_nodata(std::span<float> heights, std::span<std::uint8_t> valid, int width,
+                      int height);
 
 /// Seeded, deterministic mountains: fBm plus ridged noise, a few thermal
 /// erosion passes, heights normalised to [0, relief_m]. size >= 2.
 struct SynthOptions {
-  int size = 513;          ///< samples per side
+  int size = 513;  ///< samples per side
   double spacing_m = 30.0;
   double relief_m = 2000.0;
   unsigned seed = 1;

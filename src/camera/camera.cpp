@@ -12,7 +12,8 @@ namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 }
 
-Camera Camera::look_at(glm::dvec3 eye, glm::dvec3 target, double fov_y_deg, double aspect, double yaw_hint_deg) {
+Camera Camera::look_at(glm::dvec3 eye, glm::dvec3 target, double fov_y_deg, double aspect,
+                       double yaw_hint_deg) {
   Camera c;
   c.position = eye;
   c.fov_y_deg = fov_y_deg;
@@ -55,9 +56,15 @@ glm::dvec3 Camera::up() const {
 glm::dmat4 Camera::view() const {
   glm::dvec3 r = right(), u = up(), f = forward();
   glm::dmat4 m(1.0);
-  m[0][0] = r.x; m[1][0] = r.y; m[2][0] = r.z;
-  m[0][1] = u.x; m[1][1] = u.y; m[2][1] = u.z;
-  m[0][2] = -f.x; m[1][2] = -f.y; m[2][2] = -f.z;
+  m[0][0] = r.x;
+  m[1][0] = r.y;
+  m[2][0] = r.z;
+  m[0][1] = u.x;
+  m[1][1] = u.y;
+  m[2][1] = u.z;
+  m[0][2] = -f.x;
+  m[1][2] = -f.y;
+  m[2][2] = -f.z;
   m[3][0] = -glm::dot(r, position);
   m[3][1] = -glm::dot(u, position);
   m[3][2] = glm::dot(f, position);
@@ -68,7 +75,9 @@ glm::dmat4 Camera::projection() const {
   return glm::perspectiveRH_NO(fov_y_deg * kDeg, aspect, near_m, far_m);
 }
 
-double Camera::pixel_angle(int height_px) const { return fov_y_deg * kDeg / height_px; }
+double Camera::pixel_angle(int height_px) const {
+  return fov_y_deg * kDeg / height_px;
+}
 
 glm::dvec3 Camera::ray_direction(double px, double py, int width, int height) const {
   double t = std::tan(fov_y_deg * kDeg * 0.5);

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // JSON keyframe paths: Catmull-Rom positions, slerped orientations.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <filesystem>
-#include <fmt/format.h>
 #include <fstream>
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
@@ -43,7 +44,8 @@ glm::dvec3 vec3_of(const nlohmann::json& j, const std::string& where) {
   return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
 }
 
-double number_of(const nlohmann::json& k, const char* key, double fallback, const std::string& where) {
+double number_of(const nlohmann::json& k, const char* key, double fallback,
+                 const std::string& where) {
   if (!k.contains(key)) return fallback;
   if (!k[key].is_number()) throw InputError(fmt::format("{}.{} must be a number", where, key));
   double v = k[key].get<double>();
@@ -60,14 +62,16 @@ std::vector<Key> parse(const std::string& path, double aspect) {
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(fmt::format("{}: malformed JSON at byte {}", path, e.byte));
   }
-  if (!doc.is_object() || !doc.contains("keyframes") || !doc["keyframes"].is_array() || doc["keyframes"].empty())
+  if (!doc.is_object() || !doc.contains("keyframes") || !doc["keyframes"].is_array() ||
+      doc["keyframes"].empty())
     throw InputError(fmt::format("{}: needs a non-empty \"keyframes\" array", path));
   std::vector<Key> keys;
   for (std::size_t i = 0; i < doc["keyframes"].size(); ++i) {
     const auto& k = doc["keyframes"][i];
     std::string where = fmt::format("{}: keyframes[{}]", path, i);
     if (!k.is_object()) throw InputError(where + " must be an object");
-    if (!k.contains("t") || !k["t"].is_number()) throw InputError(where + ".t must be a number (seconds)");
+    if (!k.contains("t") || !k["t"].is_number())
+      throw InputError(where + ".t must be a number (seconds)");
     if (!k.contains("position")) throw InputError(where + " has no position");
     Key key;
     key.t = k["t"].get<double>();
@@ -77,7 +81,8 @@ std::vector<Key> parse(const std::string& path, double aspect) {
     Camera c;
     if (k.contains("target")) {
       glm::dvec3 target = vec3_of(k["target"], where + ".target");
-      if (glm::length(target - key.pos) <= 0) throw InputError(where + ".target equals its position");
+      if (glm::length(target - key.pos) <= 0)
+        throw InputError(where + ".target equals its position");
       c = Camera::look_at(key.pos, target, key.fov, aspect, keys.empty() ? 0.0 : 0.0);
       c.roll_deg = number_of(k, "roll_deg", 0.0, where);
     } else if (k.contains("yaw_deg") || k.contains("pitch_deg")) {
@@ -91,23 +96,28 @@ std::vector<Key> parse(const std::string& path, double aspect) {
     key.orient = orientation_of(c);
     if (!keys.empty() && !(key.t > keys.back().t))
       throw InputError(where + ".t must be greater than the previous keyframe's");
-    if (!keys.empty() && glm::dot(keys.back().orient, key.orient) < 0) key.orient = -key.orient;  // shortest arc
+    if (!keys.empty() && glm::dot(keys.back().orient, key.orient) < 0)
+      key.orient = -key.orient;  // shortest arc
     keys.push_back(key);
   }
   return keys;
 }
 
-glm::dvec3 catmull_rom(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2, const glm::dvec3& p3, double u) {
+glm::dvec3 catmull_rom(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2,
+                       const glm::dvec3& p3, double u) {
   double u2 = u * u, u3 = u2 * u;
-  return 0.5 * ((2.0 * p1) + (-p0 + p2) * u + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * u2 + (-p0 + 3.0 * p1 - 3.0 * p2 + p3) * u3);
+  return 0.5 * ((2.0 * p1) + (-p0 + p2) * u + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * u2 +
+                (-p0 + 3.0 * p1 - 3.0 * p2 + p3) * u3);
 }
 
 }  // namespace
 
-std::vector<Camera> load_path_file(const std::string& path, const Heightfield& h, int frames, double aspect) {
+std::vector<Camera> load_path_file(const std::string& path, const Heightfield& h, int frames,
+                                   double aspect) {
   if (frames < 1) throw InputError(fmt::format("--frames {}: must be at least 1", frames));
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such path file", path));
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(fmt::format("{}: no such path file", path));
   std::vector<Key> keys = parse(path, aspect);
   std::vector<Camera> out;
   const double t0 = keys.front().t, t1 = keys.back().t;

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The LOD-sprite paper's flight path (Chen, Swan, Kuo, Kaufman 1999, Fig. 7).
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 
 #include "terrasprite/camera_path.h"
 #include "terrasprite/error.h"
@@ -45,7 +46,8 @@ std::vector<Camera> paper_path(const Heightfield& h, int frames, double aspect, 
   return path;
 }
 
-std::vector<Camera> make_path(const std::string& spec, const Heightfield& h, int frames, double aspect) {
+std::vector<Camera> make_path(const std::string& spec, const Heightfield& h, int frames,
+                              double aspect) {
   if (spec.empty() || spec == "paper") return paper_path(h, frames, aspect);
   return load_path_file(spec, h, frames, aspect);
 }

@@ -18,7 +18,8 @@ OutputDir::OutputDir(const std::string& dir) {
   std::error_code ec;
   fs::remove_all(partial_, ec);
   fs::create_directories(partial_, ec);
-  if (ec) throw InputError(fmt::format("{}: cannot create output directory ({})", dir, ec.message()));
+  if (ec)
+    throw InputError(fmt::format("{}: cannot create output directory ({})", dir, ec.message()));
 }
 
 OutputDir::~OutputDir() {
@@ -39,7 +40,9 @@ void OutputDir::commit() {
   std::error_code ec;
   fs::remove_all(final_, ec);
   fs::rename(partial_, final_, ec);
-  if (ec) throw InputError(fmt::format("{}: cannot move finished output into place ({})", final_.string(), ec.message()));
+  if (ec)
+    throw InputError(fmt::format("{}: cannot move finished output into place ({})", final_.string(),
+                                 ec.message()));
   committed_ = true;
 }
 

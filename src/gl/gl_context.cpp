@@ -5,8 +5,8 @@
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
-
 #include <fmt/format.h>
+
 #include <vector>
 
 #include "terrasprite/error.h"
@@ -31,14 +31,21 @@ EGLContext try_context(EGLDisplay dpy) {
   if (!eglBindAPI(EGL_OPENGL_API)) return EGL_NO_CONTEXT;
   EGLConfig config = nullptr;
   EGLint count = 0;
-  const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, 0, EGL_NONE};
+  const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, 0,
+                                   EGL_NONE};
   bool no_config = epoxy_has_egl_extension(dpy, "EGL_KHR_no_config_context") ||
                    epoxy_has_egl_extension(dpy, "EGL_MESA_configless_context");
   if (!no_config && (!eglChooseConfig(dpy, config_attribs, &config, 1, &count) || count < 1))
     return EGL_NO_CONTEXT;
-  const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
-  EGLContext ctx = eglCreateContext(dpy, no_config ? EGL_NO_CONFIG_KHR : config, EGL_NO_CONTEXT, ctx_attribs);
+  const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                4,
+                                EGL_CONTEXT_MINOR_VERSION,
+                                5,
+                                EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                EGL_NONE};
+  EGLContext ctx =
+      eglCreateContext(dpy, no_config ? EGL_NO_CONFIG_KHR : config, EGL_NO_CONTEXT, ctx_attribs);
   if (ctx == EGL_NO_CONTEXT) return EGL_NO_CONTEXT;
   if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {
     eglDestroyContext(dpy, ctx);
@@ -52,13 +59,15 @@ EGLContext try_context(EGLDisplay dpy) {
 GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
   std::vector<EGLDisplay> candidates;
   if (has_client_ext("EGL_MESA_platform_surfaceless"))
-    candidates.push_back(eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr));
+    candidates.push_back(
+        eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr));
   if (has_client_ext("EGL_EXT_platform_device")) {
     EGLDeviceEXT devices[8];
     EGLint n = 0;
     if (eglQueryDevicesEXT(8, devices, &n))
       for (EGLint i = 0; i < n; ++i)
-        candidates.push_back(eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr));
+        candidates.push_back(
+            eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr));
   }
   for (EGLDisplay dpy : candidates) {
     if (dpy == EGL_NO_DISPLAY) continue;
@@ -76,7 +85,9 @@ GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
     eglDestroyContext(impl_->display, impl_->context);
     eglTerminate(impl_->display);
   }
-  throw DeviceError("no usable GL device: could not create an OpenGL 4.5 core context through EGL (surfaceless or device platform)");
+  throw DeviceError(
+      "no usable GL device: could not create an OpenGL 4.5 core context through EGL (surfaceless "
+      "or device platform)");
 }
 
 GlContext::~GlContext() {

@@ -34,23 +34,43 @@ class Object {
 };
 
 struct BufferTraits {
-  static GLuint create() { GLuint i; glCreateBuffers(1, &i); return i; }
+  static GLuint create() {
+    GLuint i;
+    glCreateBuffers(1, &i);
+    return i;
+  }
   static void destroy(GLuint i) { glDeleteBuffers(1, &i); }
 };
 struct TextureTraits {
-  static GLuint create(GLenum target) { GLuint i; glCreateTextures(target, 1, &i); return i; }
+  static GLuint create(GLenum target) {
+    GLuint i;
+    glCreateTextures(target, 1, &i);
+    return i;
+  }
   static void destroy(GLuint i) { glDeleteTextures(1, &i); }
 };
 struct FramebufferTraits {
-  static GLuint create() { GLuint i; glCreateFramebuffers(1, &i); return i; }
+  static GLuint create() {
+    GLuint i;
+    glCreateFramebuffers(1, &i);
+    return i;
+  }
   static void destroy(GLuint i) { glDeleteFramebuffers(1, &i); }
 };
 struct VertexArrayTraits {
-  static GLuint create() { GLuint i; glCreateVertexArrays(1, &i); return i; }
+  static GLuint create() {
+    GLuint i;
+    glCreateVertexArrays(1, &i);
+    return i;
+  }
   static void destroy(GLuint i) { glDeleteVertexArrays(1, &i); }
 };
 struct QueryTraits {
-  static GLuint create(GLenum target) { GLuint i; glCreateQueries(target, 1, &i); return i; }
+  static GLuint create(GLenum target) {
+    GLuint i;
+    glCreateQueries(target, 1, &i);
+    return i;
+  }
   static void destroy(GLuint i) { glDeleteQueries(1, &i); }
 };
 struct ProgramTraits {

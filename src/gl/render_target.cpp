@@ -59,7 +59,8 @@ std::vector<float> RenderTarget::read_depth(double near_m, double far_m) const {
   const std::size_t n = static_cast<std::size_t>(width_) * height_;
   std::vector<float> raw(n), out(n);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glGetTextureImage(depth_.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(n * sizeof(float)), raw.data());
+  glGetTextureImage(depth_.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(n * sizeof(float)),
+                    raw.data());
   // Reversed Z: d = near (far - z) / (z (far - near)) inverted to z = n f / (n + d (f - n)).
   const double nf = near_m * far_m, fn = far_m - near_m;
   for (int y = 0; y < height_; ++y)

@@ -15,7 +15,9 @@ namespace terrasprite::gl {
 /// Reversed-Z, zero-to-one projection of `camera` (use with glClipControl
 /// GL_ZERO_TO_ONE, which every RenderTarget::bind sets).
 glm::dmat4 projection_reversed_z(const Camera& camera);
-inline glm::dmat4 view_projection_reversed_z(const Camera& c) { return projection_reversed_z(c) * c.view(); }
+inline glm::dmat4 view_projection_reversed_z(const Camera& c) {
+  return projection_reversed_z(c) * c.view();
+}
 
 class RenderTarget {
  public:

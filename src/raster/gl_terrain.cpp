@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "raster/gl_terrain.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "terrasprite/error.h"
@@ -54,19 +55,21 @@ GlTerrain::GlTerrain(const Terrain& terrain) : impl_(std::make_unique<Impl>()) {
   impl_->terrain = &terrain;
   const Heightfield& h = terrain.heights;
   if (static_cast<long long>(h.width) * h.height > kMaxResidentSamples)
-    throw InputError(fmt::format("{}: {}x{} samples exceed the 4097x4097 a resident GL mesh allows (use --resample)",
-                                 h.name, h.width, h.height));
+    throw InputError(fmt::format(
+        "{}: {}x{} samples exceed the 4097x4097 a resident GL mesh allows (use --resample)", h.name,
+        h.width, h.height));
   const Image& tex = terrain.texture;
   GLint max_size = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
   if (tex.width > max_size || tex.height > max_size)
-    throw InputError(fmt::format("{}: texture {}x{} exceeds the GL limit of {} pixels per side", terrain.texture_name,
-                                 tex.width, tex.height, max_size));
+    throw InputError(fmt::format("{}: texture {}x{} exceeds the GL limit of {} pixels per side",
+                                 terrain.texture_name, tex.width, tex.height, max_size));
   const GLuint t = impl_->drape.id();
   const int levels = 1 + int(std::floor(std::log2(std::max(tex.width, tex.height))));
   glTextureStorage2D(t, levels, GL_RGBA8, tex.width, tex.height);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTextureSubImage2D(t, 0, 0, 0, tex.width, tex.height, GL_RGBA, GL_UNSIGNED_BYTE, tex.rgba.data());
+  glTextureSubImage2D(t, 0, 0, 0, tex.width, tex.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                      tex.rgba.data());
   glGenerateTextureMipmap(t);
   // Trilinear + anisotropic: an aliased reference would make every quality figure meaningless.
   glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
@@ -79,19 +82,23 @@ GlTerrain::GlTerrain(const Terrain& terrain) : impl_(std::make_unique<Impl>()) {
     glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY_EXT, &max_aniso);
     glTextureParameterf(t, GL_TEXTURE_MAX_ANISOTROPY_EXT, std::min(16.f, max_aniso));
   }
-  impl_->program = gl::link_program(kVertex, std::string("#version 450 core\n") + kDrapeUvGlsl + kFragment);
+  impl_->program =
+      gl::link_program(kVertex, std::string("#version 450 core\n") + kDrapeUvGlsl + kFragment);
 }
 
 GlTerrain::~GlTerrain() = default;
 
-const Terrain& GlTerrain::terrain() const { return *impl_->terrain; }
+const Terrain& GlTerrain::terrain() const {
+  return *impl_->terrain;
+}
 
 glm::vec4 GlTerrain::Impl::uv_transform() const {
   // s = (x + ex/2) / ex, t = (ey/2 - y) / ey; u = r0 + s r2, v = r1 + t r3.
   const Heightfield& h = terrain->heights;
   const auto& r = terrain->tex_rect;
   const double ex = std::max(h.extent_x(), 1e-9), ey = std::max(h.extent_y(), 1e-9);
-  return glm::vec4(float(r[2] / ex), float(-r[3] / ey), float(r[0] + 0.5 * r[2]), float(r[1] + 0.5 * r[3]));
+  return glm::vec4(float(r[2] / ex), float(-r[3] / ey), float(r[0] + 0.5 * r[2]),
+                   float(r[1] + 0.5 * r[3]));
 }
 
 const GpuMesh& GlTerrain::Impl::mesh(int quads) {
@@ -108,8 +115,10 @@ const GpuMesh& GlTerrain::Impl::mesh(int quads) {
   }
   GridMesh cpu = build_grid_mesh(h, xs, ys);
   GpuMesh& g = meshes[quads];
-  glNamedBufferStorage(g.vertices.id(), GLsizeiptr(cpu.vertices.size() * sizeof(float)), cpu.vertices.data(), 0);
-  glNamedBufferStorage(g.indices.id(), GLsizeiptr(cpu.indices.size() * sizeof(std::uint32_t)), cpu.indices.data(), 0);
+  glNamedBufferStorage(g.vertices.id(), GLsizeiptr(cpu.vertices.size() * sizeof(float)),
+                       cpu.vertices.data(), 0);
+  glNamedBufferStorage(g.indices.id(), GLsizeiptr(cpu.indices.size() * sizeof(std::uint32_t)),
+                       cpu.indices.data(), 0);
   const GLuint vao = g.vao.id();
   glVertexArrayVertexBuffer(vao, 0, g.vertices.id(), 0, 6 * sizeof(float));
   glVertexArrayElementBuffer(vao, g.indices.id());

@@ -24,7 +24,7 @@ struct GpuMesh {
 struct GlTerrain::Impl {
   const Terrain* terrain = nullptr;
   gl::Texture drape{GL_TEXTURE_2D};
-  gl::Program program;  // the plain textured terrain shader
+  gl::Program program;            // the plain textured terrain shader
   std::map<int, GpuMesh> meshes;  // by quads per side; 0 = full resolution
 
   /// The mesh of `quads` quads per side (0 = full), uploaded on first use.

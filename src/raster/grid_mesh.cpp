@@ -23,7 +23,8 @@ GridMesh build_grid_mesh(const Heightfield& h, std::span<const int> xs, std::spa
       int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, h.width - 1);
       int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, h.height - 1);
       double dzdx = i1 > i0 ? (h.at(i1, j) - h.at(i0, j)) / ((i1 - i0) * h.spacing_x) : 0.0;
-      double dzdy = j1 > j0 ? (h.at(i, j0) - h.at(i, j1)) / ((j1 - j0) * h.spacing_y) : 0.0;  // rows run south
+      double dzdy = j1 > j0 ? (h.at(i, j0) - h.at(i, j1)) / ((j1 - j0) * h.spacing_y)
+                            : 0.0;  // rows run south
       double len = std::sqrt(dzdx * dzdx + dzdy * dzdy + 1.0);
       float* v = &m.vertices[(static_cast<std::size_t>(r) * m.columns + c) * 6];
       v[0] = float(h.world_x(i));

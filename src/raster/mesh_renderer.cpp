@@ -3,8 +3,9 @@
 // buffers, timed to glFinish (an honest baseline, DESIGN.md timing rules).
 #include "terrasprite/mesh_renderer.h"
 
-#include <chrono>
 #include <fmt/format.h>
+
+#include <chrono>
 
 #include "gl/render_target.h"
 #include "raster/gl_terrain.h"
@@ -19,14 +20,17 @@ struct MeshRenderer::State {
   gl::Query timer{GL_TIME_ELAPSED};
 };
 
-MeshRenderer::MeshRenderer(GlTerrain& scene, int width, int height, int quads, RasterOptions options)
+MeshRenderer::MeshRenderer(GlTerrain& scene, int width, int height, int quads,
+                           RasterOptions options)
     : s_(std::make_unique<State>(State{scene, quads, options, gl::RenderTarget(width, height)})) {
   scene.impl().mesh(quads);  // upload now, not inside the first timed frame
 }
 
 MeshRenderer::~MeshRenderer() = default;
 
-std::string MeshRenderer::name() const { return s_->quads <= 0 ? "full" : fmt::format("lod{}", s_->quads); }
+std::string MeshRenderer::name() const {
+  return s_->quads <= 0 ? "full" : fmt::format("lod{}", s_->quads);
+}
 
 Frame MeshRenderer::render(const Camera& camera) {
   GlTerrain::Impl& scene = s_->scene.impl();

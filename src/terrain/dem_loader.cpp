@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
 // Height rasters through GDAL: geotransform to metres, band scale/offset,
 // nodata (tagged, given, or detected sentinels), terrain-RGB/Terrarium PNGs.
+#include <fmt/format.h>
 #include <gdal.h>
 #include <ogr_srs_api.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fmt/format.h>
 
 #include "terrain/gdal_util.h"
 #include "terrasprite/error.h"
@@ -37,7 +37,8 @@ void metres_per_degree(double lat_deg, double& m_lat, double& m_lon) {
 bool spacing_from_geo(GDALDatasetH ds, int w, int h, double& sx, double& sy, GeoTransform& geo) {
   double gt[6];
   if (GDALGetGeoTransform(ds, gt) != CE_None) return false;
-  if (gt[0] == 0 && gt[1] == 1 && gt[2] == 0 && gt[3] == 0 && gt[4] == 0 && gt[5] == 1) return false;
+  if (gt[0] == 0 && gt[1] == 1 && gt[2] == 0 && gt[3] == 0 && gt[4] == 0 && gt[5] == 1)
+    return false;
   std::copy(gt, gt + 6, geo.gt);
   const char* wkt = GDALGetProjectionRef(ds);
   geo.wkt = wkt ? wkt : "";
@@ -69,7 +70,8 @@ Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings
   const std::string& path = o.dem;
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(fmt::format("{}: no such file", path));
-  if (std::filesystem::is_directory(path, ec)) throw InputError(fmt::format("{}: is a directory, not a height raster", path));
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(fmt::format("{}: is a directory, not a height raster", path));
   detail::GdalErrorCapture capture;
   Dataset ds{GDALOpen(path.c_str(), GA_ReadOnly)};
   if (!ds.h) {
@@ -77,17 +79,24 @@ Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings
     std::replace(why.begin(), why.end(), '\n', ' ');
     throw InputError(fmt::format("{}: not a readable height raster ({})", path, why));
   }
-  const int w = GDALGetRasterXSize(ds.h), h = GDALGetRasterYSize(ds.h), bands = GDALGetRasterCount(ds.h);
+  const int w = GDALGetRasterXSize(ds.h), h = GDALGetRasterYSize(ds.h),
+            bands = GDALGetRasterCount(ds.h);
   if (w <= 0 || h <= 0 || bands <= 0) throw InputError(fmt::format("{}: raster is empty", path));
-  if (w < 2 || h < 2) throw InputError(fmt::format("{}: raster is {}x{}; at least 2x2 samples are needed", path, w, h));
+  if (w < 2 || h < 2)
+    throw InputError(
+        fmt::format("{}: raster is {}x{}; at least 2x2 samples are needed", path, w, h));
   if (static_cast<long long>(w) * h > 16385LL * 16385LL)
-    throw InputError(fmt::format("{}: raster is {}x{}; more than 16385x16385 samples is not supported yet", path, w, h));
+    throw InputError(fmt::format(
+        "{}: raster is {}x{}; more than 16385x16385 samples is not supported yet", path, w, h));
 
   GDALRasterBandH b1 = GDALGetRasterBand(ds.h, 1);
   const bool bytes = GDALGetRasterDataType(b1) == GDT_Byte;
   HeightEncoding enc = o.encoding;
   if (enc == HeightEncoding::kAuto && bytes && bands >= 3)
-    throw InputError(fmt::format("{}: an 8-bit colour raster; give --encoding terrain-rgb or terrarium to read it as heights", path));
+    throw InputError(
+        fmt::format("{}: an 8-bit colour raster; give --encoding terrain-rgb or terrarium to read "
+                    "it as heights",
+                    path));
   if (enc != HeightEncoding::kAuto && (!bytes || bands < 3))
     throw InputError(fmt::format("{}: --encoding needs an 8-bit RGB raster", path));
 
@@ -110,8 +119,9 @@ Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings
       read(GDALGetRasterBand(ds.h, 4), GDT_Byte, alpha.data());
     }
     for (std::size_t p = 0; p < n; ++p) {
-      raw[p] = enc == HeightEncoding::kTerrainRgb ? decode_terrain_rgb(rgb[0][p], rgb[1][p], rgb[2][p])
-                                                  : decode_terrarium(rgb[0][p], rgb[1][p], rgb[2][p]);
+      raw[p] = enc == HeightEncoding::kTerrainRgb
+                   ? decode_terrain_rgb(rgb[0][p], rgb[1][p], rgb[2][p])
+                   : decode_terrarium(rgb[0][p], rgb[1][p], rgb[2][p]);
       if (!alpha.empty() && alpha[p] == 0) valid[p] = 0;
     }
   } else {
@@ -126,7 +136,8 @@ Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings
     const double sentinels[3] = {-32768, -32767, -9999};
     for (std::size_t p = 0; p < n; ++p) {
       double v = raw[p];
-      if (!std::isfinite(v) || (has_nodata && (v == nodata || (std::isnan(nodata) && std::isnan(v))))) {
+      if (!std::isfinite(v) ||
+          (has_nodata && (v == nodata || (std::isnan(nodata) && std::isnan(v))))) {
         valid[p] = 0;
         continue;
       }
@@ -135,9 +146,10 @@ Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings
     }
     for (int s = 0; s < 3; ++s)
       if (warnings && sentinel_count[s] * 1000 >= static_cast<long long>(n))  // >= 0.1% of cells
-        warnings->push_back(fmt::format(
-            "{}: {} cells hold {}, a typical nodata sentinel, but the file tags no nodata; pass --nodata {} to treat them as holes",
-            path, sentinel_count[s], sentinels[s], sentinels[s]));
+        warnings->push_back(
+            fmt::format("{}: {} cells hold {}, a typical nodata sentinel, but the file tags no "
+                        "nodata; pass --nodata {} to treat them as holes",
+                        path, sentinel_count[s], sentinels[s], sentinels[s]));
     int ok = 0;
     double scale = GDALGetRasterScale(b1, &ok);
     if (!ok) scale = 1.0;
@@ -164,7 +176,8 @@ Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings
   if (o.spacing) {
     sx = sy = *o.spacing;
   } else if (!hf.geo && warnings) {
-    warnings->push_back(fmt::format("{}: no georeferencing; assuming 30 m spacing (use --spacing)", path));
+    warnings->push_back(
+        fmt::format("{}: no georeferencing; assuming 30 m spacing (use --spacing)", path));
   }
   if (!(sx > 0) || !(sy > 0) || !std::isfinite(sx) || !std::isfinite(sy))
     throw InputError(fmt::format("{}: sample spacing {}x{} m is not positive", path, sx, sy));

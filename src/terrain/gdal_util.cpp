@@ -28,6 +28,8 @@ GdalErrorCapture::GdalErrorCapture() {
   CPLPushErrorHandlerEx(capture_handler, &last_);
 }
 
-GdalErrorCapture::~GdalErrorCapture() { CPLPopErrorHandler(); }
+GdalErrorCapture::~GdalErrorCapture() {
+  CPLPopErrorHandler();
+}
 
 }  // namespace terrasprite::detail

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
 // Image loading through GDAL (every raster format, georeferencing kept) with
 // stb as a fallback, and PNG writing through stb.
+#include <fmt/format.h>
 #include <gdal.h>
 #include <stb_image.h>
 #include <stb_image_write.h>
 
 #include <algorithm>
 #include <filesystem>
-#include <fmt/format.h>
 
 #include "terrain/gdal_util.h"
 #include "terrasprite/error.h"
@@ -20,7 +20,8 @@ Image from_channels(const std::vector<std::uint16_t>& v, int w, int h, int n, bo
   Image img(w, h);
   const std::size_t count = static_cast<std::size_t>(w) * h;
   auto to8 = [&](std::uint16_t x) -> std::uint8_t {
-    return sixteen ? static_cast<std::uint8_t>((x * 255u + 32767u) / 65535u) : static_cast<std::uint8_t>(x);
+    return sixteen ? static_cast<std::uint8_t>((x * 255u + 32767u) / 65535u)
+                   : static_cast<std::uint8_t>(x);
   };
   for (std::size_t p = 0; p < count; ++p) {
     std::uint8_t* o = img.rgba.data() + p * 4;
@@ -55,16 +56,18 @@ std::optional<Image> load_with_gdal(const std::string& path, std::string& error)
   bool sixteen = false;
   for (int b = 1; b <= bands; ++b) {
     GDALDataType t = GDALGetRasterDataType(GDALGetRasterBand(ds, b));
-    if (t == GDT_UInt16 || t == GDT_Int16) sixteen = true;
+    if (t == GDT_UInt16 || t == GDT_Int16)
+      sixteen = true;
     else if (t != GDT_Byte) {
       GDALClose(ds);
-      error = fmt::format("unsupported sample type {} for an image (8- or 16-bit expected)", GDALGetDataTypeName(t));
+      error = fmt::format("unsupported sample type {} for an image (8- or 16-bit expected)",
+                          GDALGetDataTypeName(t));
       return std::nullopt;
     }
   }
   std::vector<std::uint16_t> buf(static_cast<std::size_t>(w) * h * bands);
-  CPLErr err = GDALDatasetRasterIO(ds, GF_Read, 0, 0, w, h, buf.data(), w, h, GDT_UInt16, bands, nullptr,
-                                   bands * 2, static_cast<GSpacing>(w) * bands * 2, 2);
+  CPLErr err = GDALDatasetRasterIO(ds, GF_Read, 0, 0, w, h, buf.data(), w, h, GDT_UInt16, bands,
+                                   nullptr, bands * 2, static_cast<GSpacing>(w) * bands * 2, 2);
   if (err != CE_None) {
     error = capture.last().empty() ? "read failed" : capture.last();
     GDALClose(ds);
@@ -88,7 +91,8 @@ std::optional<Image> load_with_gdal(const std::string& path, std::string& error)
 Image load_image(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(fmt::format("{}: no such file", path));
-  if (std::filesystem::is_directory(path, ec)) throw InputError(fmt::format("{}: is a directory, not an image", path));
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(fmt::format("{}: is a directory, not an image", path));
   std::string gdal_error;
   if (auto img = load_with_gdal(path, gdal_error)) return std::move(*img);
   // stb reads a few things GDAL's build may lack (e.g. some PNG/TGA variants).
@@ -105,18 +109,21 @@ Image load_image(const std::string& path) {
     stbi_image_free(p);
     return from_channels(v, w, h, n, false);
   }
-  if (gdal_error.empty()) gdal_error = stbi_failure_reason() ? stbi_failure_reason() : "unknown format";
+  if (gdal_error.empty())
+    gdal_error = stbi_failure_reason() ? stbi_failure_reason() : "unknown format";
   // GDAL's messages can span lines; keep ours to one.
   std::replace(gdal_error.begin(), gdal_error.end(), '\n', ' ');
   throw InputError(fmt::format("{}: not a readable image ({})", path, gdal_error));
 }
 
 void save_png(const Image& image, const std::string& path) {
-  if (!stbi_write_png(path.c_str(), image.width, image.height, 4, image.rgba.data(), image.width * 4))
+  if (!stbi_write_png(path.c_str(), image.width, image.height, 4, image.rgba.data(),
+                      image.width * 4))
     throw InputError(fmt::format("{}: cannot write PNG", path));
 }
 
-void save_png16(std::span<const std::uint16_t> grey, int width, int height, const std::string& path) {
+void save_png16(std::span<const std::uint16_t> grey, int width, int height,
+                const std::string& path) {
   // stb writes 8-bit only; GDAL's PNG driver writes 16-bit through CreateCopy.
   detail::GdalErrorCapture capture;
   GDALDriverH mem = GDALGetDriverByName("MEM");
@@ -125,7 +132,9 @@ void save_png16(std::span<const std::uint16_t> grey, int width, int height, cons
   GDALDatasetH ds = GDALCreate(mem, "", width, height, 1, GDT_UInt16, nullptr);
   CPLErr e = GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, 0, width, height,
                           const_cast<std::uint16_t*>(grey.data()), width, height, GDT_UInt16, 0, 0);
-  GDALDatasetH out = e == CE_None ? GDALCreateCopy(png, path.c_str(), ds, FALSE, nullptr, nullptr, nullptr) : nullptr;
+  GDALDatasetH out = e == CE_None
+                         ? GDALCreateCopy(png, path.c_str(), ds, FALSE, nullptr, nullptr, nullptr)
+                         : nullptr;
   GDALClose(ds);
   if (!out) throw InputError(fmt::format("{}: cannot write 16-bit PNG ({})", path, capture.last()));
   GDALClose(out);

@@ -14,7 +14,8 @@ long long fill_nodata(std::span<float> h, std::span<std::uint8_t> valid, int wid
   for (int p = 0; p < width * height; ++p)
     if (!valid[p]) holes.push_back(p);
   if (holes.empty()) return 0;
-  if (holes.size() == static_cast<std::size_t>(width) * height) throw InputError("all cells are nodata");
+  if (holes.size() == static_cast<std::size_t>(width) * height)
+    throw InputError("all cells are nodata");
   const long long filled = static_cast<long long>(holes.size());
   std::vector<int> next;
   std::vector<std::pair<int, float>> wave;
@@ -28,13 +29,16 @@ long long fill_nodata(std::span<float> h, std::span<std::uint8_t> valid, int wid
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           int nx = x + dx, ny = y + dy;
-          if ((dx || dy) && nx >= 0 && ny >= 0 && nx < width && ny < height && valid[ny * width + nx]) {
+          if ((dx || dy) && nx >= 0 && ny >= 0 && nx < width && ny < height &&
+              valid[ny * width + nx]) {
             sum += h[ny * width + nx];
             ++n;
           }
         }
-      if (n) wave.emplace_back(p, float(sum / n));
-      else next.push_back(p);
+      if (n)
+        wave.emplace_back(p, float(sum / n));
+      else
+        next.push_back(p);
     }
     for (auto [p, v] : wave) {
       h[p] = v;

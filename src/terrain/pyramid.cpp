@@ -29,7 +29,8 @@ std::vector<int> quad_indices(int n, int quads) {
 
 int level_count(const Heightfield& h, int min_quads) {
   int levels = 1;
-  while (int(level_indices(std::max(h.width, h.height), levels - 1).size()) - 1 > min_quads) ++levels;
+  while (int(level_indices(std::max(h.width, h.height), levels - 1).size()) - 1 > min_quads)
+    ++levels;
   return levels;
 }
 

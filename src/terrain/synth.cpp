@@ -43,14 +43,22 @@ class GradientNoise {
   static double lerp(double a, double b, double t) { return a + (b - a) * t; }
   static double grad(int hash, double x, double y) {
     switch (hash & 7) {
-      case 0: return x + y;
-      case 1: return -x + y;
-      case 2: return x - y;
-      case 3: return -x - y;
-      case 4: return x;
-      case 5: return -x;
-      case 6: return y;
-      default: return -y;
+      case 0:
+        return x + y;
+      case 1:
+        return -x + y;
+      case 2:
+        return x - y;
+      case 3:
+        return -x - y;
+      case 4:
+        return x;
+      case 5:
+        return -x;
+      case 6:
+        return y;
+      default:
+        return -y;
     }
   }
   int perm_[512];
@@ -103,9 +111,11 @@ Heightfield synthesize_terrain(const SynthOptions& o) {
       double x = (i * o.spacing_m - extent * 0.5) / base_wavelength + 17.3;
       double y = (j * o.spacing_m - extent * 0.5) / base_wavelength + 5.1;
       // Domain warp breaks the grid-aligned look of plain noise.
-      double wx = x + 0.35 * warp(x * 0.5, y * 0.5), wy = y + 0.35 * warp(x * 0.5 + 31.7, y * 0.5 + 11.3);
+      double wx = x + 0.35 * warp(x * 0.5, y * 0.5),
+             wy = y + 0.35 * warp(x * 0.5 + 31.7, y * 0.5 + 11.3);
       double fbm = 0, amp = 1, freq = 1;
-      for (int k = 0; k < octaves; ++k, amp *= 0.5, freq *= 2) fbm += amp * base(wx * freq, wy * freq);
+      for (int k = 0; k < octaves; ++k, amp *= 0.5, freq *= 2)
+        fbm += amp * base(wx * freq, wy * freq);
       double rid = 0, weight = 1;
       amp = 1;
       freq = 1;

@@ -3,9 +3,10 @@
 // resampling, exaggeration, then the drape texture registered over them.
 #include "terrasprite/terrain.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 
 #include "terrasprite/error.h"
 #include "terrasprite/terrain_gen.h"
@@ -15,8 +16,8 @@ namespace {
 
 // Where the height samples' extent lies in a georeferenced texture (both
 // rasters pixel-is-area, sample k at pixel centre k + 0.5).
-std::array<double, 4> georegistered_rect(const GeoTransform& hg, int hw, int hh, const GeoTransform& tg,
-                                         int tw, int th) {
+std::array<double, 4> georegistered_rect(const GeoTransform& hg, int hw, int hh,
+                                         const GeoTransform& tg, int tw, int th) {
   double x0 = hg.gt[0] + 0.5 * hg.gt[1], y0 = hg.gt[3] + 0.5 * hg.gt[5];
   double x1 = hg.gt[0] + (hw - 0.5) * hg.gt[1], y1 = hg.gt[3] + (hh - 0.5) * hg.gt[5];
   double u0 = (x0 - tg.gt[0]) / (tw * tg.gt[1]), u1 = (x1 - tg.gt[0]) / (tw * tg.gt[1]);
@@ -25,10 +26,14 @@ std::array<double, 4> georegistered_rect(const GeoTransform& hg, int hw, int hh,
 }
 
 void check_options(const TerrainOptions& o) {
-  if (!(o.z_scale != 0) || !std::isfinite(o.z_scale)) throw InputError(fmt::format("--z-scale {}: must be a non-zero number", o.z_scale));
-  if (!(o.exaggeration > 0) || o.exaggeration > 1000) throw InputError(fmt::format("--exaggeration {}: must be in (0, 1000]", o.exaggeration));
-  if (o.spacing && (!(*o.spacing > 0) || *o.spacing > 1e6)) throw InputError(fmt::format("--spacing {}: must be in (0, 1e6] metres", *o.spacing));
-  if (o.resample != 0 && (o.resample < 2 || o.resample > 16385)) throw InputError(fmt::format("--resample {}: must be between 2 and 16385 samples", o.resample));
+  if (!(o.z_scale != 0) || !std::isfinite(o.z_scale))
+    throw InputError(fmt::format("--z-scale {}: must be a non-zero number", o.z_scale));
+  if (!(o.exaggeration > 0) || o.exaggeration > 1000)
+    throw InputError(fmt::format("--exaggeration {}: must be in (0, 1000]", o.exaggeration));
+  if (o.spacing && (!(*o.spacing > 0) || *o.spacing > 1e6))
+    throw InputError(fmt::format("--spacing {}: must be in (0, 1e6] metres", *o.spacing));
+  if (o.resample != 0 && (o.resample < 2 || o.resample > 16385))
+    throw InputError(fmt::format("--resample {}: must be between 2 and 16385 samples", o.resample));
 }
 
 }  // namespace
@@ -53,7 +58,8 @@ Terrain load_terrain(const TerrainOptions& o, std::vector<std::string>* warnings
   const std::string& tex = o.texture;
   if (tex.empty() || tex == "derived") {
     // Twice the sample density (capped) keeps the shading crisp between samples.
-    int tw = std::clamp(2 * (t.heights.width - 1), 2, 4096), th = std::clamp(2 * (t.heights.height - 1), 2, 4096);
+    int tw = std::clamp(2 * (t.heights.width - 1), 2, 4096),
+        th = std::clamp(2 * (t.heights.height - 1), 2, 4096);
     t.texture = derived_texture(t.heights, tw, th);
     t.texture_name = "derived";
   } else if (tex == "checker") {
@@ -62,9 +68,10 @@ Terrain load_terrain(const TerrainOptions& o, std::vector<std::string>* warnings
   } else {
     t.texture = load_image(tex);
     t.texture_name = tex;
-    if (source.geo && t.texture.geo && !source.geo->wkt.empty() && source.geo->wkt == t.texture.geo->wkt)
-      t.tex_rect = georegistered_rect(*source.geo, source.width, source.height, *t.texture.geo, t.texture.width,
-                                      t.texture.height);
+    if (source.geo && t.texture.geo && !source.geo->wkt.empty() &&
+        source.geo->wkt == t.texture.geo->wkt)
+      t.tex_rect = georegistered_rect(*source.geo, source.width, source.height, *t.texture.geo,
+                                      t.texture.width, t.texture.height);
   }
   return t;
 }

@@ -15,7 +15,7 @@ struct Stop {
   float t, r, g, b;
 };
 // Lowland green, dry grass, brown slopes, grey rock, snow.
-constexpr Stop kRamp[] = {{0.00f, 62, 110, 52},  {0.25f, 104, 140, 66}, {0.50f, 150, 130, 86},
+constexpr Stop kRamp[] = {{0.00f, 62, 110, 52},   {0.25f, 104, 140, 66},  {0.50f, 150, 130, 86},
                           {0.75f, 128, 118, 108}, {0.90f, 200, 196, 192}, {1.00f, 250, 250, 252}};
 
 void ramp(float t, float out[3]) {

@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+// Helpers shared by the test executables: temp dirs, running the CLI, data paths.
+#pragma once
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <string>
+
+namespace tstest {
+
+/// A fresh directory under the system temp dir, removed on destruction.
+struct TempDir {
+  std::filesystem::path path;
+  TempDir() {
+    std::random_device rd;
+    path = std::filesystem::temp_directory_path() /
+           ("ts_test_" + std::to_string(rd()) + std::to_string(rd()));
+    std::filesystem::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+  std::string operator/(const std::string& name) const { return (path / name).string(); }
+};
+
+struct CliResult {
+  int status = -1;
+  std::string output;  ///< stdout and stderr together
+};
+
+/// Runs the built CLI (TS_CLI) with `args` (shell syntax) and captures its output.
+inline CliResult run_cli(const std::string& args) {
+  std::string cmd = std::string(TS_CLI) + " " + args + " 2>&1";
+  CliResult r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf;
+  std::size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
+  int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+/// ../shared/data beside the repository, or "" when it is absent.
+inline std::string shared_data() {
+  std::filesystem::path p = std::filesystem::path(TS_SOURCE_DIR).parent_path() / "shared" / "data";
+  return std::filesystem::is_directory(p) ? p.string() : std::string();
+}
+
+}  // namespace tstest

@@ -25,6 +25,7 @@ struct RenderOpts {
   std::string size = "512x512";
   std::string out;
   bool depth = false;
+  bool lighting = false;
   std::string json;
 };
 
@@ -46,7 +47,7 @@ void run(const RenderOpts& o) {
     throw InputError(fmt::format("--frames {}: must be between 1 and 1000000", o.frames));
   Terrain terrain = load_terrain_verbose(o.terrain);
   std::vector<Camera> path = make_path(o.path, terrain.heights, o.frames, double(w) / h);
-  RenderStack stack = make_render_stack(o.mode, terrain, w, h, o.lod_quads);
+  RenderStack stack = make_render_stack(o.mode, terrain, w, h, o.lod_quads, o.lighting);
   double far_max = 1.0;
   for (const Camera& c : path) far_max = std::max(far_max, c.far_m);
   const double m_per_unit = far_max / 65534.0;
@@ -102,6 +103,9 @@ void add_render(CLI::App& app) {
   cmd->add_option("--out", o->out, "output directory (required)");
   cmd->add_flag("--depth", o->depth,
                 "also write linear depth as 16-bit PNG (depth_m_per_unit in the JSON)");
+  cmd->add_flag(
+      "--lighting", o->lighting,
+      "simple sun lighting on top of the texture (off: the derived texture is hillshaded)");
   cmd->add_option("--json", o->json, "also write the stats JSON here");
   cmd->callback([o] { run(*o); });
 }

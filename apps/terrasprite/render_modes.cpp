@@ -12,7 +12,7 @@ std::vector<std::string> render_modes() {
 }
 
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
-                              int height, int lod_quads) {
+                              int height, int lod_quads, bool lighting) {
   RenderStack s;
   if (mode == "full" || mode == "lod") {
     if (mode == "lod" && lod_quads < 1)
@@ -20,8 +20,8 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
     s.gl = std::make_unique<GlContext>();
     s.device = s.gl->renderer();
     s.scene = std::make_unique<GlTerrain>(terrain);
-    s.renderer =
-        std::make_unique<MeshRenderer>(*s.scene, width, height, mode == "full" ? 0 : lod_quads);
+    s.renderer = std::make_unique<MeshRenderer>(
+        *s.scene, width, height, mode == "full" ? 0 : lod_quads, RasterOptions{lighting, true});
     return s;
   }
   throw InputError(fmt::format("--mode {}: unknown mode", mode));

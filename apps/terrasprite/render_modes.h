@@ -21,7 +21,7 @@ struct RenderStack {
 /// Modes: full, lod. Throws InputError for an unknown mode, DeviceError when
 /// a GL mode finds no GL device. `terrain` must outlive the stack.
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
-                              int height, int lod_quads);
+                              int height, int lod_quads, bool lighting = false);
 
 /// The modes make_render_stack accepts, for CLI11's check.
 std::vector<std::string> render_modes();

@@ -11,10 +11,11 @@
 namespace terrasprite {
 
 /// GPU-resident terrain: the drape texture (mipmapped, trilinear, anisotropic)
-/// and grid meshes built on first use. Needs a current GlContext for its whole
-/// life; keeps a reference to `terrain`, which must outlive it.
-/// Throws InputError when the full grid exceeds what resident meshes allow
-/// (more than 4097 x 4097 samples).
+/// and grid meshes built on first use (grids above 4097 x 4097 samples in
+/// tiles, one draw call each). Needs a current GlContext for its whole life;
+/// keeps a reference to `terrain`, which must outlive it. Throws InputError
+/// when the texture exceeds GL_MAX_TEXTURE_SIZE, or (from MeshRenderer) when a
+/// mesh would need more than 4 GiB of buffers.
 class GlTerrain {
  public:
   explicit GlTerrain(const Terrain& terrain);

@@ -47,17 +47,33 @@ void main() {
 }
 )";
 
-constexpr long long kMaxResidentSamples = 4097LL * 4097LL;
+constexpr long long kMaxSinglePartSamples = 4097LL * 4097LL;
+constexpr int kPartQuads = 2048;  // tile size of chunked grids
+constexpr double kMaxMeshBytes = 4.0 * 1024 * 1024 * 1024;
+
+void upload(GpuMesh& g, const GridMesh& cpu) {
+  glNamedBufferStorage(g.vertices.id(), GLsizeiptr(cpu.vertices.size() * sizeof(float)),
+                       cpu.vertices.data(), 0);
+  glNamedBufferStorage(g.indices.id(), GLsizeiptr(cpu.indices.size() * sizeof(std::uint32_t)),
+                       cpu.indices.data(), 0);
+  const GLuint vao = g.vao.id();
+  glVertexArrayVertexBuffer(vao, 0, g.vertices.id(), 0, 6 * sizeof(float));
+  glVertexArrayElementBuffer(vao, g.indices.id());
+  for (GLuint a = 0; a < 2; ++a) {
+    glEnableVertexArrayAttrib(vao, a);
+    glVertexArrayAttribFormat(vao, a, 3, GL_FLOAT, GL_FALSE, a * 3 * sizeof(float));
+    glVertexArrayAttribBinding(vao, a, 0);
+  }
+  g.index_count = GLsizei(cpu.indices.size());
+  g.triangles = cpu.triangles();
+  g.columns = cpu.columns;
+  g.rows = cpu.rows;
+}
 
 }  // namespace
 
 GlTerrain::GlTerrain(const Terrain& terrain) : impl_(std::make_unique<Impl>()) {
   impl_->terrain = &terrain;
-  const Heightfield& h = terrain.heights;
-  if (static_cast<long long>(h.width) * h.height > kMaxResidentSamples)
-    throw InputError(fmt::format(
-        "{}: {}x{} samples exceed the 4097x4097 a resident GL mesh allows (use --resample)", h.name,
-        h.width, h.height));
   const Image& tex = terrain.texture;
   GLint max_size = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
@@ -113,24 +129,30 @@ const GpuMesh& GlTerrain::Impl::mesh(int quads) {
     xs = quad_indices(h.width, quads);
     ys = quad_indices(h.height, quads);
   }
-  GridMesh cpu = build_grid_mesh(h, xs, ys);
+  const double bytes = double(xs.size()) * ys.size() * 6 * sizeof(float) +
+                       double(xs.size() - 1) * (ys.size() - 1) * 6 * sizeof(std::uint32_t);
+  if (bytes > kMaxMeshBytes)
+    throw InputError(
+        fmt::format("{}: a {}x{}-vertex mesh needs {:.1f} GiB of buffers, more than the 4 GiB "
+                    "allowed (use --resample)",
+                    h.name, xs.size(), ys.size(), bytes / (1024.0 * 1024 * 1024)));
   GpuMesh& g = meshes[quads];
-  glNamedBufferStorage(g.vertices.id(), GLsizeiptr(cpu.vertices.size() * sizeof(float)),
-                       cpu.vertices.data(), 0);
-  glNamedBufferStorage(g.indices.id(), GLsizeiptr(cpu.indices.size() * sizeof(std::uint32_t)),
-                       cpu.indices.data(), 0);
-  const GLuint vao = g.vao.id();
-  glVertexArrayVertexBuffer(vao, 0, g.vertices.id(), 0, 6 * sizeof(float));
-  glVertexArrayElementBuffer(vao, g.indices.id());
-  for (GLuint a = 0; a < 2; ++a) {
-    glEnableVertexArrayAttrib(vao, a);
-    glVertexArrayAttribFormat(vao, a, 3, GL_FLOAT, GL_FALSE, a * 3 * sizeof(float));
-    glVertexArrayAttribBinding(vao, a, 0);
+  if (static_cast<long long>(xs.size()) * ys.size() <= kMaxSinglePartSamples) {
+    upload(g, build_grid_mesh(h, xs, ys));
+    return g;
   }
-  g.index_count = GLsizei(cpu.indices.size());
-  g.triangles = cpu.triangles();
-  g.columns = cpu.columns;
-  g.rows = cpu.rows;
+  // Too large for one resident mesh: tiles of kPartQuads quads sharing borders.
+  for (std::size_t y0 = 0; y0 + 1 < ys.size(); y0 += kPartQuads)
+    for (std::size_t x0 = 0; x0 + 1 < xs.size(); x0 += kPartQuads) {
+      std::size_t x1 = std::min(x0 + kPartQuads, xs.size() - 1),
+                  y1 = std::min(y0 + kPartQuads, ys.size() - 1);
+      std::vector<int> px(xs.begin() + x0, xs.begin() + x1 + 1),
+          py(ys.begin() + y0, ys.begin() + y1 + 1);
+      upload(g.parts.emplace_back(), build_grid_mesh(h, px, py));
+      g.triangles += g.parts.back().triangles;
+    }
+  g.columns = int(xs.size());
+  g.rows = int(ys.size());
   return g;
 }
 
@@ -142,8 +164,14 @@ void GlTerrain::Impl::draw(const GpuMesh& m, const glm::mat4& vp, bool lighting)
   glUniform1i(glGetUniformLocation(p, "u_lighting"), lighting ? 1 : 0);
   glUniform1i(glGetUniformLocation(p, "u_drape"), 0);
   glBindTextureUnit(0, drape.id());
-  glBindVertexArray(m.vao.id());
-  glDrawElements(GL_TRIANGLES, m.index_count, GL_UNSIGNED_INT, nullptr);
+  if (m.parts.empty()) {
+    glBindVertexArray(m.vao.id());
+    glDrawElements(GL_TRIANGLES, m.index_count, GL_UNSIGNED_INT, nullptr);
+  }
+  for (const GpuMesh& part : m.parts) {
+    glBindVertexArray(part.vao.id());
+    glDrawElements(GL_TRIANGLES, part.index_count, GL_UNSIGNED_INT, nullptr);
+  }
 }
 
 }  // namespace terrasprite

@@ -3,6 +3,7 @@
 #pragma once
 #include <glm/glm.hpp>
 #include <map>
+#include <vector>
 
 #include "gl/gl_objects.h"
 #include "terrasprite/mesh_renderer.h"
@@ -11,8 +12,11 @@
 namespace terrasprite {
 
 /// A grid mesh in GPU buffers: attribute 0 = position (vec3, metres),
-/// attribute 1 = normal (vec3), one uint32 index list.
+/// attribute 1 = normal (vec3), one uint32 index list. Grids above 4097 x 4097
+/// samples are split into `parts` (tiles sharing their border samples), each
+/// drawn with its own call; `triangles` then counts all parts.
 struct GpuMesh {
+  std::vector<GpuMesh> parts;
   gl::VertexArray vao;
   gl::Buffer vertices;
   gl::Buffer indices;
@@ -28,6 +32,7 @@ struct GlTerrain::Impl {
   std::map<int, GpuMesh> meshes;  // by quads per side; 0 = full resolution
 
   /// The mesh of `quads` quads per side (0 = full), uploaded on first use.
+  /// Throws InputError when it would need more than 4 GiB of buffers.
   const GpuMesh& mesh(int quads);
   /// Draws `m` with the plain terrain shader: drape texture by world
   /// position, optional sun lighting. The target must be bound.

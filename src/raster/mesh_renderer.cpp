@@ -48,7 +48,9 @@ Frame MeshRenderer::render(const Camera& camera) {
   f.ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
   GLuint64 ns = 0;
   glGetQueryObjectui64v(s_->timer.id(), GL_QUERY_RESULT, &ns);
-  f.gpu_ms = ns / 1e6;
+  // GPU time inside the span cannot exceed its wall time; llvmpipe reports
+  // nonsense (minutes) for the first query of a process, so such a value is dropped.
+  f.gpu_ms = ns / 1e6 <= f.ms * 1.05 + 0.1 ? ns / 1e6 : -1.0;
   f.triangles = mesh.triangles;
   f.cls = s_->quads <= 0 ? "full" : "lod";
   f.color = s_->target.read_color();

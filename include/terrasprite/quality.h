@@ -49,7 +49,8 @@ struct SsimResult {
   double ssim = 0;  ///< Wang: on luma; ffmpeg: its 'All' (weighted over channels)
   std::array<double, 3> channels{0, 0, 0};  ///< per R, G, B (when options.channels)
 };
-SsimResult ssim(const ImageView& reference, const ImageView& test, const SsimOptions& options = {}, Mask mask = {});
+SsimResult ssim(const ImageView& reference, const ImageView& test, const SsimOptions& options = {},
+                Mask mask = {});
 
 /// MS-SSIM (Wang, Simoncelli, Bovik 2003), 5 scales on luma. Throws InputError
 /// for images under 176 pixels on the shorter side. The mask is halved with the
@@ -69,7 +70,8 @@ struct FlipResult {
 /// over the masked pixels (median of an even count: mean of the two middle
 /// values). The map, when asked for, covers every pixel, mask or not. A ppd
 /// that is not finite and positive throws InputError.
-FlipResult flip(const ImageView& reference, const ImageView& test, const FlipOptions& options = {}, Mask mask = {});
+FlipResult flip(const ImageView& reference, const ImageView& test, const FlipOptions& options = {},
+                Mask mask = {});
 
 /// Difference images (new RGBA8 images owned by the caller, alpha 255).
 

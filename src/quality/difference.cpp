@@ -25,7 +25,8 @@ Image difference_image(const ImageView& reference, const ImageView& test, double
       detail::rgb_at(test.row(y), test.channels, x, b[0], b[1], b[2]);
       std::uint8_t* p = out.px(x, y);
       for (int c = 0; c < 3; ++c)
-        p[c] = static_cast<std::uint8_t>(std::min(255.0, std::round(std::abs(a[c] - b[c]) * scale)));
+        p[c] =
+            static_cast<std::uint8_t>(std::min(255.0, std::round(std::abs(a[c] - b[c]) * scale)));
       p[3] = 255;
     }
   });
@@ -36,15 +37,18 @@ Image flip_image(std::span<const float> map, int width, int height) {
   if (width <= 0 || height <= 0)
     throw InputError(fmt::format("flip_image: map size {}x{} is empty", width, height));
   if (map.size() != static_cast<std::size_t>(width) * height)
-    throw InputError(fmt::format("flip_image: map has {} values, {}x{} needs {}", map.size(), width, height,
-                                 static_cast<std::size_t>(width) * height));
+    throw InputError(fmt::format("flip_image: map has {} values, {}x{} needs {}", map.size(), width,
+                                 height, static_cast<std::size_t>(width) * height));
   Image out(width, height);
   tbb::parallel_for(0, height, [&](int y) {
     for (int x = 0; x < width; ++x) {
       const float v = map[static_cast<std::size_t>(y) * width + x];
-      const int i = std::isfinite(v) ? static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)) : 255;
+      const int i = std::isfinite(v)
+                        ? static_cast<int>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f))
+                        : 255;
       std::uint8_t* p = out.px(x, y);
-      p[0] = detail::kMagma[i][0], p[1] = detail::kMagma[i][1], p[2] = detail::kMagma[i][2], p[3] = 255;
+      p[0] = detail::kMagma[i][0], p[1] = detail::kMagma[i][1], p[2] = detail::kMagma[i][2],
+      p[3] = 255;
     }
   });
   return out;

@@ -35,7 +35,8 @@ TS_CLONES void filter_row(const float* in, int n, const float* w, int taps, floa
   }
 }
 
-TS_CLONES void filter_column(const float* const* rows, int taps, const float* w, int n, float* out) {
+TS_CLONES void filter_column(const float* const* rows, int taps, const float* w, int n,
+                             float* out) {
   int x = 0;
   for (; x + kBlock <= n; x += kBlock) {
     float acc[kBlock] = {};
@@ -53,19 +54,14 @@ TS_CLONES void filter_column(const float* const* rows, int taps, const float* w,
   }
 }
 
-void pad_reflect(const float* in, int n, int r, float* padded) {
-  for (int i = 0; i < r; ++i) padded[i] = in[reflect(i - r, n)];
-  for (int i = 0; i < n; ++i) padded[r + i] = in[i];
-  for (int i = 0; i < r; ++i) padded[r + n + i] = in[reflect(n + i, n)];
-}
-
 Kernel gaussian(double sigma, int radius) {
   Kernel k;
   k.radius = radius;
   k.w.resize(k.taps());
   double sum = 0;
   std::vector<double> d(k.taps());
-  for (int i = -radius; i <= radius; ++i) sum += d[i + radius] = std::exp(-(i * i) / (2 * sigma * sigma));
+  for (int i = -radius; i <= radius; ++i)
+    sum += d[i + radius] = std::exp(-(i * i) / (2 * sigma * sigma));
   for (int i = 0; i < k.taps(); ++i) k.w[i] = static_cast<float>(d[i] / sum);
   return k;
 }

@@ -23,9 +23,6 @@ inline int reflect(int i, int n) {
   return i < n ? i : period - 1 - i;
 }
 
-/// padded[i] = in[reflect(i - r, n)] for i in [0, n + 2r).
-void pad_reflect(const float* in, int n, int r, float* padded);
-
 /// A 1D kernel with its radius (taps = 2 * radius + 1), centre at index radius.
 struct Kernel {
   int radius = 0;

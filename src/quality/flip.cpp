@@ -13,7 +13,8 @@
 // All filters are separable (the blue-yellow CSF is a sum of two separable
 // Gaussians). Rows are streamed per band as in ssim_wang.cpp: a ring of
 // horizontally filtered rows, vertical filters and the per-pixel formula run
-// row by row while the ring is in cache. Borders reflect (d c b a | a b c d).
+// row by row while the ring is in cache. Borders replicate the edge pixel, as
+// NVIDIA's reference code does (the paper leaves borders open).
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -65,7 +66,8 @@ Kernel signed_normalised(const std::vector<double>& h) {
   k.radius = static_cast<int>(h.size() / 2);
   k.w.resize(h.size());
   for (std::size_t i = 0; i < h.size(); ++i)
-    k.w[i] = static_cast<float>(h[i] > 0 ? (pos > 0 ? h[i] / pos : 0) : (neg < 0 ? -h[i] / neg : 0));
+    k.w[i] =
+        static_cast<float>(h[i] > 0 ? (pos > 0 ? h[i] / pos : 0) : (neg < 0 ? -h[i] / neg : 0));
   return k;
 }
 
@@ -77,9 +79,11 @@ struct Filters {
 
   explicit Filters(double ppd) {
     // CSF parameters (a1, b1, a2, b2) of the paper; b in degrees^2.
-    constexpr double b_a = 0.0047, b_rg = 0.0053, a1_by = 34.1, b1_by = 0.04, a2_by = 13.5, b2_by = 0.025;
+    constexpr double b_a = 0.0047, b_rg = 0.0053, a1_by = 34.1, b1_by = 0.04, a2_by = 13.5,
+                     b2_by = 0.025;
     // One radius for all channels, from the widest term: 3 standard deviations.
-    const int r = static_cast<int>(std::ceil(3 * std::sqrt(b1_by / (2 * std::numbers::pi * std::numbers::pi)) * ppd));
+    const int r = static_cast<int>(
+        std::ceil(3 * std::sqrt(b1_by / (2 * std::numbers::pi * std::numbers::pi)) * ppd));
     double s_a, s_rg, s1, s2;
     a = csf_term(b_a, ppd, r, s_a);
     rg = csf_term(b_rg, ppd, r, s_rg);
@@ -116,10 +120,12 @@ enum HPlane { kA, kRG, kBY1, kBY2, kFG, kFE, kFP, kHPlanes };
 
 }  // namespace
 
-FlipResult flip(const ImageView& reference, const ImageView& test, const FlipOptions& options, Mask mask) {
+FlipResult flip(const ImageView& reference, const ImageView& test, const FlipOptions& options,
+                Mask mask) {
   detail::check_inputs("flip", reference, test, mask);
   if (!std::isfinite(options.ppd) || options.ppd <= 0 || options.ppd > 1000)
-    throw InputError(fmt::format("flip: pixels per degree must be in (0, 1000], got {}", options.ppd));
+    throw InputError(
+        fmt::format("flip: pixels per degree must be in (0, 1000], got {}", options.ppd));
   const int w = reference.width, h = reference.height;
   const Filters f(options.ppd);
   const detail::FlipColor& color = detail::flip_color();
@@ -140,7 +146,8 @@ FlipResult flip(const ImageView& reference, const ImageView& test, const FlipOpt
     const std::size_t W = static_cast<std::size_t>(w);
     std::vector<float> ring(2 * kHPlanes * K * W);
     auto slot = [&](int img, int plane, int v) {  // v: virtual row, y0 - R <= v < y1 + R
-      return ring.data() + ((static_cast<std::size_t>(img) * kHPlanes + plane) * K + (v - y0 + R) % K) * W;
+      return ring.data() +
+             ((static_cast<std::size_t>(img) * kHPlanes + plane) * K + (v - y0 + R) % K) * W;
     };
     const std::size_t P = W + 2 * R;  // padded input row
     std::vector<float> in(4 * P);     // Yy, Cx, Cz, luminance
@@ -156,15 +163,15 @@ FlipResult flip(const ImageView& reference, const ImageView& test, const FlipOpt
     };
 
     for (int v = y0 - R; v < y1 + R; ++v) {
-      const int sy = detail::reflect(v, h);
+      const int sy = std::clamp(v, 0, h - 1);
       for (int img = 0; img < 2; ++img) {
         const ImageView& im = *images[img];
-        color.to_ycxcz_row(im.row(sy), im.channels, w, in.data() + R, in.data() + P + R, in.data() + 2 * P + R,
-                           in.data() + 3 * P + R);
+        color.to_ycxcz_row(im.row(sy), im.channels, w, in.data() + R, in.data() + P + R,
+                           in.data() + 2 * P + R, in.data() + 3 * P + R);
         for (int c = 0; c < 4; ++c) {
           float* row = in.data() + c * P;
-          for (int i = 0; i < R; ++i) row[i] = row[R + detail::reflect(i - R, w)];
-          for (int i = 0; i < R; ++i) row[R + w + i] = row[R + detail::reflect(w + i, w)];
+          std::fill(row, row + R, row[R]);
+          std::fill(row + R + w, row + 2 * R + w, row[R + w - 1]);
         }
         hfilter(in.data(), f.a, slot(img, kA, v));
         hfilter(in.data() + P, f.rg, slot(img, kRG, v));
@@ -191,7 +198,8 @@ FlipResult flip(const ImageView& reference, const ImageView& test, const FlipOpt
       }
       float* out = map.data() + static_cast<std::size_t>(y) * W;
       color.error_row(rows[0], rows[1], f.by_w1, f.by_w2, w, out);
-      const std::uint8_t* m = mask.empty() ? nullptr : mask.data() + static_cast<std::size_t>(y) * W;
+      const std::uint8_t* m =
+          mask.empty() ? nullptr : mask.data() + static_cast<std::size_t>(y) * W;
       double sum = 0;
       for (int x = 0; x < w; ++x) sum += (m && !m[x]) ? 0.0 : out[x];
       row_sums[y] = sum;

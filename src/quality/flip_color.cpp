@@ -25,9 +25,11 @@ constexpr float kQc = 0.7f, kPc = 0.4f, kPt = 0.95f;
 std::array<double, 9> invert(const std::array<double, 9>& m) {
   const double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
                      m[2] * (m[3] * m[7] - m[4] * m[6]);
-  return {(m[4] * m[8] - m[5] * m[7]) / det, (m[2] * m[7] - m[1] * m[8]) / det, (m[1] * m[5] - m[2] * m[4]) / det,
-          (m[5] * m[6] - m[3] * m[8]) / det, (m[0] * m[8] - m[2] * m[6]) / det, (m[2] * m[3] - m[0] * m[5]) / det,
-          (m[3] * m[7] - m[4] * m[6]) / det, (m[1] * m[6] - m[0] * m[7]) / det, (m[0] * m[4] - m[1] * m[3]) / det};
+  return {(m[4] * m[8] - m[5] * m[7]) / det, (m[2] * m[7] - m[1] * m[8]) / det,
+          (m[1] * m[5] - m[2] * m[4]) / det, (m[5] * m[6] - m[3] * m[8]) / det,
+          (m[0] * m[8] - m[2] * m[6]) / det, (m[2] * m[3] - m[0] * m[5]) / det,
+          (m[3] * m[7] - m[4] * m[6]) / det, (m[1] * m[6] - m[0] * m[7]) / det,
+          (m[0] * m[4] - m[1] * m[3]) / det};
 }
 
 // Hunt-adjusted CIELAB of a linear RGB colour, in double (for cmax).
@@ -50,11 +52,13 @@ inline float lab_f(float t) {
   return t > d3 ? c : t * static_cast<float>(1 / (3 * kDelta * kDelta)) + 4.0f / 29.0f;
 }
 
-inline float clamp01(float v) { return v < 0 ? 0 : (v > 1 ? 1 : v); }
+inline float clamp01(float v) {
+  return v < 0 ? 0 : (v > 1 ? 1 : v);
+}
 
 // Filtered YyCxCz -> linear RGB, clamped to the RGB box -> Hunt-adjusted CIELAB.
-inline void filtered_to_lab(const std::array<float, 9>& to_rgb, const std::array<float, 9>& to_xyz, float yy,
-                            float cx, float cz, float& L, float& A, float& B) {
+inline void filtered_to_lab(const std::array<float, 9>& to_rgb, const std::array<float, 9>& to_xyz,
+                            float yy, float cx, float cz, float& L, float& A, float& B) {
   const float y = (yy + 16) * (1.0f / 116), x = cx * (1.0f / 500) + y, z = y - cz * (1.0f / 200);
   const float r = clamp01(to_rgb[0] * x + to_rgb[1] * y + to_rgb[2] * z);
   const float g = clamp01(to_rgb[3] * x + to_rgb[4] * y + to_rgb[5] * z);
@@ -92,18 +96,21 @@ FlipColor::FlipColor() {
   std::array<double, 9> scaled;  // rows divided by the white: XYZ / white
   for (int i = 0; i < 9; ++i) scaled[i] = m[i] / wt[i / 3];
   const auto inv = invert(scaled);
-  for (int i = 0; i < 9; ++i) to_ycxcz_[i] = static_cast<float>(scaled[i]), to_rgb_[i] = static_cast<float>(inv[i]);
+  for (int i = 0; i < 9; ++i)
+    to_ycxcz_[i] = static_cast<float>(scaled[i]), to_rgb_[i] = static_cast<float>(inv[i]);
   const auto green = hunt_lab(0, 1, 0), blue = hunt_lab(0, 0, 1);
-  const double hyab = std::abs(green[0] - blue[0]) + std::hypot(green[1] - blue[1], green[2] - blue[2]);
+  const double hyab =
+      std::abs(green[0] - blue[0]) + std::hypot(green[1] - blue[1], green[2] - blue[2]);
   cmax_ = std::pow(hyab, kQc);
 }
 
-void FlipColor::to_ycxcz_row(const std::uint8_t* src, int channels, int width, float* yy, float* cx, float* cz,
-                             float* lum) const {
+void FlipColor::to_ycxcz_row(const std::uint8_t* src, int channels, int width, float* yy, float* cx,
+                             float* cz, float* lum) const {
   const auto& m = to_ycxcz_;
   for (int i = 0; i < width; ++i) {
     const std::uint8_t* p = src + static_cast<std::size_t>(i) * channels;
-    const float r = linear_[p[0]], g = linear_[channels == 1 ? p[0] : p[1]], b = linear_[channels == 1 ? p[0] : p[2]];
+    const float r = linear_[p[0]], g = linear_[channels == 1 ? p[0] : p[1]],
+                b = linear_[channels == 1 ? p[0] : p[2]];
     const float x = m[0] * r + m[1] * g + m[2] * b;
     const float y = m[3] * r + m[4] * g + m[5] * b;
     const float z = m[6] * r + m[7] * g + m[8] * b;
@@ -114,25 +121,30 @@ void FlipColor::to_ycxcz_row(const std::uint8_t* src, int channels, int width, f
   }
 }
 
-TS_CLONES void FlipColor::error_row(const FlipRows& ref, const FlipRows& test, float w1, float w2, int width,
-                                    float* out) const {
+TS_CLONES void FlipColor::error_row(const FlipRows& ref, const FlipRows& test, float w1, float w2,
+                                    int width, float* out) const {
   const float cmax = static_cast<float>(cmax_);
   const float pccmax = kPc * cmax;
   const float inv_sqrt2 = static_cast<float>(1 / std::numbers::sqrt2);
-  const std::array<float, 9> to_rgb = to_rgb_, to_xyz = to_ycxcz_;  // locals: no aliasing with `out`
+  const std::array<float, 9> to_rgb = to_rgb_,
+                             to_xyz = to_ycxcz_;  // locals: no aliasing with `out`
   for (int i = 0; i < width; ++i) {
     float L1, A1, B1, L2, A2, B2;
-    filtered_to_lab(to_rgb, to_xyz, ref.a[i], ref.rg[i], w1 * ref.by1[i] + w2 * ref.by2[i], L1, A1, B1);
-    filtered_to_lab(to_rgb, to_xyz, test.a[i], test.rg[i], w1 * test.by1[i] + w2 * test.by2[i], L2, A2, B2);
+    filtered_to_lab(to_rgb, to_xyz, ref.a[i], ref.rg[i], w1 * ref.by1[i] + w2 * ref.by2[i], L1, A1,
+                    B1);
+    filtered_to_lab(to_rgb, to_xyz, test.a[i], test.rg[i], w1 * test.by1[i] + w2 * test.by2[i], L2,
+                    A2, B2);
     const float da = A1 - A2, db = B1 - B2;
     const float hyab = std::fabs(L1 - L2) + std::sqrt(da * da + db * db);
     const float dc = fast_pow(hyab, kQc);
-    const float ec = dc < pccmax ? (kPt / pccmax) * dc : kPt + (dc - pccmax) / (cmax - pccmax) * (1 - kPt);
+    const float ec =
+        dc < pccmax ? (kPt / pccmax) * dc : kPt + (dc - pccmax) / (cmax - pccmax) * (1 - kPt);
 
     const float e1 = std::sqrt(ref.edge_x[i] * ref.edge_x[i] + ref.edge_y[i] * ref.edge_y[i]);
     const float e2 = std::sqrt(test.edge_x[i] * test.edge_x[i] + test.edge_y[i] * test.edge_y[i]);
     const float p1 = std::sqrt(ref.point_x[i] * ref.point_x[i] + ref.point_y[i] * ref.point_y[i]);
-    const float p2 = std::sqrt(test.point_x[i] * test.point_x[i] + test.point_y[i] * test.point_y[i]);
+    const float p2 =
+        std::sqrt(test.point_x[i] * test.point_x[i] + test.point_y[i] * test.point_y[i]);
     const float df = std::max(std::fabs(e1 - e2), std::fabs(p1 - p2));
     const float ef = std::sqrt(df * inv_sqrt2);  // ^ qf, qf = 0.5
     out[i] = fast_pow(ec, 1 - ef);

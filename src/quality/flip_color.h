@@ -18,11 +18,12 @@ class FlipColor {
   FlipColor();
 
   /// 8-bit sRGB pixels (1, 3 or 4 channels) to YyCxCz and luminance Y / Yw.
-  void to_ycxcz_row(const std::uint8_t* src, int channels, int width, float* yy, float* cx, float* cz,
-                    float* lum) const;
+  void to_ycxcz_row(const std::uint8_t* src, int channels, int width, float* yy, float* cx,
+                    float* cz, float* lum) const;
 
   /// Per-pixel FLIP error of `test` against `ref`; Cz = w1 * by1 + w2 * by2.
-  void error_row(const FlipRows& ref, const FlipRows& test, float w1, float w2, int width, float* out) const;
+  void error_row(const FlipRows& ref, const FlipRows& test, float w1, float w2, int width,
+                 float* out) const;
 
   /// HyAB distance ^ 0.7 between Hunt-adjusted green and blue: the remapping's maximum.
   double cmax() const { return cmax_; }

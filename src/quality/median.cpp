@@ -15,7 +15,9 @@ namespace terrasprite::quality::detail {
 namespace {
 
 // -0 and anything below 0 share bucket 0 with +0.
-std::uint32_t bucket(float v) { return std::bit_cast<std::uint32_t>(v > 0 ? v : 0.0f) >> 16; }
+std::uint32_t bucket(float v) {
+  return std::bit_cast<std::uint32_t>(v > 0 ? v : 0.0f) >> 16;
+}
 
 // The k-th smallest (0-based) of the selected values, given bucket counts.
 float select(std::span<const float> values, std::span<const std::uint8_t> mask,
@@ -26,7 +28,8 @@ float select(std::span<const float> values, std::span<const std::uint8_t> mask,
   in_bucket.reserve(counts[b]);
   for (std::size_t i = 0; i < values.size(); ++i)
     if ((mask.empty() || mask[i]) && bucket(values[i]) == b) in_bucket.push_back(values[i]);
-  std::nth_element(in_bucket.begin(), in_bucket.begin() + static_cast<std::ptrdiff_t>(k), in_bucket.end());
+  std::nth_element(in_bucket.begin(), in_bucket.begin() + static_cast<std::ptrdiff_t>(k),
+                   in_bucket.end());
   return in_bucket[k];
 }
 

@@ -28,7 +28,8 @@ Plane halve(const Plane& p) {
     const float* r0 = p.row(2 * y);
     const float* r1 = p.row(2 * y + 1);
     float* o = out.row(y);
-    for (int x = 0; x < out.width; ++x) o[x] = 0.25f * (r0[2 * x] + r0[2 * x + 1] + r1[2 * x] + r1[2 * x + 1]);
+    for (int x = 0; x < out.width; ++x)
+      o[x] = 0.25f * (r0[2 * x] + r0[2 * x + 1] + r1[2 * x] + r1[2 * x + 1]);
   });
   return out;
 }
@@ -42,7 +43,8 @@ std::vector<std::uint8_t> halve_mask(const std::vector<std::uint8_t>& m, int wid
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const std::size_t i = static_cast<std::size_t>(2 * y) * width + 2 * x;
-      out[static_cast<std::size_t>(y) * w + x] = (m[i] | m[i + 1] | m[i + width] | m[i + width + 1]) ? 1 : 0;
+      out[static_cast<std::size_t>(y) * w + x] =
+          (m[i] | m[i + 1] | m[i + width] | m[i + width + 1]) ? 1 : 0;
     }
   return out;
 }
@@ -52,8 +54,9 @@ std::vector<std::uint8_t> halve_mask(const std::vector<std::uint8_t>& m, int wid
 double msssim(const ImageView& reference, const ImageView& test, Mask mask) {
   detail::check_inputs("msssim", reference, test, mask);
   if (std::min(reference.width, reference.height) < kMinSide)
-    throw InputError(fmt::format("msssim: {}x{} is too small: MS-SSIM needs at least {} pixels on the shorter side",
-                                 reference.width, reference.height, kMinSide));
+    throw InputError(fmt::format(
+        "msssim: {}x{} is too small: MS-SSIM needs at least {} pixels on the shorter side",
+        reference.width, reference.height, kMinSide));
   Plane a = detail::extract(reference, detail::Channel::kLuma);
   Plane b = detail::extract(test, detail::Channel::kLuma);
   std::vector<std::uint8_t> m(mask.begin(), mask.end());

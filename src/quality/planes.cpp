@@ -13,28 +13,31 @@ namespace {
 
 void check_view(const char* metric, const char* which, const ImageView& v) {
   if (v.width <= 0 || v.height <= 0)
-    throw InputError(fmt::format("{}: {} image is empty ({}x{})", metric, which, v.width, v.height));
+    throw InputError(
+        fmt::format("{}: {} image is empty ({}x{})", metric, which, v.width, v.height));
   if (v.channels != 1 && v.channels != 3 && v.channels != 4)
-    throw InputError(fmt::format("{}: {} image has {} channels (1, 3 or 4 supported)", metric, which, v.channels));
+    throw InputError(fmt::format("{}: {} image has {} channels (1, 3 or 4 supported)", metric,
+                                 which, v.channels));
   const auto row_bytes = static_cast<std::size_t>(v.width) * v.channels;
   if (static_cast<std::size_t>(v.stride) < row_bytes ||
       v.data.size() < static_cast<std::size_t>(v.stride) * (v.height - 1) + row_bytes)
-    throw InputError(fmt::format("{}: {} image view ({}x{}, stride {}) is larger than its {} bytes", metric, which,
-                                 v.width, v.height, v.stride, v.data.size()));
+    throw InputError(fmt::format("{}: {} image view ({}x{}, stride {}) is larger than its {} bytes",
+                                 metric, which, v.width, v.height, v.stride, v.data.size()));
 }
 
 }  // namespace
 
-void check_inputs(const char* metric, const ImageView& reference, const ImageView& test, Mask mask) {
+void check_inputs(const char* metric, const ImageView& reference, const ImageView& test,
+                  Mask mask) {
   check_view(metric, "reference", reference);
   check_view(metric, "test", test);
   if (reference.width != test.width || reference.height != test.height)
-    throw InputError(fmt::format("{}: images differ in size: reference {}x{}, test {}x{}", metric, reference.width,
-                                 reference.height, test.width, test.height));
+    throw InputError(fmt::format("{}: images differ in size: reference {}x{}, test {}x{}", metric,
+                                 reference.width, reference.height, test.width, test.height));
   const auto n = static_cast<std::size_t>(reference.width) * reference.height;
   if (!mask.empty() && mask.size() != n)
-    throw InputError(fmt::format("{}: mask has {} bytes, the {}x{} images need {}", metric, mask.size(),
-                                 reference.width, reference.height, n));
+    throw InputError(fmt::format("{}: mask has {} bytes, the {}x{} images need {}", metric,
+                                 mask.size(), reference.width, reference.height, n));
 }
 
 Plane extract(const ImageView& image, Channel channel) {
@@ -46,10 +49,18 @@ Plane extract(const ImageView& image, Channel channel) {
       int r, g, b;
       rgb_at(src, image.channels, x, r, g, b);
       switch (channel) {
-        case Channel::kLuma: dst[x] = luma(r, g, b); break;
-        case Channel::kR: dst[x] = static_cast<float>(r); break;
-        case Channel::kG: dst[x] = static_cast<float>(g); break;
-        case Channel::kB: dst[x] = static_cast<float>(b); break;
+        case Channel::kLuma:
+          dst[x] = luma(r, g, b);
+          break;
+        case Channel::kR:
+          dst[x] = static_cast<float>(r);
+          break;
+        case Channel::kG:
+          dst[x] = static_cast<float>(g);
+          break;
+        case Channel::kB:
+          dst[x] = static_cast<float>(b);
+          break;
       }
     }
   });

@@ -13,7 +13,8 @@ namespace terrasprite::quality::detail {
 /// Throws InputError (prefixed with `metric`) for an empty image, a channel
 /// count other than 1/3/4, a view too small for its stride, different sizes,
 /// or a mask that is neither empty nor width*height bytes.
-void check_inputs(const char* metric, const ImageView& reference, const ImageView& test, Mask mask = {});
+void check_inputs(const char* metric, const ImageView& reference, const ImageView& test,
+                  Mask mask = {});
 
 /// Pixel x of a row as R, G, B (grey replicated, alpha ignored).
 inline void rgb_at(const std::uint8_t* row, int channels, int x, int& r, int& g, int& b) {
@@ -26,7 +27,9 @@ inline void rgb_at(const std::uint8_t* row, int channels, int x, int& r, int& g,
 }
 
 /// Rec. 601 luma, unrounded (the weights Wang's code and ffmpeg use).
-inline float luma(int r, int g, int b) { return 0.299f * r + 0.587f * g + 0.114f * b; }
+inline float luma(int r, int g, int b) {
+  return 0.299f * r + 0.587f * g + 0.114f * b;
+}
 
 /// A float plane, tightly packed.
 struct Plane {

@@ -43,7 +43,8 @@ PsnrResult psnr(const ImageView& reference, const ImageView& test, Mask mask) {
       detail::rgb_at(a, reference.channels, x, ar, ag, ab);
       detail::rgb_at(b, test.channels, x, br, bg, bb);
       rgb += (ar - br) * (ar - br) + (ag - bg) * (ag - bg) + (ab - bb) * (ab - bb);
-      const double d = (0.299 * ar + 0.587 * ag + 0.114 * ab) - (0.299 * br + 0.587 * bg + 0.114 * bb);
+      const double d =
+          (0.299 * ar + 0.587 * ag + 0.114 * ab) - (0.299 * br + 0.587 * bg + 0.114 * bb);
       acc.luma += d * d;
       ++acc.n;
     }

@@ -43,7 +43,9 @@ std::vector<std::uint8_t> downsample_mask(Mask mask, int width, int height, int 
   const int w = (width + f - 1) / f, h = (height + f - 1) / f;
   std::vector<std::uint8_t> out(static_cast<std::size_t>(w) * h);
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) out[static_cast<std::size_t>(y) * w + x] = mask[static_cast<std::size_t>(y) * f * width + x * f];
+    for (int x = 0; x < w; ++x)
+      out[static_cast<std::size_t>(y) * w + x] =
+          mask[static_cast<std::size_t>(y) * f * width + x * f];
   return out;
 }
 
@@ -68,21 +70,24 @@ std::vector<std::uint8_t> channel_bytes(const ImageView& v, int c) {
 
 }  // namespace
 
-SsimResult ssim(const ImageView& reference, const ImageView& test, const SsimOptions& options, Mask mask) {
+SsimResult ssim(const ImageView& reference, const ImageView& test, const SsimOptions& options,
+                Mask mask) {
   detail::check_inputs("ssim", reference, test, mask);
   SsimResult r;
   if (options.mode == SsimMode::kFfmpeg) {
     const std::vector<std::uint8_t> m(mask.begin(), mask.end());
     for (int c = 0; c < 3; ++c) {
       const auto a = channel_bytes(reference, c), b = channel_bytes(test, c);
-      r.channels[c] = detail::ssim_ffmpeg_plane(a.data(), b.data(), reference.width, reference.height, m);
+      r.channels[c] =
+          detail::ssim_ffmpeg_plane(a.data(), b.data(), reference.width, reference.height, m);
     }
     // ffmpeg's 'All' weights each plane by its share of the samples: equal here.
     r.ssim = (r.channels[0] + r.channels[1] + r.channels[2]) / 3.0;
     return r;
   }
   const int f = options.downsample
-                    ? std::max(1, static_cast<int>(std::lround(std::min(reference.width, reference.height) / 256.0)))
+                    ? std::max(1, static_cast<int>(std::lround(
+                                      std::min(reference.width, reference.height) / 256.0)))
                     : 1;
   const auto m = f > 1 ? downsample_mask(mask, reference.width, reference.height, f)
                        : std::vector<std::uint8_t>(mask.begin(), mask.end());

@@ -35,8 +35,10 @@ float ssim_end1(int s1, int s2, int ss, int s12) {
 double ssim_ffmpeg_plane(const std::uint8_t* a, const std::uint8_t* b, int width, int height,
                          const std::vector<std::uint8_t>& mask) {
   if (width < 8 || height < 8)
-    throw InputError(fmt::format("ssim: {}x{} is smaller than ffmpeg's 8x8 SSIM window", width, height));
-  const int bw = width >> 2, bh = height >> 2;  // trailing pixels beyond a whole block are ignored, as in ffmpeg
+    throw InputError(
+        fmt::format("ssim: {}x{} is smaller than ffmpeg's 8x8 SSIM window", width, height));
+  const int bw = width >> 2,
+            bh = height >> 2;  // trailing pixels beyond a whole block are ignored, as in ffmpeg
   std::vector<Sum> blocks(static_cast<std::size_t>(bw) * bh);
   tbb::parallel_for(0, bh, [&](int by) {
     for (int bx = 0; bx < bw; ++bx) {
@@ -57,7 +59,8 @@ double ssim_ffmpeg_plane(const std::uint8_t* a, const std::uint8_t* b, int width
   tbb::parallel_for(0, bh - 1, [&](int by) {
     const Sum* s0 = blocks.data() + static_cast<std::size_t>(by) * bw;
     const Sum* s1 = s0 + bw;
-    const std::uint8_t* m = mask.empty() ? nullptr : mask.data() + static_cast<std::size_t>(4 * by + 4) * width;
+    const std::uint8_t* m =
+        mask.empty() ? nullptr : mask.data() + static_cast<std::size_t>(4 * by + 4) * width;
     double acc = 0;
     std::size_t n = 0;
     for (int i = 0; i < bw - 1; ++i) {

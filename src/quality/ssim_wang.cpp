@@ -45,7 +45,9 @@ SsimSums ssim_wang_plane(const Plane& a, const Plane& b, const std::vector<std::
     const int y0 = band * kBand, y1 = std::min(oh, y0 + kBand);
     // ring[plane][slot]: horizontally filtered input rows, ow floats each.
     std::vector<float> ring(static_cast<std::size_t>(5) * kWindow * ow);
-    auto slot = [&](int plane, int r) { return ring.data() + (static_cast<std::size_t>(plane) * kWindow + r % kWindow) * ow; };
+    auto slot = [&](int plane, int r) {
+      return ring.data() + (static_cast<std::size_t>(plane) * kWindow + r % kWindow) * ow;
+    };
     std::vector<float> in(static_cast<std::size_t>(5) * w);
     std::vector<float> out(static_cast<std::size_t>(5) * ow);
     std::vector<float> s(ow);
@@ -64,13 +66,16 @@ SsimSums ssim_wang_plane(const Plane& a, const Plane& b, const std::vector<std::
         const float p = ar[i] - kShift, q = br[i] - kShift;
         x[i] = p, y[i] = q, xx[i] = p * p, yy[i] = q * q, xy[i] = p * q;
       }
-      for (int p = 0; p < 5; ++p) filter_row(in.data() + static_cast<std::size_t>(p) * w, ow, g.w.data(), kWindow, slot(p, r));
+      for (int p = 0; p < 5; ++p)
+        filter_row(in.data() + static_cast<std::size_t>(p) * w, ow, g.w.data(), kWindow,
+                   slot(p, r));
       if (r < y0 + 2 * kRadius) continue;
 
       const int oy = r - 2 * kRadius;  // output row: window rows oy .. oy + 10
       for (int p = 0; p < 5; ++p) {
         for (int k = 0; k < kWindow; ++k) ptr[k] = slot(p, oy + k);
-        filter_column(ptr.data(), kWindow, g.w.data(), ow, out.data() + static_cast<std::size_t>(p) * ow);
+        filter_column(ptr.data(), kWindow, g.w.data(), ow,
+                      out.data() + static_cast<std::size_t>(p) * ow);
       }
       const float* m1 = out.data();
       const float* m2 = m1 + ow;
@@ -79,13 +84,16 @@ SsimSums ssim_wang_plane(const Plane& a, const Plane& b, const std::vector<std::
       const float* e12 = e22 + ow;
       for (int i = 0; i < ow; ++i) {
         const float mu1 = m1[i] + kShift, mu2 = m2[i] + kShift;
-        const float v1 = e11[i] - m1[i] * m1[i], v2 = e22[i] - m2[i] * m2[i], v12 = e12[i] - m1[i] * m2[i];
+        const float v1 = e11[i] - m1[i] * m1[i], v2 = e22[i] - m2[i] * m2[i],
+                    v12 = e12[i] - m1[i] * m2[i];
         const float l = (2 * mu1 * mu2 + kC1) / (mu1 * mu1 + mu2 * mu2 + kC1);
         c[i] = (2 * v12 + kC2) / (v1 + v2 + kC2);
         s[i] = l * c[i];
       }
       SsimSums acc;
-      const std::uint8_t* m = mask.empty() ? nullptr : mask.data() + static_cast<std::size_t>(oy + kRadius) * w + kRadius;
+      const std::uint8_t* m =
+          mask.empty() ? nullptr
+                       : mask.data() + static_cast<std::size_t>(oy + kRadius) * w + kRadius;
       for (int i = 0; i < ow; ++i) {
         if (m && !m[i]) continue;
         acc.ssim += s[i], acc.cs += c[i], ++acc.n;

@@ -136,11 +136,11 @@ TEST(CrossCheck, SkimageStructuralSimilarity) {
   cases.push_back({"downsampled noise", big, noisy(big, 12), true});
   std::string cmd = std::string(kPython) + " " + (dir / "ssim.py");
   for (std::size_t i = 0; i < cases.size(); ++i) {
-    const std::string a = dir / ("a" + std::to_string(i) + ".png"),
-                      b = dir / ("b" + std::to_string(i) + ".png");
+    const std::string n =
+        std::to_string(i);  // "a" + to_string(i): GCC 12 warns falsely (-Wrestrict)
+    const std::string a = dir / ("a" + n + ".png"), b = dir / ("b" + n + ".png");
     save_png(cases[i].a, a);
     save_png(cases[i].b, b);
-    // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on a chain of string +.
     for (const std::string& part : {a, b, std::string(cases[i].downsample ? "2" : "1")})
       cmd.append(" ").append(part);
   }

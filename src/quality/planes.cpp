@@ -62,21 +62,23 @@ void extract_row(const std::uint8_t* src, int width, Channel channel, float* dst
 
 }  // namespace
 
+void extract_row(const ImageView& image, Channel channel, int y, float* dst) {
+  switch (image.channels) {
+    case 1:
+      extract_row<1>(image.row(y), image.width, channel, dst);
+      break;
+    case 3:
+      extract_row<3>(image.row(y), image.width, channel, dst);
+      break;
+    default:
+      extract_row<4>(image.row(y), image.width, channel, dst);
+      break;
+  }
+}
+
 Plane extract(const ImageView& image, Channel channel) {
   Plane p(image.width, image.height);
-  tbb::parallel_for(0, image.height, [&](int y) {
-    switch (image.channels) {
-      case 1:
-        extract_row<1>(image.row(y), image.width, channel, p.row(y));
-        break;
-      case 3:
-        extract_row<3>(image.row(y), image.width, channel, p.row(y));
-        break;
-      default:
-        extract_row<4>(image.row(y), image.width, channel, p.row(y));
-        break;
-    }
-  });
+  tbb::parallel_for(0, image.height, [&](int y) { extract_row(image, channel, y, p.row(y)); });
   return p;
 }
 

@@ -44,6 +44,8 @@ struct Plane {
 /// Which plane to extract: luma, or one of R, G, B.
 enum class Channel { kLuma, kR, kG, kB };
 Plane extract(const ImageView& image, Channel channel);
+/// Row y of that plane into dst (width floats).
+void extract_row(const ImageView& image, Channel channel, int y, float* dst);
 
 /// Number of mask pixels set (the whole image when the mask is empty).
 std::size_t mask_count(Mask mask, int width, int height);

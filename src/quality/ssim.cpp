@@ -51,9 +51,15 @@ std::vector<std::uint8_t> downsample_mask(Mask mask, int width, int height, int 
 
 double wang_channel(const ImageView& reference, const ImageView& test, Channel c, int f,
                     const std::vector<std::uint8_t>& mask) {
-  Plane a = detail::extract(reference, c), b = detail::extract(test, c);
-  if (f > 1) a = downsample(a, f), b = downsample(b, f);
-  const detail::SsimSums s = detail::ssim_wang_plane(a, b, mask);
+  detail::SsimSums s;
+  if (f > 1) {
+    const Plane a = downsample(detail::extract(reference, c), f),
+                b = downsample(detail::extract(test, c), f);
+    s = detail::ssim_wang_plane(a, b, mask);
+  } else {  // straight from the images, row by row
+    s = detail::ssim_wang(detail::RowSource{nullptr, &reference, c},
+                          detail::RowSource{nullptr, &test, c}, mask);
+  }
   return s.n ? s.ssim / static_cast<double>(s.n) : std::nan("");
 }
 

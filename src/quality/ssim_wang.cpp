@@ -65,8 +65,8 @@ TS_CLONES void ssim_terms(const float* __restrict m1, const float* __restrict m2
 
 }  // namespace
 
-SsimSums ssim_wang_plane(const Plane& a, const Plane& b, const std::vector<std::uint8_t>& mask) {
-  const int w = a.width, h = a.height;
+SsimSums ssim_wang(const RowSource& a, const RowSource& b, const std::vector<std::uint8_t>& mask) {
+  const int w = a.width(), h = a.height();
   if (w < kWindow || h < kWindow)
     throw InputError(fmt::format("ssim: {}x{} is smaller than the 11x11 SSIM window", w, h));
   const int ow = w - 2 * kRadius, oh = h - 2 * kRadius;
@@ -82,6 +82,7 @@ SsimSums ssim_wang_plane(const Plane& a, const Plane& b, const std::vector<std::
       return ring.data() + (static_cast<std::size_t>(plane) * kWindow + r % kWindow) * ow;
     };
     std::vector<float> in(static_cast<std::size_t>(5) * w);
+    std::vector<float> sa(w), sb(w);  // rows converted from an image
     std::vector<float> out(static_cast<std::size_t>(5) * ow);
     std::vector<float> s(ow);
     std::vector<float> c(ow);
@@ -89,7 +90,8 @@ SsimSums ssim_wang_plane(const Plane& a, const Plane& b, const std::vector<std::
 
     for (int r = y0; r < y1 + 2 * kRadius; ++r) {
       float* x = in.data();
-      products(a.row(r), b.row(r), w, x, x + w, x + 2 * w, x + 3 * w, x + 4 * w);
+      products(a.row(r, sa.data()), b.row(r, sb.data()), w, x, x + w, x + 2 * w, x + 3 * w,
+               x + 4 * w);
       for (int p = 0; p < 5; ++p)
         filter_row(in.data() + static_cast<std::size_t>(p) * w, ow, g.w.data(), kWindow,
                    slot(p, r));

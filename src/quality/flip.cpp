@@ -53,6 +53,7 @@ Kernel csf_term(double b, double ppd, int radius, double& sum) {
   k.radius = r;
   k.w.resize(k.taps());
   for (int i = 0; i < k.taps(); ++i) k.w[i] = static_cast<float>(g[radius - r + i] / sum);
+  k.find_symmetry();
   return k;
 }
 
@@ -68,6 +69,7 @@ Kernel signed_normalised(const std::vector<double>& h) {
   for (std::size_t i = 0; i < h.size(); ++i)
     k.w[i] =
         static_cast<float>(h[i] > 0 ? (pos > 0 ? h[i] / pos : 0) : (neg < 0 ? -h[i] / neg : 0));
+  k.find_symmetry();
   return k;
 }
 
@@ -109,6 +111,7 @@ struct Filters {
     gauss.radius = fr;
     gauss.w.resize(g.size());
     for (std::size_t i = 0; i < g.size(); ++i) gauss.w[i] = static_cast<float>(g[i] / gsum);
+    gauss.find_symmetry();
     edge = signed_normalised(he);
     point = signed_normalised(hp);
     radius = std::max({a.radius, rg.radius, by1.radius, by2.radius, fr});
@@ -167,10 +170,10 @@ FlipResult flip(const ImageView& reference, const ImageView& test, const FlipOpt
 
     auto vfilter = [&](int img, int plane, const Kernel& k, int y, float* out) {
       for (int i = 0; i < k.taps(); ++i) ptr[i] = slot(img, plane, y - k.radius + i);
-      detail::filter_column(ptr.data(), k.taps(), k.w.data(), tw, out);
+      detail::filter_column(ptr.data(), k.taps(), k.w.data(), tw, out, k.symmetry);
     };
     auto hfilter = [&](const float* padded, const Kernel& k, float* out) {
-      detail::filter_row(padded + (R - k.radius), tw, k.w.data(), k.taps(), out);
+      detail::filter_row(padded + (R - k.radius), tw, k.w.data(), k.taps(), out, k.symmetry);
     };
 
     for (int v = y0 - R; v < y1 + R; ++v) {

@@ -93,15 +93,15 @@ SsimSums ssim_wang(const RowSource& a, const RowSource& b, const std::vector<std
       products(a.row(r, sa.data()), b.row(r, sb.data()), w, x, x + w, x + 2 * w, x + 3 * w,
                x + 4 * w);
       for (int p = 0; p < 5; ++p)
-        filter_row(in.data() + static_cast<std::size_t>(p) * w, ow, g.w.data(), kWindow,
-                   slot(p, r));
+        filter_row(in.data() + static_cast<std::size_t>(p) * w, ow, g.w.data(), kWindow, slot(p, r),
+                   g.symmetry);
       if (r < y0 + 2 * kRadius) continue;
 
       const int oy = r - 2 * kRadius;  // output row: window rows oy .. oy + 10
       for (int p = 0; p < 5; ++p) {
         for (int k = 0; k < kWindow; ++k) ptr[k] = slot(p, oy + k);
         filter_column(ptr.data(), kWindow, g.w.data(), ow,
-                      out.data() + static_cast<std::size_t>(p) * ow);
+                      out.data() + static_cast<std::size_t>(p) * ow, g.symmetry);
       }
       const float* m1 = out.data();
       ssim_terms(m1, m1 + ow, m1 + 2 * ow, m1 + 3 * ow, m1 + 4 * ow, ow, s.data(), c.data());

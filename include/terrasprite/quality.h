@@ -49,6 +49,9 @@ struct SsimResult {
   double ssim = 0;  ///< Wang: on luma; ffmpeg: its 'All' (weighted over channels)
   std::array<double, 3> channels{0, 0, 0};  ///< per R, G, B (when options.channels)
 };
+/// Mean SSIM over the scored windows. kWang needs 11 x 11 pixels (after any
+/// down-sampling), kFfmpeg 8 x 8 (ffmpeg ignores trailing pixels beyond whole
+/// 4 x 4 blocks, and so do we); smaller images throw InputError.
 SsimResult ssim(const ImageView& reference, const ImageView& test, const SsimOptions& options = {},
                 Mask mask = {});
 
@@ -58,7 +61,7 @@ SsimResult ssim(const ImageView& reference, const ImageView& test, const SsimOpt
 double msssim(const ImageView& reference, const ImageView& test, Mask mask = {});
 
 struct FlipOptions {
-  double ppd = 67.02;     ///< pixels per degree of visual angle
+  double ppd = 67.02;     ///< pixels per degree of visual angle, in (0, 1000]
   bool want_map = false;  ///< fill FlipResult::map
 };
 struct FlipResult {
@@ -69,7 +72,7 @@ struct FlipResult {
 /// LDR-FLIP (Andersson et al. 2020): mean and median of the per-pixel error
 /// over the masked pixels (median of an even count: mean of the two middle
 /// values). The map, when asked for, covers every pixel, mask or not. A ppd
-/// that is not finite and positive throws InputError.
+/// outside (0, 1000] throws InputError. Any size works (borders replicate).
 FlipResult flip(const ImageView& reference, const ImageView& test, const FlipOptions& options = {},
                 Mask mask = {});
 

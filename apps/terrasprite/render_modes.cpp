@@ -3,11 +3,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <thread>
+
 #include "terrasprite/error.h"
 
 namespace terrasprite::cli {
 
-std::vector<std::string> render_modes() { return {"full", "lod"}; }
+std::vector<std::string> render_modes() { return {"full", "lod", "voxel"}; }
 
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width, int height, int lod_quads) {
   RenderStack s;
@@ -17,6 +20,13 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
     s.device = s.gl->renderer();
     s.scene = std::make_unique<GlTerrain>(terrain);
     s.renderer = std::make_unique<MeshRenderer>(*s.scene, width, height, mode == "full" ? 0 : lod_quads);
+    return s;
+  }
+  if (mode == "voxel") {
+    s.voxel = std::make_unique<VoxelTerrain>(terrain);
+    auto* r = new VoxelRenderer(*s.voxel, width, height);
+    s.renderer.reset(r);
+    s.device = fmt::format("cpu voxel {}, {} threads", to_string(r->options().variant), std::max(1u, std::thread::hardware_concurrency()));
     return s;
   }
   throw InputError(fmt::format("--mode {}: unknown mode", mode));

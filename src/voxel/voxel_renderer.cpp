@@ -1,0 +1,238 @@
+// SPDX-License-Identifier: MIT
+// The voxel flythrough renderer (Cohen-Or, Rich, Lerner, Shenkar): columns
+// along vertical planes through the eye are handed out to a pool of threads
+// (TBB work stealing over a range of columns, no barrier inside a column),
+// then the intermediate buffer is resampled to the image. The naive variant
+// marches every pixel's ray on its own.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <thread>
+#include <vector>
+
+#include "terrasprite/error.h"
+#include "voxel/column_march.h"
+#include "voxel/vertical_planes.h"
+
+namespace terrasprite {
+namespace {
+
+constexpr std::uint32_t kSkyPacked =
+    std::uint32_t(kSkyColor[0]) | (std::uint32_t(kSkyColor[1]) << 8) | (std::uint32_t(kSkyColor[2]) << 16) | 0xff000000u;
+
+int resolve_threads(int threads) {
+  if (threads > 0) return threads;
+  return std::max(1, int(std::thread::hardware_concurrency()));
+}
+
+// Camera-space ray through image point (x, y) in pixels, forward component 1.
+struct ImageRays {
+  glm::dvec3 f, r, u;
+  double fx, fy, mx, my;
+  ImageRays(const Camera& c, int w, int h) : f(c.forward()), r(c.right()), u(c.up()) {
+    const double t = std::tan(c.fov_y_deg * 3.14159265358979323846 / 360.0);
+    fx = w / (2.0 * t * c.aspect);
+    fy = h / (2.0 * t);
+    mx = w * 0.5;
+    my = h * 0.5;
+  }
+  glm::dvec3 at(double x, double y) const { return f + ((x - mx) / fx) * r - ((y - my) / fy) * u; }
+};
+
+MarchSettings settings_for(const VoxelOptions& o, const Camera& cam, int height) {
+  MarchSettings s;
+  s.multires = o.variant == VoxelVariant::kMultires;
+  s.blend = o.blend_levels;
+  s.max_skip = o.max_skip && o.variant != VoxelVariant::kNaive;
+  s.pixel_angle = cam.pixel_angle(height);
+  s.ratio = o.pixel_voxel_ratio;
+  return s;
+}
+
+}  // namespace
+
+struct VoxelRenderer::State {
+  const VoxelTerrain& terrain;
+  int w, h;
+  VoxelOptions options;
+  tbb::task_arena arena;
+  // Intermediate buffer: per column its first sample index and offset.
+  std::vector<std::int64_t> k0, k1;
+  std::vector<std::size_t> offset;
+  std::vector<std::uint32_t> color;
+  std::vector<float> depth;
+
+  State(const VoxelTerrain& t, int w_, int h_, const VoxelOptions& o)
+      : terrain(t), w(w_), h(h_), options(o), arena(resolve_threads(o.threads)) {}
+
+  void naive(const Camera& cam, Frame& out);
+  void planes(const Camera& cam, Frame& out);
+};
+
+VoxelRenderer::VoxelRenderer(const VoxelTerrain& terrain, int width, int height, VoxelOptions options) {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw InputError(fmt::format("voxel renderer: image size {}x{} out of range", width, height));
+  if (!(options.pixel_voxel_ratio > 0) || !std::isfinite(options.pixel_voxel_ratio))
+    throw InputError(fmt::format("--pixel-voxel-ratio {}: must be a positive number", options.pixel_voxel_ratio));
+  if (!(options.plane_oversample >= 0.25 && options.plane_oversample <= 8))
+    throw InputError(fmt::format("plane oversampling {}: must be within 0.25..8", options.plane_oversample));
+  s_ = std::make_unique<State>(terrain, width, height, options);
+}
+
+VoxelRenderer::~VoxelRenderer() = default;
+
+const VoxelOptions& VoxelRenderer::options() const { return s_->options; }
+
+std::string VoxelRenderer::name() const { return fmt::format("voxel-{}", to_string(s_->options.variant)); }
+
+Frame VoxelRenderer::render(const Camera& camera) {
+  Frame out;
+  out.color = Image(s_->w, s_->h);
+  out.depth.assign(static_cast<std::size_t>(s_->w) * s_->h, Frame::kSky);
+  out.cls = "voxel";
+  const auto start = std::chrono::steady_clock::now();
+  s_->arena.execute([&] {
+    if (s_->options.variant == VoxelVariant::kNaive)
+      s_->naive(camera, out);
+    else
+      s_->planes(camera, out);
+  });
+  out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+void VoxelRenderer::State::naive(const Camera& cam, Frame& out) {
+  const double eye[3] = {cam.position.x, cam.position.y, cam.position.z};
+  const ColumnMarcher marcher(terrain.data(), eye, settings_for(options, cam, h));
+  const ImageRays rays(cam, w, h);
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& range) {
+    for (int y = range.begin(); y < range.end(); ++y)
+      for (int x = 0; x < w; ++x) {
+        const glm::dvec3 d = rays.at(x + 0.5, y + 0.5);
+        const double hz = std::max(std::hypot(d.x, d.y), 1e-12);
+        const double slope = d.z / hz;
+        MarchHit hit;
+        marcher.march(hz > 1e-12 ? d.x / hz : 1.0, hz > 1e-12 ? d.y / hz : 0.0, {&slope, 1}, {&hit, 1});
+        std::uint8_t* p = out.color.px(x, y);
+        const std::uint32_t c = std::isfinite(hit.t) ? hit.color : kSkyPacked;
+        p[0] = c & 0xff;
+        p[1] = (c >> 8) & 0xff;
+        p[2] = (c >> 16) & 0xff;
+        p[3] = 255;
+        out.depth[std::size_t(y) * w + x] = std::isfinite(hit.t) ? float(hit.t / hz) : Frame::kSky;
+      }
+  }, tbb::simple_partitioner());
+}
+
+void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
+  const PlaneLayout layout = make_plane_layout(cam, w, h, options.plane_oversample);
+  const int n = layout.columns;
+  k0.assign(n, 0);
+  k1.assign(n, -1);
+  offset.assign(std::size_t(n) + 1, 0);
+  for (int c = 0; c < n; ++c) {
+    std::int64_t a, b;
+    if (layout.rows(c, w, h, a, b)) {
+      k0[c] = a;
+      k1[c] = b;
+    }
+    offset[c + 1] = offset[c] + std::size_t(std::max<std::int64_t>(0, k1[c] - k0[c] + 1));
+  }
+  color.resize(offset[n]);
+  depth.resize(offset[n]);
+
+  const double eye[3] = {cam.position.x, cam.position.y, cam.position.z};
+  const ColumnMarcher marcher(terrain.data(), eye, settings_for(options, cam, h));
+  const ImageRays rays(cam, w, h);
+
+  // The pool of columns: each task takes a few and marches them bottom-up.
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 2), [&](const tbb::blocked_range<int>& range) {
+    thread_local std::vector<double> slopes, inv_hz;
+    thread_local std::vector<MarchHit> hits;
+    for (int c = range.begin(); c < range.end(); ++c) {
+      const std::int64_t count = k1[c] - k0[c] + 1;
+      if (count <= 0) continue;
+      double wx, wy;
+      layout.column_dir(c, wx, wy);
+      slopes.resize(count);
+      inv_hz.resize(count);
+      hits.resize(count);
+      // Samples in order of rising elevation.
+      for (std::int64_t i = 0; i < count; ++i) {
+        const std::int64_t k = layout.rise_outward ? k0[c] + i : k1[c] - i;
+        const double s = double(k) * layout.dr;
+        const glm::dvec3 d = rays.at(layout.vx + s * wx, layout.vy + s * wy);
+        const double hz = std::max(std::hypot(d.x, d.y), 1e-12);
+        slopes[i] = d.z / hz;
+        if (i > 0) slopes[i] = std::max(slopes[i], slopes[i - 1]);
+        inv_hz[i] = 1.0 / hz;
+      }
+      // The plane's horizontal direction, from the sample farthest from V.
+      const std::int64_t kf = k1[c];
+      const glm::dvec3 df = rays.at(layout.vx + double(kf) * layout.dr * wx, layout.vy + double(kf) * layout.dr * wy);
+      const double hf = std::hypot(df.x, df.y);
+      const double dx = hf > 1e-12 ? df.x / hf : 1.0, dy = hf > 1e-12 ? df.y / hf : 0.0;
+      marcher.march(dx, dy, slopes, hits);
+      for (std::int64_t i = 0; i < count; ++i) {
+        const std::int64_t k = layout.rise_outward ? k0[c] + i : k1[c] - i;
+        const std::size_t at = offset[c] + std::size_t(k - k0[c]);
+        const bool hit = std::isfinite(hits[i].t);
+        color[at] = hit ? hits[i].color : kSkyPacked;
+        depth[at] = hit ? float(hits[i].t * inv_hz[i]) : Frame::kSky;
+      }
+    }
+  }, tbb::simple_partitioner());
+
+  // Resample the planes to the image (bilinear colour, nearest depth).
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& range) {
+    for (int y = range.begin(); y < range.end(); ++y)
+      for (int x = 0; x < w; ++x) {
+        double cf, kf;
+        layout.locate(x + 0.5, y + 0.5, cf, kf);
+        const double cfl = std::floor(cf), kfl = std::floor(kf);
+        const float fc = float(cf - cfl), fk = float(kf - kfl);
+        float acc[3] = {0, 0, 0}, wsum = 0, wbest = -1;
+        float dbest = Frame::kSky;
+        for (int a = 0; a < 2; ++a) {
+          long c = long(cfl) + a;
+          if (layout.wrap) {
+            c %= n;
+            if (c < 0) c += n;
+          } else if (c < 0 || c >= n) {
+            continue;
+          }
+          const float wc = a ? fc : 1 - fc;
+          for (int b = 0; b < 2; ++b) {
+            const std::int64_t k = std::int64_t(kfl) + b;
+            if (k < k0[c] || k > k1[c]) continue;
+            const float wgt = wc * (b ? fk : 1 - fk);
+            const std::size_t at = offset[c] + std::size_t(k - k0[c]);
+            const std::uint32_t p = color[at];
+            acc[0] += wgt * float(p & 0xff);
+            acc[1] += wgt * float((p >> 8) & 0xff);
+            acc[2] += wgt * float((p >> 16) & 0xff);
+            wsum += wgt;
+            if (wgt > wbest) {
+              wbest = wgt;
+              dbest = depth[at];
+            }
+          }
+        }
+        std::uint8_t* px = out.color.px(x, y);
+        if (wsum > 0) {
+          for (int ch = 0; ch < 3; ++ch) px[ch] = std::uint8_t(std::clamp(acc[ch] / wsum + 0.5f, 0.f, 255.f));
+        } else {
+          for (int ch = 0; ch < 3; ++ch) px[ch] = kSkyColor[ch];
+        }
+        px[3] = 255;
+        out.depth[std::size_t(y) * w + x] = dbest;
+      }
+  });
+}
+
+}  // namespace terrasprite

@@ -188,7 +188,7 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
     }
   }, tbb::simple_partitioner());
 
-  // Resample the planes to the image (bilinear colour, nearest depth).
+  // Resample the planes to the image (bilinear colour and depth).
   tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& range) {
     for (int y = range.begin(); y < range.end(); ++y)
       for (int x = 0; x < w; ++x) {
@@ -196,8 +196,9 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
         layout.locate(x + 0.5, y + 0.5, cf, kf);
         const double cfl = std::floor(cf), kfl = std::floor(kf);
         const float fc = float(cf - cfl), fk = float(kf - kfl);
-        float acc[3] = {0, 0, 0}, wsum = 0, wbest = -1;
+        float acc[3] = {0, 0, 0}, wsum = 0, wbest = -1, dsum = 0, dmin = Frame::kSky, dmax = 0;
         float dbest = Frame::kSky;
+        bool all_hit = true;
         for (int a = 0; a < 2; ++a) {
           long c = long(cfl) + a;
           if (layout.wrap) {
@@ -217,6 +218,10 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
             acc[1] += wgt * float((p >> 8) & 0xff);
             acc[2] += wgt * float((p >> 16) & 0xff);
             wsum += wgt;
+            dsum += wgt * depth[at];
+            all_hit = all_hit && std::isfinite(depth[at]);
+            dmin = std::min(dmin, depth[at]);
+            dmax = std::max(dmax, depth[at]);
             if (wgt > wbest) {
               wbest = wgt;
               dbest = depth[at];
@@ -230,7 +235,9 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
           for (int ch = 0; ch < 3; ++ch) px[ch] = kSkyColor[ch];
         }
         px[3] = 255;
-        out.depth[std::size_t(y) * w + x] = dbest;
+        // Depth: interpolated on a surface, nearest across a silhouette.
+        const bool smooth = wsum > 0 && all_hit && dmax - dmin <= 0.3f * dmin;
+        out.depth[std::size_t(y) * w + x] = smooth ? dsum / wsum : dbest;
       }
   });
 }

@@ -40,7 +40,7 @@ void PlaneLayout::locate(double x, double y, double& cf, double& kf) const {
     double ang = std::atan2(b, a);
     if (wrap && ang < 0) ang += 2 * kPi;
     cf = (ang - c0) / dc - 0.5;
-    kf = std::hypot(dx, dy) / dr;
+    kf = std::sqrt(dx * dx + dy * dy) / dr;
   } else {
     cf = (b / a - c0) / dc - 0.5;
     kf = a / dr;

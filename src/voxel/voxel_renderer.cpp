@@ -64,8 +64,11 @@ struct VoxelRenderer::State {
   // Intermediate buffer: per column its first sample index and offset.
   std::vector<std::int64_t> k0, k1;
   std::vector<std::size_t> offset;
-  std::vector<std::uint32_t> color;
-  std::vector<float> depth;
+  struct Sample {
+    std::uint32_t color;
+    float depth;  // metres along the view axis, +inf = sky
+  };
+  std::vector<Sample> samples;
 
   State(const VoxelTerrain& t, int w_, int h_, const VoxelOptions& o)
       : terrain(t), w(w_), h(h_), options(o), arena(resolve_threads(o.threads)) {}
@@ -114,7 +117,7 @@ void VoxelRenderer::State::naive(const Camera& cam, Frame& out) {
     for (int y = range.begin(); y < range.end(); ++y)
       for (int x = 0; x < w; ++x) {
         const glm::dvec3 d = rays.at(x + 0.5, y + 0.5);
-        const double hz = std::max(std::hypot(d.x, d.y), 1e-12);
+        const double hz = std::max(std::sqrt(d.x * d.x + d.y * d.y), 1e-12);
         const double slope = d.z / hz;
         MarchHit hit;
         marcher.march(hz > 1e-12 ? d.x / hz : 1.0, hz > 1e-12 ? d.y / hz : 0.0, {&slope, 1}, {&hit, 1});
@@ -143,31 +146,30 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
     }
     offset[c + 1] = offset[c] + std::size_t(std::max<std::int64_t>(0, k1[c] - k0[c] + 1));
   }
-  color.resize(offset[n]);
-  depth.resize(offset[n]);
+  samples.resize(offset[n]);
 
   const double eye[3] = {cam.position.x, cam.position.y, cam.position.z};
   const ColumnMarcher marcher(terrain.data(), eye, settings_for(options, cam, h));
   const ImageRays rays(cam, w, h);
 
-  // The pool of columns: each task takes a few and marches them bottom-up.
-  tbb::parallel_for(tbb::blocked_range<int>(0, n, 2), [&](const tbb::blocked_range<int>& range) {
+  // One column: its rays bottom-up through the marcher, into the buffer.
+  auto march_column = [&](int c) {
     thread_local std::vector<double> slopes, inv_hz;
     thread_local std::vector<MarchHit> hits;
-    for (int c = range.begin(); c < range.end(); ++c) {
       const std::int64_t count = k1[c] - k0[c] + 1;
-      if (count <= 0) continue;
+      if (count <= 0) return;
       double wx, wy;
       layout.column_dir(c, wx, wy);
       slopes.resize(count);
       inv_hz.resize(count);
       hits.resize(count);
-      // Samples in order of rising elevation.
+      // Samples in order of rising elevation; the ray is affine in k.
+      const glm::dvec3 d0 = rays.at(layout.vx, layout.vy);
+      const glm::dvec3 dk = rays.at(layout.vx + layout.dr * wx, layout.vy + layout.dr * wy) - d0;
       for (std::int64_t i = 0; i < count; ++i) {
         const std::int64_t k = layout.rise_outward ? k0[c] + i : k1[c] - i;
-        const double s = double(k) * layout.dr;
-        const glm::dvec3 d = rays.at(layout.vx + s * wx, layout.vy + s * wy);
-        const double hz = std::max(std::hypot(d.x, d.y), 1e-12);
+        const glm::dvec3 d = d0 + double(k) * dk;
+        const double hz = std::max(std::sqrt(d.x * d.x + d.y * d.y), 1e-12);
         slopes[i] = d.z / hz;
         if (i > 0) slopes[i] = std::max(slopes[i], slopes[i - 1]);
         inv_hz[i] = 1.0 / hz;
@@ -175,70 +177,138 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
       // The plane's horizontal direction, from the sample farthest from V.
       const std::int64_t kf = k1[c];
       const glm::dvec3 df = rays.at(layout.vx + double(kf) * layout.dr * wx, layout.vy + double(kf) * layout.dr * wy);
-      const double hf = std::hypot(df.x, df.y);
+      const double hf = std::sqrt(df.x * df.x + df.y * df.y);
       const double dx = hf > 1e-12 ? df.x / hf : 1.0, dy = hf > 1e-12 ? df.y / hf : 0.0;
       marcher.march(dx, dy, slopes, hits);
       for (std::int64_t i = 0; i < count; ++i) {
         const std::int64_t k = layout.rise_outward ? k0[c] + i : k1[c] - i;
         const std::size_t at = offset[c] + std::size_t(k - k0[c]);
         const bool hit = std::isfinite(hits[i].t);
-        color[at] = hit ? hits[i].color : kSkyPacked;
-        depth[at] = hit ? float(hits[i].t * inv_hz[i]) : Frame::kSky;
+        samples[at] = {hit ? hits[i].color : kSkyPacked, hit ? float(hits[i].t * inv_hz[i]) : Frame::kSky};
+      }
+  };
+  // One pixel from the buffer: bilinear colour; depth bilinear on a surface,
+  // nearest across a silhouette.
+  const double inv_dc = 1.0 / layout.dc, inv_dr = 1.0 / layout.dr;
+  auto locate = [&](int x, int y, double& cf, double& kf) {
+    if (layout.polar) return layout.locate(x + 0.5, y + 0.5, cf, kf);
+    const double dx = x + 0.5 - layout.vx, dy = y + 0.5 - layout.vy;
+    const double a = dx * layout.ex + dy * layout.ey, b = dy * layout.ex - dx * layout.ey;
+    cf = (b / a - layout.c0) * inv_dc - 0.5;  // one division per pixel
+    kf = a * inv_dr;
+  };
+  auto resample = [&](int x, int y, double cf, double kf) {
+    const double cfl = std::floor(cf), kfl = std::floor(kf);
+    const float fc = float(cf - cfl), fk = float(kf - kfl);
+    const long cbase = long(cfl);
+    const std::int64_t kbase = std::int64_t(kfl);
+    float acc[3] = {0, 0, 0}, wsum = 0, wbest = -1, dsum = 0, dmin = Frame::kSky, dmax = 0;
+    float dbest = Frame::kSky;
+    bool all_hit = true;
+    for (int a = 0; a < 2; ++a) {
+      long c = cbase + a;
+      if (c < 0 || c >= n) {
+        if (!layout.wrap) continue;
+        c = c < 0 ? c + n : c - n;
+      }
+      const float wc = a ? fc : 1 - fc;
+      const std::int64_t c0k = k0[c], c1k = k1[c];
+      const std::size_t base = offset[c];
+      for (int b = 0; b < 2; ++b) {
+        const std::int64_t k = kbase + b;
+        if (k < c0k || k > c1k) continue;
+        const float wgt = wc * (b ? fk : 1 - fk);
+        const Sample& smp = samples[base + std::size_t(k - c0k)];
+        const std::uint32_t p = smp.color;
+        acc[0] += wgt * float(p & 0xff);
+        acc[1] += wgt * float((p >> 8) & 0xff);
+        acc[2] += wgt * float((p >> 16) & 0xff);
+        wsum += wgt;
+        dsum += wgt * smp.depth;
+        all_hit = all_hit && smp.depth < Frame::kSky;
+        dmin = std::min(dmin, smp.depth);
+        dmax = std::max(dmax, smp.depth);
+        if (wgt > wbest) {
+          wbest = wgt;
+          dbest = smp.depth;
+        }
       }
     }
-  }, tbb::simple_partitioner());
+    std::uint8_t* px = out.color.px(x, y);
+    if (wsum > 0) {
+      const float inv = 1.0f / wsum;
+      for (int ch = 0; ch < 3; ++ch) px[ch] = std::uint8_t(std::min(acc[ch] * inv + 0.5f, 255.f));
+    } else {
+      for (int ch = 0; ch < 3; ++ch) px[ch] = kSkyColor[ch];
+    }
+    px[3] = 255;
+    // Depth: interpolated on a surface, nearest across a silhouette.
+    const bool smooth = wsum > 0 && all_hit && dmax - dmin <= 0.3f * dmin;
+    out.depth[std::size_t(y) * w + x] = smooth ? dsum / wsum : dbest;
+  };
 
-  // Resample the planes to the image (bilinear colour and depth).
-  tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& range) {
-    for (int y = range.begin(); y < range.end(); ++y)
-      for (int x = 0; x < w; ++x) {
-        double cf, kf;
-        layout.locate(x + 0.5, y + 0.5, cf, kf);
-        const double cfl = std::floor(cf), kfl = std::floor(kf);
-        const float fc = float(cf - cfl), fk = float(kf - kfl);
-        float acc[3] = {0, 0, 0}, wsum = 0, wbest = -1, dsum = 0, dmin = Frame::kSky, dmax = 0;
-        float dbest = Frame::kSky;
-        bool all_hit = true;
-        for (int a = 0; a < 2; ++a) {
-          long c = long(cfl) + a;
-          if (layout.wrap) {
-            c %= n;
-            if (c < 0) c += n;
-          } else if (c < 0 || c >= n) {
-            continue;
-          }
-          const float wc = a ? fc : 1 - fc;
-          for (int b = 0; b < 2; ++b) {
-            const std::int64_t k = std::int64_t(kfl) + b;
-            if (k < k0[c] || k > k1[c]) continue;
-            const float wgt = wc * (b ? fk : 1 - fk);
-            const std::size_t at = offset[c] + std::size_t(k - k0[c]);
-            const std::uint32_t p = color[at];
-            acc[0] += wgt * float(p & 0xff);
-            acc[1] += wgt * float((p >> 8) & 0xff);
-            acc[2] += wgt * float((p >> 16) & 0xff);
-            wsum += wgt;
-            dsum += wgt * depth[at];
-            all_hit = all_hit && std::isfinite(depth[at]);
-            dmin = std::min(dmin, depth[at]);
-            dmax = std::max(dmax, depth[at]);
-            if (wgt > wbest) {
-              wbest = wgt;
-              dbest = depth[at];
-            }
-          }
+  if (layout.polar) {
+    // Looking steeply down or up: march every column, then resample.
+    tbb::parallel_for(tbb::blocked_range<int>(0, n, 2), [&](const tbb::blocked_range<int>& range) {
+      for (int c = range.begin(); c < range.end(); ++c) march_column(c);
+    }, tbb::simple_partitioner());
+    constexpr int kStrip = 8;  // vertical strips read few buffer columns, sequentially
+    tbb::parallel_for(tbb::blocked_range<int>(0, (w + kStrip - 1) / kStrip, 1), [&](const tbb::blocked_range<int>& range) {
+      const int x0 = range.begin() * kStrip, x1 = std::min(w, range.end() * kStrip);
+      for (int y = 0; y < h; ++y)
+        for (int x = x0; x < x1; ++x) {
+          double cf, kf;
+          locate(x, y, cf, kf);
+          resample(x, y, cf, kf);
         }
-        std::uint8_t* px = out.color.px(x, y);
-        if (wsum > 0) {
-          for (int ch = 0; ch < 3; ++ch) px[ch] = std::uint8_t(std::clamp(acc[ch] / wsum + 0.5f, 0.f, 255.f));
-        } else {
-          for (int ch = 0; ch < 3; ++ch) px[ch] = kSkyColor[ch];
+    });
+    return;
+  }
+
+  // Planes nearly parallel: the pool hands out chunks of adjacent columns;
+  // a task marches its chunk and at once resamples the pixels lying between
+  // the chunk's columns, while they are in cache. Pixels between two chunks
+  // (one seam per chunk) follow when all columns are done.
+  constexpr int kChunk = 24;
+  const int chunks = (n + kChunk - 1) / kChunk;
+  auto key_of = [&](double cf) { return std::clamp(long(std::floor(cf)), -1L, long(n) - 1); };
+  // Pixels of row y whose key lies in [lo, hi): cf is monotonic along a row.
+  auto resample_keys = [&](long lo, long hi) {
+    const double lam_lo = layout.c0 + (double(lo) - 1.0 + 0.5) * layout.dc;
+    const double lam_hi = layout.c0 + (double(hi) + 1.0 + 0.5) * layout.dc;
+    for (int y = 0; y < h; ++y) {
+      const double dy = y + 0.5 - layout.vy;
+      int xa = 0, xb = w - 1;
+      const double den_lo = -layout.ey - lam_lo * layout.ex, den_hi = -layout.ey - lam_hi * layout.ex;
+      if (std::abs(den_lo) > 1e-12 && std::abs(den_hi) > 1e-12) {
+        const double x_lo = layout.vx + dy * (lam_lo * layout.ey - layout.ex) / den_lo - 0.5;
+        const double x_hi = layout.vx + dy * (lam_hi * layout.ey - layout.ex) / den_hi - 0.5;
+        const double m0 = std::min(x_lo, x_hi), m1 = std::max(x_lo, x_hi);
+        if (std::isfinite(m0) && std::isfinite(m1)) {
+          xa = int(std::clamp(std::floor(m0) - 1.0, 0.0, double(w)));
+          xb = int(std::clamp(std::ceil(m1) + 1.0, -1.0, double(w - 1)));
         }
-        px[3] = 255;
-        // Depth: interpolated on a surface, nearest across a silhouette.
-        const bool smooth = wsum > 0 && all_hit && dmax - dmin <= 0.3f * dmin;
-        out.depth[std::size_t(y) * w + x] = smooth ? dsum / wsum : dbest;
       }
+      for (int x = xa; x <= xb; ++x) {
+        double cf, kf;
+        locate(x, y, cf, kf);
+        const long key = key_of(cf);
+        if (key >= lo && key < hi) resample(x, y, cf, kf);
+      }
+    }
+  };
+  tbb::parallel_for(tbb::blocked_range<int>(0, chunks, 1), [&](const tbb::blocked_range<int>& range) {
+    for (int j = range.begin(); j < range.end(); ++j) {
+      const int ca = j * kChunk, cb = std::min(n, ca + kChunk);
+      for (int c = ca; c < cb; ++c) march_column(c);
+      resample_keys(j == 0 ? -1 : ca, j == chunks - 1 ? n : cb - 1);
+    }
+  }, tbb::simple_partitioner());
+  tbb::parallel_for(tbb::blocked_range<int>(0, chunks - 1, 1), [&](const tbb::blocked_range<int>& range) {
+    for (int j = range.begin(); j < range.end(); ++j) {
+      const long seam = long(j + 1) * kChunk - 1;
+      resample_keys(seam, seam + 1);
+    }
   });
 }
 

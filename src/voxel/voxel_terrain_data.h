@@ -43,7 +43,7 @@ struct VoxelTerrain::Data {
 };
 
 inline std::uint32_t pack_rgba(float r, float g, float b) {
-  auto c = [](float v) { return std::uint32_t(std::clamp(std::lround(v), 0L, 255L)); };
+  auto c = [](float v) { return std::uint32_t(std::clamp(v + 0.5f, 0.f, 255.f)); };
   return c(r) | (c(g) << 8) | (c(b) << 16) | 0xff000000u;
 }
 

@@ -156,36 +156,36 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
   auto march_column = [&](int c) {
     thread_local std::vector<double> slopes, inv_hz;
     thread_local std::vector<MarchHit> hits;
-      const std::int64_t count = k1[c] - k0[c] + 1;
-      if (count <= 0) return;
-      double wx, wy;
-      layout.column_dir(c, wx, wy);
-      slopes.resize(count);
-      inv_hz.resize(count);
-      hits.resize(count);
-      // Samples in order of rising elevation; the ray is affine in k.
-      const glm::dvec3 d0 = rays.at(layout.vx, layout.vy);
-      const glm::dvec3 dk = rays.at(layout.vx + layout.dr * wx, layout.vy + layout.dr * wy) - d0;
-      for (std::int64_t i = 0; i < count; ++i) {
-        const std::int64_t k = layout.rise_outward ? k0[c] + i : k1[c] - i;
-        const glm::dvec3 d = d0 + double(k) * dk;
-        const double hz = std::max(std::sqrt(d.x * d.x + d.y * d.y), 1e-12);
-        slopes[i] = d.z / hz;
-        if (i > 0) slopes[i] = std::max(slopes[i], slopes[i - 1]);
-        inv_hz[i] = 1.0 / hz;
-      }
-      // The plane's horizontal direction, from the sample farthest from V.
-      const std::int64_t kf = k1[c];
-      const glm::dvec3 df = rays.at(layout.vx + double(kf) * layout.dr * wx, layout.vy + double(kf) * layout.dr * wy);
-      const double hf = std::sqrt(df.x * df.x + df.y * df.y);
-      const double dx = hf > 1e-12 ? df.x / hf : 1.0, dy = hf > 1e-12 ? df.y / hf : 0.0;
-      marcher.march(dx, dy, slopes, hits);
-      for (std::int64_t i = 0; i < count; ++i) {
-        const std::int64_t k = layout.rise_outward ? k0[c] + i : k1[c] - i;
-        const std::size_t at = offset[c] + std::size_t(k - k0[c]);
-        const bool hit = std::isfinite(hits[i].t);
-        samples[at] = {hit ? hits[i].color : kSkyPacked, hit ? float(hits[i].t * inv_hz[i]) : Frame::kSky};
-      }
+    const std::int64_t count = k1[c] - k0[c] + 1;
+    if (count <= 0) return;
+    double wx, wy;
+    layout.column_dir(c, wx, wy);
+    slopes.resize(count);
+    inv_hz.resize(count);
+    hits.resize(count);
+    // Samples in order of rising elevation; the ray is affine in k.
+    const glm::dvec3 d0 = rays.at(layout.vx, layout.vy);
+    const glm::dvec3 dk = rays.at(layout.vx + layout.dr * wx, layout.vy + layout.dr * wy) - d0;
+    for (std::int64_t i = 0; i < count; ++i) {
+      const std::int64_t k = layout.rise_outward ? k0[c] + i : k1[c] - i;
+      const glm::dvec3 d = d0 + double(k) * dk;
+      const double hz = std::max(std::sqrt(d.x * d.x + d.y * d.y), 1e-12);
+      slopes[i] = d.z / hz;
+      if (i > 0) slopes[i] = std::max(slopes[i], slopes[i - 1]);
+      inv_hz[i] = 1.0 / hz;
+    }
+    // The plane's horizontal direction, from the sample farthest from V.
+    const std::int64_t kf = k1[c];
+    const glm::dvec3 df = rays.at(layout.vx + double(kf) * layout.dr * wx, layout.vy + double(kf) * layout.dr * wy);
+    const double hf = std::sqrt(df.x * df.x + df.y * df.y);
+    const double dx = hf > 1e-12 ? df.x / hf : 1.0, dy = hf > 1e-12 ? df.y / hf : 0.0;
+    marcher.march(dx, dy, slopes, hits);
+    for (std::int64_t i = 0; i < count; ++i) {
+      const std::int64_t k = layout.rise_outward ? k0[c] + i : k1[c] - i;
+      const std::size_t at = offset[c] + std::size_t(k - k0[c]);
+      const bool hit = std::isfinite(hits[i].t);
+      samples[at] = {hit ? hits[i].color : kSkyPacked, hit ? float(hits[i].t * inv_hz[i]) : Frame::kSky};
+    }
   };
   // One pixel from the buffer: bilinear colour; depth bilinear on a surface,
   // nearest across a silhouette.

@@ -256,7 +256,7 @@ TEST(VoxelRenderer, MatchesGlFullResolution) {
     const double s = quality::ssim(a.color.view(), b.color.view()).ssim;
     // Bound: the mesh is triangulated, the voxel surface bilinear, and the
     // colour maps are filtered differently (GL: trilinear + anisotropic).
-    EXPECT_GT(s, 0.75) << "pitch " << pitch;
+    EXPECT_GT(s, 0.9) << "pitch " << pitch;  // measured 0.96 (Wang SSIM, 160x120)
     std::printf("voxel vs GL full resolution, pitch %.0f: SSIM %.4f\n", pitch, s);
   }
 }

@@ -65,12 +65,19 @@ void ColumnMarcher::march(double dx, double dy, std::span<const double> slopes, 
   const int kmax = int(d_.maxes.size()) - 1;
 
   auto dist2 = [&](double t) { return t * t + lift2; };
+  // Level L spans distances [lo_L, hi_L) (lo_0 = 0, hi_L = t1 2^L); it morphs
+  // towards level L+1 over the upper half of that span.
+  double mid[32], half[32];
+  for (int L = 0; L <= lmax_ && L < 31; ++L) {
+    const double hi = t1_ * double(1 << L), lo = L == 0 ? 0.0 : hi * 0.5;
+    mid[L] = 0.5 * (lo + hi);
+    half[L] = hi - mid[L];
+  }
   auto alpha = [&](int L, double t) -> float {
     if (!s_.blend || L >= lmax_) return 0.f;
-    double hi = t1_ * double(1 << L), lo = L == 0 ? 0.0 : hi * 0.5, mid = 0.5 * (lo + hi);
-    double D2 = dist2(t);
-    if (D2 <= mid * mid) return 0.f;
-    return float(std::min(1.0, (std::sqrt(D2) - mid) / (hi - mid)));
+    const double D2 = dist2(t);
+    if (D2 <= mid[L] * mid[L]) return 0.f;
+    return float(std::min(1.0, (std::sqrt(D2) - mid[L]) / half[L]));
   };
   auto level_at = [&](double t) {
     int L = 0;
@@ -91,7 +98,7 @@ void ColumnMarcher::march(double dx, double dy, std::span<const double> slopes, 
     const long mL = m >> L;
     const double qL = (en + t * gn) * scale;
     const int nmin = mu ? lev.h : lev.w;
-    int j0 = std::clamp(int(std::floor(qL)), 0, std::max(nmin - 2, 0));
+    int j0 = std::clamp(int(floor_i64(qL)), 0, std::max(nmin - 2, 0));
     int j1 = std::min(j0 + 1, nmin - 1);
     float f = float(std::clamp(qL - j0, 0.0, 1.0));
     float h0, h1;
@@ -113,16 +120,12 @@ void ColumnMarcher::march(double dx, double dy, std::span<const double> slopes, 
   };
   auto color_at = [&](int L, double t) {
     const double scale = 1.0 / double(1 << L);
-    double i = (eu_ + t * gu) * scale, j = (ev_ + t * gv) * scale;
-    float c[3];
-    bilinear_color(d_.levels[L], i, j, c);
-    float a = alpha(L, t);
-    if (a > 0.f) {
-      float p[3];
-      bilinear_color(d_.levels[L + 1], i * 0.5, j * 0.5, p);
-      for (int k = 0; k < 3; ++k) c[k] += a * (p[k] - c[k]);
-    }
-    return pack_rgba(c[0], c[1], c[2]);
+    const double i = (eu_ + t * gu) * scale, j = (ev_ + t * gv) * scale;
+    const std::uint32_t c = bilinear_color_packed(d_.levels[L], i, j);
+    const float a = alpha(L, t);
+    if (a <= 0.f) return c;
+    const std::uint32_t p = bilinear_color_packed(d_.levels[L + 1], i * 0.5, j * 0.5);
+    return lerp_packed(c, p, std::uint32_t(a * 256.0f + 0.5f));
   };
 
   // Start: entry point as the previous sample, first aligned line after it.
@@ -179,8 +182,8 @@ void ColumnMarcher::march(double dx, double dy, std::span<const double> slopes, 
         const MaxLevel& ml = d_.maxes[k];
         const int nmaj = mu ? ml.w : ml.h, nmin = mu ? ml.h : ml.w;
         const int ca = std::clamp(int(std::min(m, me) >> k), 0, nmaj - 1);
-        const int b0 = std::clamp(int(std::floor(std::min(qa, qb) / double(size))), 0, nmin - 1);
-        const int b1 = std::clamp(int(std::floor(std::max(qa, qb) / double(size))), 0, nmin - 1);
+        const int b0 = std::clamp(int(floor_i64(std::min(qa, qb) / double(size))), 0, nmin - 1);
+        const int b1 = std::clamp(int(floor_i64(std::max(qa, qb) / double(size))), 0, nmin - 1);
         float bound = -std::numeric_limits<float>::infinity();
         for (int b = b0; b <= b1; ++b) bound = std::max(bound, mu ? ml.at(ca, b) : ml.at(b, ca));
         if (zmin > bound) {

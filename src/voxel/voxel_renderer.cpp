@@ -198,7 +198,7 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
     kf = a * inv_dr;
   };
   auto resample = [&](int x, int y, double cf, double kf) {
-    const double cfl = std::floor(cf), kfl = std::floor(kf);
+    const double cfl = double(floor_i64(cf)), kfl = double(floor_i64(kf));
     const float fc = float(cf - cfl), fk = float(kf - kfl);
     const long cbase = long(cfl);
     const std::int64_t kbase = std::int64_t(kfl);
@@ -271,7 +271,7 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
   // (one seam per chunk) follow when all columns are done.
   constexpr int kChunk = 24;
   const int chunks = (n + kChunk - 1) / kChunk;
-  auto key_of = [&](double cf) { return std::clamp(long(std::floor(cf)), -1L, long(n) - 1); };
+  auto key_of = [&](double cf) { return std::clamp(long(floor_i64(cf)), -1L, long(n) - 1); };
   // Pixels of row y whose key lies in [lo, hi): cf is monotonic along a row.
   auto resample_keys = [&](long lo, long hi) {
     const double lam_lo = layout.c0 + (double(lo) - 1.0 + 0.5) * layout.dc;

@@ -21,8 +21,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kMargin = 2.0;  // pixels around the image the columns cover
 }  // namespace
 
-void PlaneLayout::column_dir(int c, double& wx, double& wy) const {
-  const double p = c0 + (c + 0.5) * dc;
+void PlaneLayout::direction(double p, double& wx, double& wy) const {
   const double px = -ey, py = ex;  // perpendicular to e
   if (polar) {
     wx = std::cos(p) * ex + std::sin(p) * px;

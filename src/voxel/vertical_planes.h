@@ -26,7 +26,10 @@ struct PlaneLayout {
   double dr = 1;              // sample spacing along a column (pixels)
 
   /// Sample k of column c is at V + k * dr * (wx, wy).
-  void column_dir(int c, double& wx, double& wy) const;
+  void column_dir(int c, double& wx, double& wy) const { direction(c0 + (c + 0.5) * dc, wx, wy); }
+  /// Direction of the image line with column parameter p (angle or lambda);
+  /// it turns from e towards (-ey, ex) as p grows.
+  void direction(double p, double& wx, double& wy) const;
   /// Fractional column and sample index of image point (x, y).
   void locate(double x, double y, double& cf, double& kf) const;
   /// Sample index range of column c covering the image (with a margin);

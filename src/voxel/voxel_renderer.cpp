@@ -247,8 +247,9 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
     out.depth[std::size_t(y) * w + x] = smooth ? dsum / wsum : dbest;
   };
 
-  if (layout.polar) {
-    // Looking steeply down or up: march every column, then resample.
+  if (layout.wrap) {
+    // V inside the image (looking steeply down or up): the planes fan out
+    // all around it. March every column, then resample.
     tbb::parallel_for(tbb::blocked_range<int>(0, n, 2), [&](const tbb::blocked_range<int>& range) {
       for (int c = range.begin(); c < range.end(); ++c) march_column(c);
     }, tbb::simple_partitioner());
@@ -265,31 +266,38 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
     return;
   }
 
-  // Planes nearly parallel: the pool hands out chunks of adjacent columns;
-  // a task marches its chunk and at once resamples the pixels lying between
+  // V outside the image: the pool hands out chunks of adjacent columns; a
+  // task marches its chunk and at once resamples the pixels lying between
   // the chunk's columns, while they are in cache. Pixels between two chunks
   // (one seam per chunk) follow when all columns are done.
   constexpr int kChunk = 24;
   const int chunks = (n + kChunk - 1) / kChunk;
   auto key_of = [&](double cf) { return std::clamp(long(floor_i64(cf)), -1L, long(n) - 1); };
-  // Pixels of row y whose key lies in [lo, hi): cf is monotonic along a row.
+  // Pixels whose key lies in [lo, hi): per row, the wedge between the planes
+  // bounding those keys (widened by a column) is an interval of x.
   auto resample_keys = [&](long lo, long hi) {
-    const double lam_lo = layout.c0 + (double(lo) - 1.0 + 0.5) * layout.dc;
-    const double lam_hi = layout.c0 + (double(hi) + 1.0 + 0.5) * layout.dc;
+    const double p_lo = layout.c0 + (double(lo) - 0.5) * layout.dc;
+    const double p_hi = layout.c0 + (double(hi) + 1.5) * layout.dc;
+    const bool bounded = !layout.polar || p_hi - p_lo < 3.0;  // wedge well under pi
+    double lx, ly, hx, hy;
+    layout.direction(p_lo, lx, ly);
+    layout.direction(p_hi, hx, hy);
     for (int y = 0; y < h; ++y) {
       const double dy = y + 0.5 - layout.vy;
-      int xa = 0, xb = w - 1;
-      const double den_lo = -layout.ey - lam_lo * layout.ex, den_hi = -layout.ey - lam_hi * layout.ex;
-      if (std::abs(den_lo) > 1e-12 && std::abs(den_hi) > 1e-12) {
-        const double x_lo = layout.vx + dy * (lam_lo * layout.ey - layout.ex) / den_lo - 0.5;
-        const double x_hi = layout.vx + dy * (lam_hi * layout.ey - layout.ex) / den_hi - 0.5;
-        const double m0 = std::min(x_lo, x_hi), m1 = std::max(x_lo, x_hi);
-        if (std::isfinite(m0) && std::isfinite(m1)) {
-          xa = int(std::clamp(std::floor(m0) - 1.0, 0.0, double(w)));
-          xb = int(std::clamp(std::ceil(m1) + 1.0, -1.0, double(w - 1)));
-        }
+      // In the wedge: cross(w_lo, P - V) >= 0 and cross(P - V, w_hi) >= 0, with P = (x + 0.5, y + 0.5).
+      double xa = 0, xb = w - 1;
+      if (bounded) {
+        auto bound = [&](double coef, double rhs, bool upper_if_positive) {
+          if (std::abs(coef) < 1e-12) return;
+          const double x = layout.vx + rhs / coef - 0.5;
+          const bool upper = (coef > 0) == upper_if_positive;
+          if (upper) xb = std::min(xb, std::ceil(x) + 2.0);
+          else xa = std::max(xa, std::floor(x) - 2.0);
+        };
+        bound(ly, lx * dy, true);   // ly (x+.5-vx) <= lx dy
+        bound(hy, hx * dy, false);  // hy (x+.5-vx) >= hx dy
       }
-      for (int x = xa; x <= xb; ++x) {
+      for (int x = int(std::max(xa, 0.0)); x <= int(std::min(xb, double(w - 1))); ++x) {
         double cf, kf;
         locate(x, y, cf, kf);
         const long key = key_of(cf);

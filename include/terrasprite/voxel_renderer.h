@@ -18,7 +18,7 @@ namespace terrasprite {
 /// level by level), and a max-height pyramid. Built once from a Terrain and
 /// read-only afterwards, so any number of renderers and threads can share it.
 /// A height field narrower than 2 samples on a side has no area: every ray
-/// leaves it (sky). Memory: about 11 bytes per height sample.
+/// leaves it (sky). Memory: about 16 bytes per height sample (both pyramids).
 class VoxelTerrain {
  public:
   explicit VoxelTerrain(const Terrain& terrain);

@@ -220,24 +220,41 @@ void run(const BenchVoxelOpts& o) {
     }
   }
 
-  // Terrain size sweep: the same path over synthetic terrains (no erosion).
-  nlohmann::json sweep = nlohmann::json::array();
+  // Terrain size sweep: the same path over synthetic terrains (no erosion),
+  // the sizes interleaved frame by frame so machine noise hits them alike.
+  struct SweepEntry {
+    int samples;
+    std::unique_ptr<VoxelTerrain> voxels;
+    std::unique_ptr<VoxelRenderer> renderer;
+    std::vector<Camera> path;
+    std::vector<double> ms;
+  };
+  std::vector<SweepEntry> entries;
   for (int n : sizes) {
     TerrainOptions to;
     to.synthetic_size = n;
     to.erosion_passes = 0;
     to.seed = o.terrain.seed;
-    Terrain big = load_terrain(to);
-    VoxelTerrain bvt(big);
+    SweepEntry e;
+    e.samples = n;
+    {
+      Terrain big = load_terrain(to);  // dropped once the pyramids are built
+      e.voxels = std::make_unique<VoxelTerrain>(big);
+      e.path = make_path(o.path, big.heights, std::max(1, std::min(o.sweep_frames, o.frames)), double(w) / h);
+    }
     VoxelOptions vo;
     vo.threads = tmax;
     vo.pixel_voxel_ratio = o.ratio;
-    VoxelRenderer r(bvt, w, h, vo);
-    std::vector<Camera> bp = make_path(o.path == "paper" ? "paper" : o.path, big.heights, std::max(1, std::min(o.sweep_frames, o.frames)), double(w) / h);
-    r.render(bp[0]);
-    std::vector<double> m;
-    for (const Camera& c : bp) m.push_back(r.render(c).ms);
-    sweep.push_back({{"samples", n}, {"frames", bp.size()}, {"median_ms", median(m)}, {"p95_ms", percentile(m, 0.95)}});
+    e.renderer = std::make_unique<VoxelRenderer>(*e.voxels, w, h, vo);
+    e.renderer->render(e.path[0]);
+    entries.push_back(std::move(e));
+  }
+  nlohmann::json sweep = nlohmann::json::array();
+  if (!entries.empty()) {
+    for (std::size_t i = 0; i < entries[0].path.size(); ++i)
+      for (auto& e : entries) e.ms.push_back(e.renderer->render(e.path[i]).ms);
+    for (auto& e : entries)
+      sweep.push_back({{"samples", e.samples}, {"frames", e.path.size()}, {"median_ms", median(e.ms)}, {"p95_ms", percentile(e.ms, 0.95)}});
   }
 
   std::vector<std::string> names;

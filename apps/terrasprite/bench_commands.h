@@ -7,5 +7,7 @@ namespace terrasprite::cli {
 
 /// bench render: full resolution against plain LOD on one path (median ms).
 void add_bench_render(CLI::App& bench);
+/// bench voxel: the CPU ray caster per variant, thread scaling, quality vs reference.
+void add_bench_voxel(CLI::App& bench);
 
 }  // namespace terrasprite::cli

@@ -3,12 +3,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <thread>
+
 #include "terrasprite/error.h"
 
 namespace terrasprite::cli {
 
 std::vector<std::string> render_modes() {
-  return {"full", "lod"};
+  return {"full", "lod", "voxel"};
 }
 
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
@@ -22,6 +25,15 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
     s.scene = std::make_unique<GlTerrain>(terrain);
     s.renderer = std::make_unique<MeshRenderer>(
         *s.scene, width, height, mode == "full" ? 0 : lod_quads, RasterOptions{lighting, true});
+    return s;
+  }
+  if (mode == "voxel") {
+    s.voxel = std::make_unique<VoxelTerrain>(terrain);
+    auto owned = std::make_unique<VoxelRenderer>(*s.voxel, width, height);
+    VoxelRenderer* r = owned.get();
+    s.renderer = std::move(owned);
+    s.device = fmt::format("cpu voxel {}, {} threads", to_string(r->options().variant),
+                           std::max(1u, std::thread::hardware_concurrency()));
     return s;
   }
   throw InputError(fmt::format("--mode {}: unknown mode", mode));

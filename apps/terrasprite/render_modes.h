@@ -8,18 +8,20 @@
 #include "terrasprite/gl_context.h"
 #include "terrasprite/mesh_renderer.h"
 #include "terrasprite/renderer.h"
+#include "terrasprite/voxel_renderer.h"
 
 namespace terrasprite::cli {
 
 struct RenderStack {
-  std::unique_ptr<GlContext> gl;       // null for CPU renderers
-  std::unique_ptr<GlTerrain> scene;    // null for CPU renderers
-  std::unique_ptr<Renderer> renderer;  // destroyed first
-  std::string device;                  // GL_RENDERER, or the CPU renderer's description
+  std::unique_ptr<GlContext> gl;        // null for CPU renderers
+  std::unique_ptr<GlTerrain> scene;     // null for CPU renderers
+  std::unique_ptr<VoxelTerrain> voxel;  // the voxel renderer's pyramids, else null
+  std::unique_ptr<Renderer> renderer;   // destroyed first
+  std::string device;                   // GL_RENDERER, or the CPU renderer's description
 };
 
-/// Modes: full, lod. Throws InputError for an unknown mode, DeviceError when
-/// a GL mode finds no GL device. `terrain` must outlive the stack.
+/// Modes: full, lod, voxel (CPU, all cores). Throws InputError for an unknown mode, DeviceError
+/// when a GL mode finds no GL device. `terrain` must outlive the stack.
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
                               int height, int lod_quads, bool lighting = false);
 

@@ -1,0 +1,180 @@
+// SPDX-License-Identifier: MIT
+// The ray caster's terrain pyramids (Cohen-Or et al., section on the
+// multiresolution traversal): level L halves level L-1 with a [1 2 1]/4 tent,
+// heights and colours alike; a max pyramid over cells bounds the surface for
+// hierarchical empty-space skipping.
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+#include "terrasprite/error.h"
+#include "voxel/voxel_terrain_data.h"
+
+namespace terrasprite {
+namespace {
+
+int level_size(int n0, int level) { return ((n0 - 1 + (1 << level) - 1) >> level) + 1; }
+
+// Drape texture box-filtered onto the height samples (Terrain's mapping:
+// u = r0 + s r2, v = r1 + t r3 over s = i/(w-1), t = j/(h-1)).
+std::vector<std::uint32_t> colour_map(const Terrain& t) {
+  const Heightfield& hf = t.heights;
+  const Image& tex = t.texture;
+  std::vector<std::uint32_t> out(static_cast<std::size_t>(hf.width) * hf.height, pack_rgba(128, 128, 128));
+  if (tex.empty()) return out;
+  const auto& r = t.tex_rect;
+  const double fx = hf.width > 1 ? std::abs(r[2]) * tex.width / (hf.width - 1) : 1.0;
+  const double fy = hf.height > 1 ? std::abs(r[3]) * tex.height / (hf.height - 1) : 1.0;
+  const int nx = std::clamp(int(std::ceil(fx)), 1, 8), ny = std::clamp(int(std::ceil(fy)), 1, 8);
+  auto texel = [&](int x, int y, int ch) {
+    x = std::clamp(x, 0, tex.width - 1);
+    y = std::clamp(y, 0, tex.height - 1);
+    return float(tex.px(x, y)[ch]);
+  };
+  for (int j = 0; j < hf.height; ++j) {
+    double tv = hf.height > 1 ? double(j) / (hf.height - 1) : 0.5;
+    double cy = (r[1] + tv * r[3]) * tex.height - 0.5;
+    for (int i = 0; i < hf.width; ++i) {
+      double su = hf.width > 1 ? double(i) / (hf.width - 1) : 0.5;
+      double cx = (r[0] + su * r[2]) * tex.width - 0.5;
+      float acc[3] = {0, 0, 0};
+      for (int b = 0; b < ny; ++b) {
+        double y = cy + ((b + 0.5) / ny - 0.5) * (ny > 1 ? fy : 0.0);
+        int y0 = int(std::floor(y));
+        float wy = float(y - y0);
+        for (int a = 0; a < nx; ++a) {
+          double x = cx + ((a + 0.5) / nx - 0.5) * (nx > 1 ? fx : 0.0);
+          int x0 = int(std::floor(x));
+          float wx = float(x - x0);
+          for (int ch = 0; ch < 3; ++ch) {
+            float top = texel(x0, y0, ch) * (1 - wx) + texel(x0 + 1, y0, ch) * wx;
+            float bot = texel(x0, y0 + 1, ch) * (1 - wx) + texel(x0 + 1, y0 + 1, ch) * wx;
+            acc[ch] += top * (1 - wy) + bot * wy;
+          }
+        }
+      }
+      const float n = float(nx * ny);
+      out[static_cast<std::size_t>(j) * hf.width + i] = pack_rgba(acc[0] / n, acc[1] / n, acc[2] / n);
+    }
+  }
+  return out;
+}
+
+PyramidLevel halve(const PyramidLevel& f, int w, int h) {
+  PyramidLevel c;
+  c.w = w;
+  c.h = h;
+  c.height.resize(static_cast<std::size_t>(w) * h);
+  c.color.resize(c.height.size());
+  static constexpr float kTent[3] = {0.25f, 0.5f, 0.25f};
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      float hs = 0, cs[3] = {0, 0, 0};
+      for (int b = -1; b <= 1; ++b) {
+        int fj = std::clamp(2 * j + b, 0, f.h - 1);
+        for (int a = -1; a <= 1; ++a) {
+          int fi = std::clamp(2 * i + a, 0, f.w - 1);
+          float wgt = kTent[a + 1] * kTent[b + 1];
+          std::size_t k = static_cast<std::size_t>(fj) * f.w + fi;
+          hs += wgt * f.height[k];
+          for (int ch = 0; ch < 3; ++ch) cs[ch] += wgt * float((f.color[k] >> (8 * ch)) & 0xff);
+        }
+      }
+      std::size_t k = static_cast<std::size_t>(j) * w + i;
+      c.height[k] = hs;
+      c.color[k] = pack_rgba(cs[0], cs[1], cs[2]);
+    }
+  return c;
+}
+
+}  // namespace
+
+VoxelTerrain::VoxelTerrain(const Terrain& terrain) : d_(std::make_unique<Data>()) {
+  const Heightfield& hf = terrain.heights;
+  if (hf.width < 1 || hf.height < 1 || hf.heights.size() != static_cast<std::size_t>(hf.width) * hf.height)
+    throw InputError(fmt::format("{}: height field {}x{} has no samples", hf.name, hf.width, hf.height));
+  Data& d = *d_;
+  d.w = hf.width;
+  d.h = hf.height;
+  d.sx = hf.spacing_x;
+  d.sy = hf.spacing_y;
+  d.hmin = hf.min_height();
+  d.hmax = hf.max_height();
+
+  PyramidLevel base;
+  base.w = d.w;
+  base.h = d.h;
+  base.height = hf.heights;
+  base.color = colour_map(terrain);
+  d.levels.push_back(std::move(base));
+  // Halve while the level still has more than one cell on its longer side.
+  for (int L = 1; L < 30; ++L) {
+    int w = level_size(d.w, L), h = level_size(d.h, L);
+    if (std::max(w, h) <= 2 || (w == d.levels.back().w && h == d.levels.back().h)) break;
+    d.levels.push_back(halve(d.levels.back(), w, h));
+  }
+
+  // Max over cells, then dilated by one cell.
+  const int cw0 = std::max(1, d.w - 1), ch0 = std::max(1, d.h - 1);
+  std::vector<float> cells(static_cast<std::size_t>(cw0) * ch0);
+  for (int b = 0; b < ch0; ++b)
+    for (int a = 0; a < cw0; ++a) {
+      float m = -std::numeric_limits<float>::infinity();
+      for (int y = b; y <= std::min(b + 1, d.h - 1); ++y)
+        for (int x = a; x <= std::min(a + 1, d.w - 1); ++x) m = std::max(m, hf.at(x, y));
+      cells[static_cast<std::size_t>(b) * cw0 + a] = m;
+    }
+  int cw = cw0, ch = ch0;
+  for (int k = 0;; ++k) {
+    if (k > 0) {
+      int nw = (cw + 1) / 2, nh = (ch + 1) / 2;
+      std::vector<float> next(static_cast<std::size_t>(nw) * nh);
+      for (int b = 0; b < nh; ++b)
+        for (int a = 0; a < nw; ++a) {
+          float m = -std::numeric_limits<float>::infinity();
+          for (int y = 2 * b; y <= std::min(2 * b + 1, ch - 1); ++y)
+            for (int x = 2 * a; x <= std::min(2 * a + 1, cw - 1); ++x) m = std::max(m, cells[std::size_t(y) * cw + x]);
+          next[static_cast<std::size_t>(b) * nw + a] = m;
+        }
+      cells.swap(next);
+      cw = nw;
+      ch = nh;
+    }
+    MaxLevel ml;
+    ml.w = cw;
+    ml.h = ch;
+    ml.bound.resize(cells.size());
+    for (int b = 0; b < ch; ++b)
+      for (int a = 0; a < cw; ++a) {
+        float m = -std::numeric_limits<float>::infinity();
+        for (int y = std::max(b - 1, 0); y <= std::min(b + 1, ch - 1); ++y)
+          for (int x = std::max(a - 1, 0); x <= std::min(a + 1, cw - 1); ++x) m = std::max(m, cells[std::size_t(y) * cw + x]);
+        ml.bound[static_cast<std::size_t>(b) * cw + a] = m;
+      }
+    d.maxes.push_back(std::move(ml));
+    if (cw == 1 && ch == 1) break;
+  }
+}
+
+VoxelTerrain::~VoxelTerrain() = default;
+
+int VoxelTerrain::levels() const { return int(d_->levels.size()); }
+
+VoxelVariant parse_voxel_variant(const std::string& text) {
+  if (text == "naive") return VoxelVariant::kNaive;
+  if (text == "coherent") return VoxelVariant::kCoherent;
+  if (text == "multires") return VoxelVariant::kMultires;
+  throw InputError(fmt::format("voxel variant '{}': expected naive, coherent or multires", text));
+}
+
+const char* to_string(VoxelVariant v) {
+  switch (v) {
+    case VoxelVariant::kNaive: return "naive";
+    case VoxelVariant::kCoherent: return "coherent";
+    case VoxelVariant::kMultires: return "multires";
+  }
+  return "?";
+}
+
+}  // namespace terrasprite

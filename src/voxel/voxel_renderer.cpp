@@ -1,0 +1,323 @@
+// SPDX-License-Identifier: MIT
+// The voxel flythrough renderer (Cohen-Or, Rich, Lerner, Shenkar): columns
+// along vertical planes through the eye are handed out to a pool of threads
+// (TBB work stealing over a range of columns, no barrier inside a column),
+// then the intermediate buffer is resampled to the image. The naive variant
+// marches every pixel's ray on its own.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <thread>
+#include <vector>
+
+#include "terrasprite/error.h"
+#include "voxel/column_march.h"
+#include "voxel/vertical_planes.h"
+
+namespace terrasprite {
+namespace {
+
+constexpr std::uint32_t kSkyPacked =
+    std::uint32_t(kSkyColor[0]) | (std::uint32_t(kSkyColor[1]) << 8) | (std::uint32_t(kSkyColor[2]) << 16) | 0xff000000u;
+
+int resolve_threads(int threads) {
+  if (threads > 0) return threads;
+  return std::max(1, int(std::thread::hardware_concurrency()));
+}
+
+// Camera-space ray through image point (x, y) in pixels, forward component 1.
+struct ImageRays {
+  glm::dvec3 f, r, u;
+  double fx, fy, mx, my;
+  ImageRays(const Camera& c, int w, int h) : f(c.forward()), r(c.right()), u(c.up()) {
+    const double t = std::tan(c.fov_y_deg * 3.14159265358979323846 / 360.0);
+    fx = w / (2.0 * t * c.aspect);
+    fy = h / (2.0 * t);
+    mx = w * 0.5;
+    my = h * 0.5;
+  }
+  glm::dvec3 at(double x, double y) const { return f + ((x - mx) / fx) * r - ((y - my) / fy) * u; }
+};
+
+MarchSettings settings_for(const VoxelOptions& o, const Camera& cam, int height) {
+  MarchSettings s;
+  s.multires = o.variant == VoxelVariant::kMultires;
+  s.blend = o.blend_levels;
+  s.max_skip = o.max_skip && o.variant != VoxelVariant::kNaive;
+  s.pixel_angle = cam.pixel_angle(height);
+  s.ratio = o.pixel_voxel_ratio;
+  return s;
+}
+
+}  // namespace
+
+struct VoxelRenderer::State {
+  const VoxelTerrain& terrain;
+  int w, h;
+  VoxelOptions options;
+  tbb::task_arena arena;
+  // Intermediate buffer: per column its first sample index and offset.
+  std::vector<std::int64_t> k0, k1;
+  std::vector<std::size_t> offset;
+  struct Sample {
+    std::uint32_t color;
+    float depth;  // metres along the view axis, +inf = sky
+  };
+  std::vector<Sample> samples;
+
+  State(const VoxelTerrain& t, int w_, int h_, const VoxelOptions& o)
+      : terrain(t), w(w_), h(h_), options(o), arena(resolve_threads(o.threads)) {}
+
+  void naive(const Camera& cam, Frame& out);
+  void planes(const Camera& cam, Frame& out);
+};
+
+VoxelRenderer::VoxelRenderer(const VoxelTerrain& terrain, int width, int height, VoxelOptions options) {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw InputError(fmt::format("voxel renderer: image size {}x{} out of range", width, height));
+  if (!(options.pixel_voxel_ratio > 0) || !std::isfinite(options.pixel_voxel_ratio))
+    throw InputError(fmt::format("--pixel-voxel-ratio {}: must be a positive number", options.pixel_voxel_ratio));
+  if (!(options.plane_oversample >= 0.25 && options.plane_oversample <= 8))
+    throw InputError(fmt::format("plane oversampling {}: must be within 0.25..8", options.plane_oversample));
+  s_ = std::make_unique<State>(terrain, width, height, options);
+}
+
+VoxelRenderer::~VoxelRenderer() = default;
+
+const VoxelOptions& VoxelRenderer::options() const { return s_->options; }
+
+std::string VoxelRenderer::name() const { return fmt::format("voxel-{}", to_string(s_->options.variant)); }
+
+Frame VoxelRenderer::render(const Camera& camera) {
+  Frame out;
+  out.color = Image(s_->w, s_->h);
+  out.depth.assign(static_cast<std::size_t>(s_->w) * s_->h, Frame::kSky);
+  out.cls = "voxel";
+  const auto start = std::chrono::steady_clock::now();
+  s_->arena.execute([&] {
+    if (s_->options.variant == VoxelVariant::kNaive)
+      s_->naive(camera, out);
+    else
+      s_->planes(camera, out);
+  });
+  out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+void VoxelRenderer::State::naive(const Camera& cam, Frame& out) {
+  const double eye[3] = {cam.position.x, cam.position.y, cam.position.z};
+  const ColumnMarcher marcher(terrain.data(), eye, settings_for(options, cam, h));
+  const ImageRays rays(cam, w, h);
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& range) {
+    for (int y = range.begin(); y < range.end(); ++y)
+      for (int x = 0; x < w; ++x) {
+        const glm::dvec3 d = rays.at(x + 0.5, y + 0.5);
+        const double hz = std::max(std::sqrt(d.x * d.x + d.y * d.y), 1e-12);
+        const double slope = d.z / hz;
+        MarchHit hit;
+        marcher.march(hz > 1e-12 ? d.x / hz : 1.0, hz > 1e-12 ? d.y / hz : 0.0, {&slope, 1}, {&hit, 1});
+        std::uint8_t* p = out.color.px(x, y);
+        const std::uint32_t c = std::isfinite(hit.t) ? hit.color : kSkyPacked;
+        p[0] = c & 0xff;
+        p[1] = (c >> 8) & 0xff;
+        p[2] = (c >> 16) & 0xff;
+        p[3] = 255;
+        out.depth[std::size_t(y) * w + x] = std::isfinite(hit.t) ? float(hit.t / hz) : Frame::kSky;
+      }
+  }, tbb::simple_partitioner());
+}
+
+void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
+  const PlaneLayout layout = make_plane_layout(cam, w, h, options.plane_oversample);
+  const int n = layout.columns;
+  k0.assign(n, 0);
+  k1.assign(n, -1);
+  offset.assign(std::size_t(n) + 1, 0);
+  for (int c = 0; c < n; ++c) {
+    std::int64_t a, b;
+    if (layout.rows(c, w, h, a, b)) {
+      k0[c] = a;
+      k1[c] = b;
+    }
+    offset[c + 1] = offset[c] + std::size_t(std::max<std::int64_t>(0, k1[c] - k0[c] + 1));
+  }
+  samples.resize(offset[n]);
+
+  const double eye[3] = {cam.position.x, cam.position.y, cam.position.z};
+  const ColumnMarcher marcher(terrain.data(), eye, settings_for(options, cam, h));
+  const ImageRays rays(cam, w, h);
+
+  // One column: its rays bottom-up through the marcher, into the buffer.
+  auto march_column = [&](int c) {
+    thread_local std::vector<double> slopes, inv_hz;
+    thread_local std::vector<MarchHit> hits;
+    const std::int64_t count = k1[c] - k0[c] + 1;
+    if (count <= 0) return;
+    double wx, wy;
+    layout.column_dir(c, wx, wy);
+    slopes.resize(count);
+    inv_hz.resize(count);
+    hits.resize(count);
+    // Samples in order of rising elevation; the ray is affine in k.
+    const glm::dvec3 d0 = rays.at(layout.vx, layout.vy);
+    const glm::dvec3 dk = rays.at(layout.vx + layout.dr * wx, layout.vy + layout.dr * wy) - d0;
+    for (std::int64_t i = 0; i < count; ++i) {
+      const std::int64_t k = layout.rise_outward ? k0[c] + i : k1[c] - i;
+      const glm::dvec3 d = d0 + double(k) * dk;
+      const double hz = std::max(std::sqrt(d.x * d.x + d.y * d.y), 1e-12);
+      slopes[i] = d.z / hz;
+      if (i > 0) slopes[i] = std::max(slopes[i], slopes[i - 1]);
+      inv_hz[i] = 1.0 / hz;
+    }
+    // The plane's horizontal direction, from the sample farthest from V.
+    const std::int64_t kf = k1[c];
+    const glm::dvec3 df = rays.at(layout.vx + double(kf) * layout.dr * wx, layout.vy + double(kf) * layout.dr * wy);
+    const double hf = std::sqrt(df.x * df.x + df.y * df.y);
+    const double dx = hf > 1e-12 ? df.x / hf : 1.0, dy = hf > 1e-12 ? df.y / hf : 0.0;
+    marcher.march(dx, dy, slopes, hits);
+    for (std::int64_t i = 0; i < count; ++i) {
+      const std::int64_t k = layout.rise_outward ? k0[c] + i : k1[c] - i;
+      const std::size_t at = offset[c] + std::size_t(k - k0[c]);
+      const bool hit = std::isfinite(hits[i].t);
+      samples[at] = {hit ? hits[i].color : kSkyPacked, hit ? float(hits[i].t * inv_hz[i]) : Frame::kSky};
+    }
+  };
+  // One pixel from the buffer: bilinear colour; depth bilinear on a surface,
+  // nearest across a silhouette.
+  const double inv_dc = 1.0 / layout.dc, inv_dr = 1.0 / layout.dr;
+  auto locate = [&](int x, int y, double& cf, double& kf) {
+    if (layout.polar) return layout.locate(x + 0.5, y + 0.5, cf, kf);
+    const double dx = x + 0.5 - layout.vx, dy = y + 0.5 - layout.vy;
+    const double a = dx * layout.ex + dy * layout.ey, b = dy * layout.ex - dx * layout.ey;
+    cf = (b / a - layout.c0) * inv_dc - 0.5;  // one division per pixel
+    kf = a * inv_dr;
+  };
+  auto resample = [&](int x, int y, double cf, double kf) {
+    const double cfl = double(floor_i64(cf)), kfl = double(floor_i64(kf));
+    const float fc = float(cf - cfl), fk = float(kf - kfl);
+    const long cbase = long(cfl);
+    const std::int64_t kbase = std::int64_t(kfl);
+    float acc[3] = {0, 0, 0}, wsum = 0, wbest = -1, dsum = 0, dmin = Frame::kSky, dmax = 0;
+    float dbest = Frame::kSky;
+    bool all_hit = true;
+    for (int a = 0; a < 2; ++a) {
+      long c = cbase + a;
+      if (c < 0 || c >= n) {
+        if (!layout.wrap) continue;
+        c = c < 0 ? c + n : c - n;
+      }
+      const float wc = a ? fc : 1 - fc;
+      const std::int64_t c0k = k0[c], c1k = k1[c];
+      const std::size_t base = offset[c];
+      for (int b = 0; b < 2; ++b) {
+        const std::int64_t k = kbase + b;
+        if (k < c0k || k > c1k) continue;
+        const float wgt = wc * (b ? fk : 1 - fk);
+        const Sample& smp = samples[base + std::size_t(k - c0k)];
+        const std::uint32_t p = smp.color;
+        acc[0] += wgt * float(p & 0xff);
+        acc[1] += wgt * float((p >> 8) & 0xff);
+        acc[2] += wgt * float((p >> 16) & 0xff);
+        wsum += wgt;
+        dsum += wgt * smp.depth;
+        all_hit = all_hit && smp.depth < Frame::kSky;
+        dmin = std::min(dmin, smp.depth);
+        dmax = std::max(dmax, smp.depth);
+        if (wgt > wbest) {
+          wbest = wgt;
+          dbest = smp.depth;
+        }
+      }
+    }
+    std::uint8_t* px = out.color.px(x, y);
+    if (wsum > 0) {
+      const float inv = 1.0f / wsum;
+      for (int ch = 0; ch < 3; ++ch) px[ch] = std::uint8_t(std::min(acc[ch] * inv + 0.5f, 255.f));
+    } else {
+      for (int ch = 0; ch < 3; ++ch) px[ch] = kSkyColor[ch];
+    }
+    px[3] = 255;
+    // Depth: interpolated on a surface, nearest across a silhouette.
+    const bool smooth = wsum > 0 && all_hit && dmax - dmin <= 0.3f * dmin;
+    out.depth[std::size_t(y) * w + x] = smooth ? dsum / wsum : dbest;
+  };
+
+  if (layout.wrap) {
+    // V inside the image (looking steeply down or up): the planes fan out
+    // all around it. March every column, then resample.
+    tbb::parallel_for(tbb::blocked_range<int>(0, n, 2), [&](const tbb::blocked_range<int>& range) {
+      for (int c = range.begin(); c < range.end(); ++c) march_column(c);
+    }, tbb::simple_partitioner());
+    constexpr int kStrip = 8;  // vertical strips read few buffer columns, sequentially
+    tbb::parallel_for(tbb::blocked_range<int>(0, (w + kStrip - 1) / kStrip, 1), [&](const tbb::blocked_range<int>& range) {
+      const int x0 = range.begin() * kStrip, x1 = std::min(w, range.end() * kStrip);
+      for (int y = 0; y < h; ++y)
+        for (int x = x0; x < x1; ++x) {
+          double cf, kf;
+          locate(x, y, cf, kf);
+          resample(x, y, cf, kf);
+        }
+    });
+    return;
+  }
+
+  // V outside the image: the pool hands out chunks of adjacent columns; a
+  // task marches its chunk and at once resamples the pixels lying between
+  // the chunk's columns, while they are in cache. Pixels between two chunks
+  // (one seam per chunk) follow when all columns are done.
+  constexpr int kChunk = 24;
+  const int chunks = (n + kChunk - 1) / kChunk;
+  auto key_of = [&](double cf) { return std::clamp(long(floor_i64(cf)), -1L, long(n) - 1); };
+  // Pixels whose key lies in [lo, hi): per row, the wedge between the planes
+  // bounding those keys (widened by a column) is an interval of x.
+  auto resample_keys = [&](long lo, long hi) {
+    const double p_lo = layout.c0 + (double(lo) - 0.5) * layout.dc;
+    const double p_hi = layout.c0 + (double(hi) + 1.5) * layout.dc;
+    const bool bounded = !layout.polar || p_hi - p_lo < 3.0;  // wedge well under pi
+    double lx, ly, hx, hy;
+    layout.direction(p_lo, lx, ly);
+    layout.direction(p_hi, hx, hy);
+    for (int y = 0; y < h; ++y) {
+      const double dy = y + 0.5 - layout.vy;
+      // In the wedge: cross(w_lo, P - V) >= 0 and cross(P - V, w_hi) >= 0, with P = (x + 0.5, y + 0.5).
+      double xa = 0, xb = w - 1;
+      if (bounded) {
+        auto bound = [&](double coef, double rhs, bool upper_if_positive) {
+          if (std::abs(coef) < 1e-12) return;
+          const double x = layout.vx + rhs / coef - 0.5;
+          const bool upper = (coef > 0) == upper_if_positive;
+          if (upper) xb = std::min(xb, std::ceil(x) + 2.0);
+          else xa = std::max(xa, std::floor(x) - 2.0);
+        };
+        bound(ly, lx * dy, true);   // ly (x+.5-vx) <= lx dy
+        bound(hy, hx * dy, false);  // hy (x+.5-vx) >= hx dy
+      }
+      for (int x = int(std::max(xa, 0.0)); x <= int(std::min(xb, double(w - 1))); ++x) {
+        double cf, kf;
+        locate(x, y, cf, kf);
+        const long key = key_of(cf);
+        if (key >= lo && key < hi) resample(x, y, cf, kf);
+      }
+    }
+  };
+  tbb::parallel_for(tbb::blocked_range<int>(0, chunks, 1), [&](const tbb::blocked_range<int>& range) {
+    for (int j = range.begin(); j < range.end(); ++j) {
+      const int ca = j * kChunk, cb = std::min(n, ca + kChunk);
+      for (int c = ca; c < cb; ++c) march_column(c);
+      resample_keys(j == 0 ? -1 : ca, j == chunks - 1 ? n : cb - 1);
+    }
+  }, tbb::simple_partitioner());
+  tbb::parallel_for(tbb::blocked_range<int>(0, chunks - 1, 1), [&](const tbb::blocked_range<int>& range) {
+    for (int j = range.begin(); j < range.end(); ++j) {
+      const long seam = long(j + 1) * kChunk - 1;
+      resample_keys(seam, seam + 1);
+    }
+  });
+}
+
+}  // namespace terrasprite

@@ -10,6 +10,7 @@
 // filtered as one plane: four planes (x, y, x^2 + y^2, xy), not five.
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -30,7 +31,10 @@ namespace {
 
 constexpr int kWindow = 11;
 constexpr int kRadius = kWindow / 2;
-constexpr int kBand = 64;  // output rows per work item
+// Output rows per work item, at least. Each band filters 2 * kRadius extra
+// input rows, so bands are made as tall as load balance allows (four per
+// thread); the ring is the same size for any band height.
+constexpr int kBand = 64;
 // Values are shifted by -128 before squaring: variances are differences of
 // large squares, and centring the data keeps more float bits for them.
 constexpr float kShift = 128.0f;
@@ -98,9 +102,11 @@ SsimSums ssim_wang(const RowSource& a, const RowSource& b, const std::vector<std
   static const Kernel g = gaussian(1.5, kRadius);
   std::vector<SsimSums> rows(oh);
 
-  const int bands = (oh + kBand - 1) / kBand;
+  const int threads = tbb::this_task_arena::max_concurrency();
+  const int band_h = std::max(kBand, (oh + 4 * threads - 1) / (4 * threads));
+  const int bands = (oh + band_h - 1) / band_h;
   tbb::parallel_for(0, bands, [&](int band) {
-    const int y0 = band * kBand, y1 = std::min(oh, y0 + kBand);
+    const int y0 = band * band_h, y1 = std::min(oh, y0 + band_h);
     // ring[plane][slot]: horizontally filtered input rows, ow floats each.
     std::vector<float> ring(static_cast<std::size_t>(kPlanes) * kWindow * ow);
     auto slot = [&](int plane, int r) {

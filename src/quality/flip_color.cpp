@@ -3,7 +3,9 @@
 // linear-RGB/XYZ matrix is the rational one of NVIDIA's reference code; the
 // white point is that matrix applied to RGB = (1, 1, 1).
 // The per-pixel loop vectorises only if sqrt need not set errno (we never
-// read it) and selects between floats may evaluate both sides (FP traps are
+// read it; CMakeLists.txt adds -fno-math-errno for this file, and std::sqrt
+// is then the exact vector instruction rather than fast_sqrt's three Newton
+// steps) and selects between floats may evaluate both sides (FP traps are
 // masked anyway). Neither changes a result: this is not -ffast-math, no
 // reassociation, no reciprocal approximations; values stay IEEE.
 // The fast clone is x86-64-v3 (AVX2 + FMA) with a * b + c contracted to fused
@@ -179,16 +181,16 @@ TS_CLONES void FlipColor::error_row(const FlipRows& ref, const FlipRows& test, f
     for (int j = 0; j < n; ++j) {
       const int i = x0 + j;
       const float da = A1[j] - A2[j], db = B1[j] - B2[j];
-      const float hyab = std::fabs(L1[j] - L2[j]) + fast_sqrt(da * da + db * db);
+      const float hyab = std::fabs(L1[j] - L2[j]) + std::sqrt(da * da + db * db);
       const float dc = fast_pow(hyab, kQc);
       const float ec =
           dc < pccmax ? (kPt / pccmax) * dc : kPt + (dc - pccmax) / (cmax - pccmax) * (1 - kPt);
-      const float e1 = fast_sqrt(rex[i] * rex[i] + rey[i] * rey[i]);
-      const float e2 = fast_sqrt(tex[i] * tex[i] + tey[i] * tey[i]);
-      const float p1 = fast_sqrt(rpx[i] * rpx[i] + rpy[i] * rpy[i]);
-      const float p2 = fast_sqrt(tpx[i] * tpx[i] + tpy[i] * tpy[i]);
+      const float e1 = std::sqrt(rex[i] * rex[i] + rey[i] * rey[i]);
+      const float e2 = std::sqrt(tex[i] * tex[i] + tey[i] * tey[i]);
+      const float p1 = std::sqrt(rpx[i] * rpx[i] + rpy[i] * rpy[i]);
+      const float p2 = std::sqrt(tpx[i] * tpx[i] + tpy[i] * tpy[i]);
       const float df = std::max(std::fabs(e1 - e2), std::fabs(p1 - p2));
-      const float ef = fast_sqrt(df * inv_sqrt2);  // ^ qf, qf = 0.5
+      const float ef = std::sqrt(df * inv_sqrt2);  // ^ qf, qf = 0.5
       out[i] = fast_pow(ec, 1 - ef);
     }
   }

@@ -75,7 +75,12 @@ inline float fast_sqrt(float x) {
 inline float fast_cbrt(float x) {
   // Dividing the exponent (and mantissa bits) by 3 gives a guess within ~5%;
   // each Newton step squares the relative error.
-  float y = std::bit_cast<float>(std::bit_cast<std::uint32_t>(x) / 3u + 709921077u);
+  // The third is taken in float: a vectorised integer division by 3 is ~10
+  // instructions (64-bit multiplies and shuffles), a conversion pair is 3; the
+  // lost low bits only move the guess, and the Newton steps converge to the
+  // same accuracy (max 1.6e-7 relative over 1e-6 .. 1e6, as before).
+  const float third = static_cast<float>(std::bit_cast<std::int32_t>(x)) * (1.0f / 3.0f);
+  float y = std::bit_cast<float>(static_cast<std::int32_t>(third) + 709921077);
   for (int i = 0; i < 3; ++i) y = (2.0f * y + x / (y * y)) * (1.0f / 3.0f);
   return y;
 }

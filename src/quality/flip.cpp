@@ -27,6 +27,7 @@
 #include "quality/flip_color.h"
 #include "quality/median.h"
 #include "quality/planes.h"
+#include "quality/row_sum.h"
 #include "terrasprite/error.h"
 
 namespace terrasprite::quality {
@@ -215,9 +216,7 @@ FlipResult flip(const ImageView& reference, const ImageView& test, const FlipOpt
       float* out = map.data() + at;
       color.error_row(rows[0], rows[1], f.by_w1, f.by_w2, tw, out);
       const std::uint8_t* m = mask.empty() ? nullptr : mask.data() + at;
-      double sum = 0;
-      for (int x = 0; x < tw; ++x) sum += (m && !m[x]) ? 0.0 : out[x];
-      tile_sums[static_cast<std::size_t>(y) * tiles + ti] = sum;
+      tile_sums[static_cast<std::size_t>(y) * tiles + ti] = detail::row_sum(out, m, tw);
     }
   });
 

@@ -19,18 +19,33 @@ std::uint32_t bucket(float v) {
   return std::bit_cast<std::uint32_t>(v > 0 ? v : 0.0f) >> 16;
 }
 
-// The k-th smallest (0-based) of the selected values, given bucket counts.
+// The k-th smallest (0-based) of the selected values, given bucket counts,
+// and, in `below`, the (k-1)-th (for k > 0): an even count needs both middle
+// values, and one scan of the map for the two (rather than one per value)
+// saves a full pass. The (k-1)-th is in the same bucket or is the largest of
+// the previous non-empty one; after nth_element it is the largest value
+// before position k.
 float select(std::span<const float> values, std::span<const std::uint8_t> mask,
-             const std::vector<std::size_t>& counts, std::size_t k) {
+             const std::vector<std::size_t>& counts, std::size_t k, float* below) {
   std::uint32_t b = 0;
-  while (k >= counts[b]) k -= counts[b++];
+  std::size_t before = 0;  // selected values in buckets below b
+  while (k - before >= counts[b]) before += counts[b++];
+  std::uint32_t lo = b;
+  if (below && k == before)  // k is the first of its bucket: look one bucket lower
+    while (counts[--lo] == 0) {
+    }
+  if (lo != b) before -= counts[lo];
   std::vector<float> in_bucket;
-  in_bucket.reserve(counts[b]);
-  for (std::size_t i = 0; i < values.size(); ++i)
-    if ((mask.empty() || mask[i]) && bucket(values[i]) == b) in_bucket.push_back(values[i]);
-  std::nth_element(in_bucket.begin(), in_bucket.begin() + static_cast<std::ptrdiff_t>(k),
-                   in_bucket.end());
-  return in_bucket[k];
+  in_bucket.reserve(counts[b] + (lo != b ? counts[lo] : 0));
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!mask.empty() && !mask[i]) continue;
+    const std::uint32_t v = bucket(values[i]);
+    if (v == b || v == lo) in_bucket.push_back(values[i]);
+  }
+  const auto kth = in_bucket.begin() + static_cast<std::ptrdiff_t>(k - before);
+  std::nth_element(in_bucket.begin(), kth, in_bucket.end());
+  if (below) *below = *std::max_element(in_bucket.begin(), kth);
+  return *kth;
 }
 
 }  // namespace
@@ -44,9 +59,10 @@ double median(std::span<const float> values, std::span<const std::uint8_t> mask)
     ++n;
   }
   if (n == 0) return std::nan("");
-  const double hi = select(values, mask, counts, n / 2);
-  if (n % 2) return hi;
-  return 0.5 * (hi + select(values, mask, counts, n / 2 - 1));
+  if (n % 2) return select(values, mask, counts, n / 2, nullptr);
+  float lo = 0;
+  const double hi = select(values, mask, counts, n / 2, &lo);
+  return 0.5 * (hi + lo);
 }
 
 }  // namespace terrasprite::quality::detail

@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+// The LOD-sprite renderer (Chen, Swan, Kuo, Kaufman, IEEE Visualization 1999):
+// full-resolution keyframes rendered into textures, in-between frames drawn
+// from a coarse grid projectively textured with the keyframe.
+#pragma once
+#include <memory>
+#include <string>
+
+#include "terrasprite/mesh_renderer.h"
+#include "terrasprite/renderer.h"
+#include "terrasprite/sprite_metric.h"
+
+namespace terrasprite {
+
+struct SpriteOptions {
+  int lod_quads = 16;          ///< coarse grid quads per side (>= 1)
+  double threshold_px = 1.0;   ///< keyframe when the metric's RMS error (pixels) exceeds this (> 0)
+  ErrorMetric metric = ErrorMetric::kExact;  ///< which variant triggers keyframes (both are reported)
+  /// Second trigger: keyframe when more than this fraction of the in-view
+  /// coarse-quad centres were not visible in the keyframe (so the view is
+  /// mostly drawn with the fallback texture). 1 disables it.
+  double max_fallback_fraction = 1.0;
+  bool lighting = false;       ///< same sun as RasterOptions::lighting, on keyframes and fallback alike
+  bool read_color = true;      ///< read colour back into Frame::color (after the timed span)
+  bool read_depth = false;     ///< read linear depth back into Frame::depth (after the timed span)
+};
+
+/// One width x height LOD-sprite renderer over `scene` (which must outlive it;
+/// a current GlContext for its whole life). render() measures the error of the
+/// camera against the current keyframe and renders either a new keyframe
+/// (class "key": the full-resolution mesh) or a sprite frame (class "sprite":
+/// the coarse mesh, textured from the keyframe; coarse quads with a corner or
+/// centre vertex hidden in the keyframe's depth buffer or outside its view,
+/// and fragments outside the keyframe or on its sky, take the drape texture).
+/// Frame::ms covers the metric, the drawing, and on keyframes the depth
+/// read-back and visibility work that the technique needs.
+class SpriteRenderer : public Renderer {
+ public:
+  SpriteRenderer(GlTerrain& scene, int width, int height, SpriteOptions options = {});
+  ~SpriteRenderer() override;
+
+  /// The automatic policy: keyframe on the first frame and whenever the
+  /// error exceeds the threshold (or the fallback trigger fires), else a sprite frame.
+  Frame render(const Camera& camera) override;
+  std::string name() const override;
+
+  /// Forced decisions, for figures and tests. render_sprite needs a keyframe.
+  Frame render_keyframe(const Camera& camera);
+  Frame render_sprite(const Camera& camera);
+  /// Makes `camera` the keyframe without reading anything back (for cheap
+  /// simulations of the keyframe sequence: sweeps of thresholds and frame counts).
+  void make_keyframe(const Camera& camera);
+
+  bool has_keyframe() const;
+  /// Error of `camera` against the current keyframe (zero without one).
+  SpriteError error(const Camera& camera) const;
+  /// Whether `e` asks for a new keyframe under the options.
+  bool keyframe_due(const SpriteError& e) const;
+  /// The error measured by the last render() (both variants; zero on the first keyframe).
+  const SpriteError& last_error() const;
+  const SpriteOptions& options() const;
+  const CoarseGrid& grid() const;
+  /// Per coarse quad of the current keyframe: 1 = drawn with the drape texture.
+  const std::vector<std::uint8_t>& fallback_quads() const;
+
+ private:
+  Frame render_as(const Camera& camera, int decision);  // 0 auto, 1 key, 2 sprite
+  struct State;
+  std::unique_ptr<State> s_;
+};
+
+}  // namespace terrasprite

@@ -7,5 +7,7 @@ namespace terrasprite::cli {
 
 /// bench render: full resolution against plain LOD on one path (median ms).
 void add_bench_render(CLI::App& bench);
+/// bench lodsprite: the LOD-sprite paper's reproduction (issue 4).
+void add_bench_lodsprite(CLI::App& bench);
 
 }  // namespace terrasprite::cli

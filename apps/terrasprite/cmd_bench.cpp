@@ -9,6 +9,7 @@ void add_bench(CLI::App& app) {
   auto* bench = app.add_subcommand("bench", "whole-system benchmarks (JSON + plots)");
   bench->require_subcommand(1);
   add_bench_render(*bench);
+  add_bench_lodsprite(*bench);
 }
 
 }  // namespace terrasprite::cli

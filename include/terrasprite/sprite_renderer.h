@@ -51,6 +51,8 @@ class SpriteRenderer : public Renderer {
   /// simulations of the keyframe sequence: sweeps of thresholds and frame counts).
   void make_keyframe(const Camera& camera);
 
+  /// Forgets the keyframe: the next render() is a keyframe (e.g. after a warm-up).
+  void reset();
   bool has_keyframe() const;
   /// Error of `camera` against the current keyframe (zero without one).
   SpriteError error(const Camera& camera) const;

@@ -43,6 +43,10 @@ SpriteRenderer::~SpriteRenderer() = default;
 
 std::string SpriteRenderer::name() const { return fmt::format("sprite{}", s_->options.lod_quads); }
 bool SpriteRenderer::has_keyframe() const { return s_->key.valid; }
+void SpriteRenderer::reset() {
+  s_->key.valid = false;
+  s_->last = {};
+}
 const SpriteError& SpriteRenderer::last_error() const { return s_->last; }
 const SpriteOptions& SpriteRenderer::options() const { return s_->options; }
 const CoarseGrid& SpriteRenderer::grid() const { return s_->grid; }

@@ -4,7 +4,6 @@
 // from its depth buffer which coarse polygons the keyframe can texture.
 #include "sprite/keyframe.h"
 
-#include "terrasprite/renderer.h"
 
 namespace terrasprite {
 
@@ -19,8 +18,9 @@ void Keyframe::capture(GlTerrain::Impl& scene, const CoarseGrid& grid, const Cam
   camera = c;
   view_projection = glm::mat4(gl::view_projection_reversed_z(c));
   target.bind_and_clear();
-  // Sky gets alpha 0, so sprite fragments can tell keyframe sky from terrain.
-  glClearColor(kSkyColor[0] / 255.f, kSkyColor[1] / 255.f, kSkyColor[2] / 255.f, 0.f);
+  // Sky is transparent black: sprite fragments tell keyframe sky from
+  // terrain, and bilinear taps across a silhouette stay premultiplied.
+  glClearColor(0.f, 0.f, 0.f, 0.f);
   glClear(GL_COLOR_BUFFER_BIT);
   scene.draw(scene.mesh(0), view_projection, lighting);
 

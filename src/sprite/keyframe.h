@@ -12,7 +12,7 @@
 namespace terrasprite {
 
 struct Keyframe {
-  gl::RenderTarget target;              // colour (alpha 0 on sky) + depth textures, sampled by sprite frames
+  gl::RenderTarget target;              // colour (transparent black on sky) + depth textures, sampled by sprite frames
   gl::Texture flags{GL_TEXTURE_2D};     // R8UI, quads_x x quads_y: 1 = quad takes the drape texture
   Camera camera;
   glm::mat4 view_projection{1.f};       // reversed-Z GL matrix the keyframe was drawn with

@@ -41,8 +41,12 @@ void main() {
   if (texelFetch(u_flags, ivec2(q % u_qx, q / u_qx), 0).r == 0u && v_key.w > 0.0) {
     vec2 uv = v_key.xy / v_key.w * 0.5 + 0.5;
     if (uv == clamp(uv, 0.0, 1.0)) {
+      // Keyframe sky (alpha 0) behind a coarse point means the full surface
+      // is not there: the coarse mesh sticks out past the true silhouette.
       vec4 k = texture(u_key, uv);
-      if (k.a > 0.5) { o_color = vec4(k.rgb, 1.0); return; }  // alpha 0 = keyframe sky
+      if (k.a < 0.5) discard;
+      o_color = vec4(k.rgb / k.a, 1.0);  // undo the blend with sky at silhouette texels
+      return;
     }
   }
   vec4 c = texture(u_drape, drape_uv(v_xy));

@@ -110,7 +110,13 @@ Frame SpriteRenderer::render_as(const Camera& camera, int d) {
   f.cls = key ? "key" : "sprite";
   if (s.options.read_color) {
     f.color = result->read_color();
-    for (std::size_t i = 3; i < f.color.rgba.size(); i += 4) f.color.rgba[i] = 255;  // keyframe sky had alpha 0
+    for (std::size_t i = 0; i < f.color.rgba.size(); i += 4)  // keyframe sky is transparent black
+      if (f.color.rgba[i + 3] == 0) {
+        f.color.rgba[i] = kSkyColor[0];
+        f.color.rgba[i + 1] = kSkyColor[1];
+        f.color.rgba[i + 2] = kSkyColor[2];
+        f.color.rgba[i + 3] = 255;
+      }
   }
   if (s.options.read_depth) f.depth = result->read_depth(camera.near_m, camera.far_m);
   return f;

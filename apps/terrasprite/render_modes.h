@@ -18,7 +18,7 @@ struct RenderStack {
   std::string device;                   // GL_RENDERER, or the CPU renderer's description
 };
 
-/// Modes: full, lod. Throws InputError for an unknown mode, DeviceError when
+/// Modes: full, lod, sprite (LOD-sprite with default SpriteOptions and `lod_quads`). Throws InputError for an unknown mode, DeviceError when
 /// a GL mode finds no GL device. `terrain` must outlive the stack.
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width, int height, int lod_quads);
 

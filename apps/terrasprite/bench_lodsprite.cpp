@@ -31,7 +31,7 @@ void add_bench_lodsprite(CLI::App& bench) {
     TerrainOptions terrain;
     LodspriteConfig config;
     std::string size = "512x512";
-    std::string metric = "exact";
+    std::string metric = "paper";
     std::string thresholds = "0.25,0.5,1,2,4,8";
     std::string frame_counts = "115,230,460,920,1840";
     std::string lod_sweep = "8,16,32,64";
@@ -46,7 +46,7 @@ void add_bench_lodsprite(CLI::App& bench) {
   cmd->add_option("--frames", o->config.frames, "frames along the path (default 460)");
   cmd->add_option("--size", o->size, "image size WxH (default 512x512)");
   cmd->add_option("--threshold", o->config.threshold_px, "keyframe threshold, pixels (default 1.0)");
-  cmd->add_option("--metric", o->metric, "error metric that triggers keyframes: exact (default) | paper");
+  cmd->add_option("--metric", o->metric, "error metric that triggers keyframes: paper (default) | exact");
   cmd->add_option("--fallback-trigger", o->config.max_fallback_fraction,
                   "also keyframe when this fraction of in-view quads fall back to the drape texture (default 1 = off)");
   cmd->add_option("--thresholds", o->thresholds, "threshold sweep (default 0.25,0.5,1,2,4,8)");

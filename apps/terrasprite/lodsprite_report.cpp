@@ -21,6 +21,9 @@ void write_text(const std::string& path, const std::string& text) {
 
 double num(const nlohmann::json& v) { return v.is_number() ? v.get<double>() : 0.0; }
 
+// FLIP is -1 when the run skipped it.
+std::string flip_text(const nlohmann::json& v) { return num(v) < 0 ? "n/a" : fmt::format("{:.4f}", num(v)); }
+
 const char* kPlots = R"GP(set terminal pngcairo size 900,420 font "sans,10"
 set grid
 set key outside right top
@@ -138,10 +141,10 @@ void write_lodsprite_report(const nlohmann::json& j, OutputDir& out) {
   h << row("bound 1 / (f + (1 - f) / r)", fmt::format("{:.2f}x, efficiency {:.1f}%", num(b["speedup_bound"]), 100 * num(b["efficiency"])));
   h << row("plain LOD median frame", fmt::format("{:.2f} ms", num(l["median_ms"])));
   h << "</table><table><tr><th></th><th>mean PSNR (dB)</th><th>mean PSNR, sprite frames only</th><th>mean SSIM</th><th>min SSIM</th><th>mean FLIP</th></tr>\n";
-  h << fmt::format("<tr><th>plain LOD</th><td>{:.2f}</td><td>{:.2f}</td><td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td></tr>\n", num(l["mean_psnr"]),
-                   num(l["mean_psnr_sprite_frames"]), num(l["mean_ssim"]), num(l["min_ssim"]), num(l["mean_flip"]));
-  h << fmt::format("<tr><th>LOD-sprite</th><td>{:.2f}</td><td>{:.2f}</td><td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td></tr></table>\n",
-                   num(s["mean_psnr"]), num(s["mean_psnr_sprite_frames"]), num(s["mean_ssim"]), num(s["min_ssim"]), num(s["mean_flip"]));
+  h << fmt::format("<tr><th>plain LOD</th><td>{:.2f}</td><td>{:.2f}</td><td>{:.4f}</td><td>{:.4f}</td><td>{}</td></tr>\n", num(l["mean_psnr"]),
+                   num(l["mean_psnr_sprite_frames"]), num(l["mean_ssim"]), num(l["min_ssim"]), flip_text(l["mean_flip"]));
+  h << fmt::format("<tr><th>LOD-sprite</th><td>{:.2f}</td><td>{:.2f}</td><td>{:.4f}</td><td>{:.4f}</td><td>{}</td></tr></table>\n",
+                   num(s["mean_psnr"]), num(s["mean_psnr_sprite_frames"]), num(s["mean_ssim"]), num(s["min_ssim"]), flip_text(s["mean_flip"]));
   h << fmt::format("<p>Keyframes are the full-resolution frame itself (PSNR capped at {} dB, SSIM 1, FLIP 0).</p>\n", num(j["psnr_cap_db"]));
   h << "<h2>Targets (issue 4)</h2><table>\n";
   h << row("keyframes at most 28", pass(t["keyframes_at_most_28"]));

@@ -54,14 +54,6 @@ double ssim_only(const Image& reference, const Image& test) {
 double sum(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0); }
 double mean(const std::vector<double>& v) { return v.empty() ? 0.0 : sum(v) / double(v.size()); }
 
-// |a - b| per channel, amplified 4x, for the paper's difference images.
-Image difference(const Image& a, const Image& b) {
-  Image d(a.width, a.height);
-  for (std::size_t i = 0; i < a.rgba.size(); ++i)
-    d.rgba[i] = i % 4 == 3 ? 255 : std::uint8_t(std::min(255, 4 * std::abs(int(a.rgba[i]) - int(b.rgba[i]))));
-  return d;
-}
-
 struct PassResult {
   int keyframes = 0;
   double total_ms = 0;
@@ -288,8 +280,8 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
     save_png(ff.color, out.file(base + "_full.png"));
     save_png(lf.color, out.file(base + "_lod.png"));
     save_png(sf.color, out.file(base + "_sprite.png"));
-    save_png(difference(ff.color, lf.color), out.file(base + "_diff_lod.png"));
-    save_png(difference(ff.color, sf.color), out.file(base + "_diff_sprite.png"));
+    save_png(quality::difference_image(ff.color.view(), lf.color.view()), out.file(base + "_diff_lod.png"));
+    save_png(quality::difference_image(ff.color.view(), sf.color.view()), out.file(base + "_diff_sprite.png"));
     const Score ls = score(ff.color, lf.color, cfg.flip), ss = score(ff.color, sf.color, cfg.flip);
     figures[name] = {{"texture", t->texture_name}, {"frame", fig_frame}, {"keyframe", key_of[fig_frame]},
                      {"lod", {{"psnr", ls.psnr}, {"ssim", ls.ssim}, {"flip", ls.flip}}},

@@ -21,7 +21,7 @@ struct LodspriteConfig {
   int width = 512, height = 512;
   int lod_quads = 16;
   double threshold_px = 1.0;
-  ErrorMetric metric = ErrorMetric::kExact;
+  ErrorMetric metric = ErrorMetric::kPaper;
   double max_fallback_fraction = 1.0;
   std::vector<double> thresholds = {0.25, 0.5, 1, 2, 4, 8};
   std::vector<int> frame_counts = {115, 230, 460, 920, 1840};

@@ -15,7 +15,12 @@ namespace terrasprite {
 struct SpriteOptions {
   int lod_quads = 16;          ///< coarse grid quads per side (>= 1)
   double threshold_px = 1.0;   ///< keyframe when the metric's RMS error (pixels) exceeds this (> 0)
-  ErrorMetric metric = ErrorMetric::kExact;  ///< which variant triggers keyframes (both are reported)
+  /// Which variant triggers keyframes (both are reported). The paper's, by
+  /// measurement: on the synthetic paper path (115 frames, 1 px) it spent 17
+  /// keyframes for mean SSIM 0.930, where exact reprojection needed 45 (SSIM
+  /// 0.957) at 1 px and 24 (0.939) at 2 px, so per keyframe spent it is as good
+  /// or better, and at 1 px it keeps the paper's keyframe budget.
+  ErrorMetric metric = ErrorMetric::kPaper;
   /// Second trigger: keyframe when more than this fraction of the in-view
   /// coarse-quad centres were not visible in the keyframe (so the view is
   /// mostly drawn with the fallback texture). 1 disables it.

@@ -33,6 +33,14 @@ double ray_triangle(glm::dvec3 o, glm::dvec3 d, glm::dvec3 a, glm::dvec3 b, glm:
 
 bool inside_image(glm::dvec2 px, int w, int h) { return px.x >= 0 && px.x <= w && px.y >= 0 && px.y <= h; }
 
+// project_to_pixel with the view-projection matrix built once per frame.
+bool project(const glm::dmat4& vp, int w, int h, glm::dvec3 p, glm::dvec2& pixel) {
+  const glm::dvec4 clip = vp * glm::dvec4(p, 1.0);
+  if (clip.w <= 1e-12) return false;
+  pixel = {(clip.x / clip.w * 0.5 + 0.5) * w, (0.5 - clip.y / clip.w * 0.5) * h};
+  return true;
+}
+
 }  // namespace
 
 CoarseGrid make_coarse_grid(const Heightfield& h, int quads) {
@@ -128,13 +136,15 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
   const double cos_beta = (l1 > 0 && l2 > 0) ? std::clamp(glm::dot(u1, u2) / (l1 * l2), -1.0, 1.0) : 1.0;
   const double sin_beta = std::sqrt(std::max(0.0, 1.0 - cos_beta * cos_beta));
   const double pixel = view.pixel_angle(k.height);
+  const glm::dmat4 vp = view.view_projection();
+  const glm::dvec3 forward = view.forward();
   double sum_paper = 0, sum_exact = 0;
   for (std::size_t q = 0; q < k.visible.size(); ++q) {
     if (!g.has_centre[q]) continue;
     const glm::dvec3& C = g.centre[q];
     glm::dvec2 pc;
-    if (!project_to_pixel(view, k.width, k.height, C, pc) || !inside_image(pc, k.width, k.height)) continue;
-    if (glm::dot(C - view.position, view.forward()) < view.near_m) continue;
+    if (!project(vp, k.width, k.height, C, pc) || !inside_image(pc, k.width, k.height)) continue;
+    if (glm::dot(C - view.position, forward) < view.near_m) continue;
     ++e.in_view;
     if (!k.visible[q]) continue;
     ++e.samples;
@@ -143,7 +153,7 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
     const double theta = std::atan2(std::abs(b) * sin_beta, d + b * cos_beta) / pixel;
     sum_paper += theta * theta;
     glm::dvec2 pp;
-    if (project_to_pixel(view, k.width, k.height, k.c_prime[q], pp)) {
+    if (project(vp, k.width, k.height, k.c_prime[q], pp)) {
       const glm::dvec2 dp = pp - pc;
       sum_exact += glm::dot(dp, dp);
     }

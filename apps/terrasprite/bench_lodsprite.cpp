@@ -49,6 +49,8 @@ void add_bench_lodsprite(CLI::App& bench) {
   cmd->add_option("--metric", o->metric, "error metric that triggers keyframes: paper (default) | exact");
   cmd->add_option("--fallback-trigger", o->config.max_fallback_fraction,
                   "also keyframe when this fraction of in-view quads fall back to the drape texture (default 1 = off)");
+  cmd->add_option("--scale-trigger", o->config.max_resample_scale,
+                  "also keyframe when the keyframe's pixels are resampled by more than this factor (default 1.25; inf = off)");
   cmd->add_option("--thresholds", o->thresholds, "threshold sweep (default 0.25,0.5,1,2,4,8)");
   cmd->add_option("--frame-counts", o->frame_counts, "frame-count sweep (default 115,230,460,920,1840)");
   cmd->add_option("--lod-sweep", o->lod_sweep, "coarse-mesh sweep at the chosen threshold (default 8,16,32,64)");
@@ -59,6 +61,8 @@ void add_bench_lodsprite(CLI::App& bench) {
     LodspriteConfig c = o->config;
     std::tie(c.width, c.height) = parse_size(o->size, "--size");
     c.metric = parse_metric(o->metric);
+    if (!(c.max_resample_scale >= 1.0))
+      throw InputError(fmt::format("--scale-trigger {}: must be at least 1 (inf disables it)", c.max_resample_scale));
     c.thresholds = list_of<double>(o->thresholds, "--thresholds");
     c.frame_counts = list_of<int>(o->frame_counts, "--frame-counts");
     c.lod_sweep = list_of<int>(o->lod_sweep, "--lod-sweep");

@@ -57,10 +57,13 @@ double mean(const std::vector<double>& v) { return v.empty() ? 0.0 : sum(v) / do
 struct PassResult {
   int keyframes = 0;
   double total_ms = 0;
+  double key_median_ms = 0, sprite_median_ms = 0;
   double mean_ssim = 0;
 };
 
-// One timed LOD-sprite pass over `path`, SSIM-scored against the kept references.
+// One timed LOD-sprite pass over `path`; the kept frames are SSIM-scored
+// against the references after the whole pass, so scoring threads never
+// overlap a timed frame.
 PassResult sprite_pass(GlTerrain& scene, std::span<const Camera> path, int w, int h, SpriteOptions o,
                        const std::vector<Image>& refs, int every) {
   o.read_color = true;
@@ -69,15 +72,28 @@ PassResult sprite_pass(GlTerrain& scene, std::span<const Camera> path, int w, in
   r.render_sprite(path[0]);
   r.reset();
   PassResult p;
-  std::vector<double> ssims;
+  std::vector<double> key_ms, sprite_ms;
+  std::vector<Image> kept;
   for (std::size_t i = 0; i < path.size(); ++i) {
     Frame f = r.render(path[i]);
     p.total_ms += f.ms;
-    p.keyframes += f.cls == "key";
-    if (i % every == 0) ssims.push_back(ssim_only(refs[i / every], f.color));
+    (f.cls == "key" ? key_ms : sprite_ms).push_back(f.ms);
+    if (i % every == 0) kept.push_back(std::move(f.color));
   }
+  p.keyframes = int(key_ms.size());
+  p.key_median_ms = median(key_ms);
+  p.sprite_median_ms = median(sprite_ms);
+  std::vector<double> ssims;
+  for (std::size_t k = 0; k < kept.size(); ++k) ssims.push_back(ssim_only(refs[k], kept[k]));
   p.mean_ssim = mean(ssims);
   return p;
+}
+
+// Speed-up from per-class medians, robust to the machine's stalls:
+// n full frames against k keyframes and n - k sprite frames.
+double median_speedup(int n, int keys, double full_median, double key_median, double sprite_median) {
+  const double cost = keys * key_median + (n - keys) * sprite_median;
+  return cost > 0 ? n * full_median / cost : 0.0;
 }
 
 // Keyframe count only: the metric decides, keyframes are rendered (their depth
@@ -136,6 +152,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
   so.threshold_px = cfg.threshold_px;
   so.metric = cfg.metric;
   so.max_fallback_fraction = cfg.max_fallback_fraction;
+  so.max_resample_scale = cfg.max_resample_scale;
   SpriteRenderer sprite(scene, w, h, so);
   // Warm-up: shader compilation and first-use costs stay out of the timings.
   full.render(path[0]);
@@ -186,6 +203,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
                          {"full_ms", a.ms}, {"lod_ms", b.ms},
                          {"error_px", e.paper_px}, {"error_px_exact", e.exact_px},
                          {"error_samples", e.samples}, {"fallback_fraction", e.fallback_fraction()},
+                         {"resample_scale", e.resample_scale}, {"trigger", sprite.last_trigger()},
                          {"keyframe", current_key},
                          {"psnr", ss.psnr}, {"ssim", ss.ssim}, {"flip", ss.flip},
                          {"lod_psnr", ls.psnr}, {"lod_ssim", ls.ssim}, {"lod_flip", ls.flip}});
@@ -211,21 +229,31 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
   Progress sweep_progress(label + " sweeps");
   const int sweep_total = int(cfg.thresholds.size() + cfg.frame_counts.size() + cfg.lod_sweep.size());
   int sweep_done = 0;
+  const double full_median = median(full_ms);
+  const double key_median = median(key_ms), spr_median = median(spr_ms);
+  auto sweep_entry = [&](const PassResult& p, const std::string& method) {
+    return nlohmann::json{{"keyframes", p.keyframes},
+                          {"keyframe_fraction", double(p.keyframes) / n},
+                          {"speedup", full_total / std::max(p.total_ms, 1e-9)},
+                          {"speedup_from_medians", median_speedup(n, p.keyframes, full_median, p.key_median_ms, p.sprite_median_ms)},
+                          {"total_ms", p.total_ms},
+                          {"key_median_ms", p.key_median_ms},
+                          {"sprite_median_ms", p.sprite_median_ms},
+                          {"mean_ssim", p.mean_ssim},
+                          {"measured_in", method}};
+  };
+  const PassResult main_pass{keyframes, sprite_total, key_median, spr_median, mean_every(sp_ssim)};
   for (double t : cfg.thresholds) {
-    PassResult p;
-    std::string method = "main run";
+    nlohmann::json e;
     if (t == cfg.threshold_px) {
-      p = {keyframes, sprite_total, mean_every(sp_ssim)};
+      e = sweep_entry(main_pass, "main run");
     } else {
       SpriteOptions o = so;
       o.threshold_px = t;
-      p = sprite_pass(scene, path, w, h, o, refs, every);
-      method = "separate timed pass";
+      e = sweep_entry(sprite_pass(scene, path, w, h, o, refs, every), "separate timed pass");
     }
-    threshold_sweep.push_back({{"threshold_px", t}, {"keyframes", p.keyframes},
-                               {"keyframe_fraction", double(p.keyframes) / n},
-                               {"speedup", full_total / std::max(p.total_ms, 1e-9)}, {"total_ms", p.total_ms},
-                               {"mean_ssim", p.mean_ssim}, {"measured_in", method}});
+    e["threshold_px"] = t;
+    threshold_sweep.push_back(e);
     sweep_progress(++sweep_done, sweep_total);
   }
   for (int frames : cfg.frame_counts) {
@@ -235,19 +263,16 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
     sweep_progress(++sweep_done, sweep_total);
   }
   for (int q : cfg.lod_sweep) {
-    PassResult p;
-    std::string method = "main run";
+    nlohmann::json e;
     if (q == cfg.lod_quads) {
-      p = {keyframes, sprite_total, mean_every(sp_ssim)};
+      e = sweep_entry(main_pass, "main run");
     } else {
       SpriteOptions o = so;
       o.lod_quads = q;
-      p = sprite_pass(scene, path, w, h, o, refs, every);
-      method = "separate timed pass";
+      e = sweep_entry(sprite_pass(scene, path, w, h, o, refs, every), "separate timed pass");
     }
-    lod_sweep.push_back({{"lod_quads", q}, {"keyframes", p.keyframes}, {"keyframe_fraction", double(p.keyframes) / n},
-                         {"speedup", full_total / std::max(p.total_ms, 1e-9)}, {"total_ms", p.total_ms},
-                         {"mean_ssim", p.mean_ssim}, {"measured_in", method}});
+    e["lod_quads"] = q;
+    lod_sweep.push_back(e);
     sweep_progress(++sweep_done, sweep_total);
   }
 
@@ -288,7 +313,12 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
                      {"sprite", {{"psnr", ss.psnr}, {"ssim", ss.ssim}, {"flip", ss.flip}}}};
   }
 
-  const double key_median = median(key_ms), spr_median = median(spr_ms);
+  // Stalls of this shared machine (a frame over 10x its class median) weigh
+  // heavily in totals; count them so a reader can tell noise from cost.
+  auto stalls = [](const std::vector<double>& v) {
+    const double m = median(v);
+    return int(std::count_if(v.begin(), v.end(), [&](double x) { return x > 10 * m; }));
+  };
   nlohmann::json j = {
       {"gl_renderer", gl.renderer()},
       {"terrain", terrain_json(terrain)},
@@ -299,6 +329,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
       {"threshold_px", cfg.threshold_px},
       {"metric", metric_name(cfg.metric)},
       {"max_fallback_fraction", cfg.max_fallback_fraction},
+      {"max_resample_scale", std::isfinite(cfg.max_resample_scale) ? nlohmann::json(cfg.max_resample_scale) : nlohmann::json(nullptr)},
       {"psnr_cap_db", kPsnrCapDb},
       {"full", {{"total_ms", full_total}, {"median_ms", median(full_ms)}}},
       {"lod", {{"total_ms", sum(lod_ms)}, {"median_ms", median(lod_ms)}, {"mean_psnr", mean(lod_psnr)},
@@ -314,6 +345,8 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
                   {"ssim_above_lod_fraction_sprite_frames",
                    n > keyframes ? double(ssim_above_sprite_frames) / (n - keyframes) : 1.0}}},
       {"speedup", speedup},
+      {"speedup_from_medians", median_speedup(n, keyframes, full_median, key_median, spr_median)},
+      {"stalls", {{"full", stalls(full_ms)}, {"lod", stalls(lod_ms)}, {"key", stalls(key_ms)}, {"sprite", stalls(spr_ms)}}},
       {"bound", {{"f", f}, {"r", r}, {"speedup_bound", bound}, {"efficiency", speedup / bound},
                  {"key_over_full_median", key_median / std::max(median(full_ms), 1e-9)}}},
       {"targets", {{"keyframes_at_most_28", keyframes <= 28},
@@ -323,8 +356,10 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
                    {"mean_psnr_above_lod_on_sprite_frames", mean(sp_psnr_sprite_only) > mean(lod_psnr_sprite_only)},
                    {"paper_speedup", 12.32}, {"paper_keyframes", 28}}},
       {"sweep_score_every", every},
-      {"sweep_speedup_method", "measured: total frame time of the sprite pass (the main run, or a separate timed pass "
-                               "for other settings) against the main run's full-resolution total"},
+      {"sweep_speedup_method", "speedup: measured, total frame time of the sprite pass (the main run, or a separate "
+                               "timed pass for other settings, scored after the pass) against the main run's "
+                               "full-resolution total; speedup_from_medians: derived, n x median full / (k x median "
+                               "key + (n - k) x median sprite) with that pass's medians"},
       {"frame_count_sweep_method", "keyframe decisions only: the metric on every frame, keyframes rendered"},
       {"threshold_sweep", threshold_sweep},
       {"frame_count_sweep", frame_count_sweep},

@@ -33,6 +33,8 @@ struct CoarseGrid {
   /// b of the paper's approximation: distance (m) from C to the quad's coarse
   /// diagonal edge a-e, signed + where C lies above the edge, - below.
   std::vector<double> edge_offset;
+  /// Unit surface normal of the full-resolution grid at C (central differences).
+  std::vector<glm::dvec3> normal;
 
   int quad_count() const { return quads_x * quads_y; }
   const glm::dvec3& vertex(int col, int row) const { return vertices[static_cast<std::size_t>(row) * (quads_x + 1) + col]; }
@@ -94,6 +96,14 @@ struct SpriteError {
   int in_view = 0;       ///< quads whose C is in the new view
   /// Fraction of in-view centres that were not visible in the keyframe (they fall back to the drape texture).
   double fallback_fraction() const { return in_view > 0 ? double(in_view - samples) / in_view : 0.0; }
+  /// How much the keyframe's pixels are stretched or shrunk in the new view:
+  /// per sample, the linear scale s between the pixel footprints of the
+  /// surface at C in the two views (distance, foreshortening against C's
+  /// normal, off-axis pixel size), folded to max(s, 1/s); the geometric mean
+  /// over the samples. 1 = same sampling density. A sprite resamples the
+  /// keyframe bilinearly, so a large scale blurs (or aliases) even when the
+  /// geometric error is small, e.g. on low-relief terrain.
+  double resample_scale = 1.0;
   double value(ErrorMetric m) const { return m == ErrorMetric::kPaper ? paper_px : exact_px; }
 };
 

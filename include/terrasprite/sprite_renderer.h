@@ -25,6 +25,10 @@ struct SpriteOptions {
   /// coarse-quad centres were not visible in the keyframe (so the view is
   /// mostly drawn with the fallback texture). 1 disables it.
   double max_fallback_fraction = 1.0;
+  /// Third trigger: keyframe when SpriteError::resample_scale exceeds this
+  /// (the keyframe's pixels stretched or shrunk by more than this factor on
+  /// average); infinity disables it.
+  double max_resample_scale = 1.25;
   bool lighting = false;       ///< same sun as RasterOptions::lighting, on keyframes and fallback alike
   bool read_color = true;      ///< read colour back into Frame::color (after the timed span)
   bool read_depth = false;     ///< read linear depth back into Frame::depth (after the timed span)
@@ -65,6 +69,9 @@ class SpriteRenderer : public Renderer {
   bool keyframe_due(const SpriteError& e) const;
   /// The error measured by the last render() (both variants; zero on the first keyframe).
   const SpriteError& last_error() const;
+  /// Why the last render() drew a keyframe: "first", "error", "fallback",
+  /// "scale", "forced"; empty for a sprite frame.
+  const std::string& last_trigger() const;
   const SpriteOptions& options() const;
   const CoarseGrid& grid() const;
   /// Per coarse quad of the current keyframe: 1 = drawn with the drape texture.

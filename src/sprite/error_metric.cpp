@@ -56,6 +56,7 @@ CoarseGrid make_coarse_grid(const Heightfield& h, int quads) {
   g.centre.resize(n);
   g.has_centre.resize(n);
   g.edge_offset.resize(n);
+  g.normal.resize(n);
   for (int r = 0; r < g.quads_y; ++r)
     for (int c = 0; c < g.quads_x; ++c) {
       const std::size_t q = static_cast<std::size_t>(r) * g.quads_x + c;
@@ -73,6 +74,11 @@ CoarseGrid make_coarse_grid(const Heightfield& h, int quads) {
       const double edge_z = a.z + t2 * ae.z;
       const double dist = glm::length(C - closest);
       g.edge_offset[q] = C.z >= edge_z ? dist : -dist;
+      const int i0 = std::max(ci - 1, 0), i1 = std::min(ci + 1, h.width - 1);
+      const int j0 = std::max(cj - 1, 0), j1 = std::min(cj + 1, h.height - 1);
+      const double dzdx = i1 > i0 ? (h.at(i1, cj) - h.at(i0, cj)) / ((i1 - i0) * h.spacing_x) : 0.0;
+      const double dzdy = j1 > j0 ? (h.at(ci, j0) - h.at(ci, j1)) / ((j1 - j0) * h.spacing_y) : 0.0;  // rows run south
+      g.normal[q] = glm::normalize(glm::dvec3(-dzdx, -dzdy, 1.0));
     }
   return g;
 }
@@ -138,7 +144,17 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
   const double pixel = view.pixel_angle(k.height);
   const glm::dmat4 vp = view.view_projection();
   const glm::dvec3 forward = view.forward();
-  double sum_paper = 0, sum_exact = 0;
+  double sum_paper = 0, sum_exact = 0, sum_log_scale = 0;
+  const glm::dvec3 key_forward = k.key.forward();
+  // Pixels covering a small patch at C: dA |cos(incidence)| / (d^2 cos^3(off-axis angle)), up to constants
+  // shared by both views (same field of view and image size).
+  auto footprint = [](glm::dvec3 eye, glm::dvec3 axis, glm::dvec3 c, glm::dvec3 normal) {
+    const glm::dvec3 to = eye - c;
+    const double d = glm::length(to);
+    const double incidence = std::max(std::abs(glm::dot(normal, to / d)), 1e-3);
+    const double off_axis = std::max(glm::dot(-to / d, axis), 1e-3);
+    return incidence / (d * d * off_axis * off_axis * off_axis);
+  };
   for (std::size_t q = 0; q < k.visible.size(); ++q) {
     if (!g.has_centre[q]) continue;
     const glm::dvec3& C = g.centre[q];
@@ -152,6 +168,9 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
     const double d = glm::length(view.position - C);
     const double theta = std::atan2(std::abs(b) * sin_beta, d + b * cos_beta) / pixel;
     sum_paper += theta * theta;
+    const double area_ratio = footprint(view.position, forward, C, g.normal[q]) /
+                              footprint(k.key.position, key_forward, C, g.normal[q]);
+    sum_log_scale += std::abs(0.5 * std::log(area_ratio));
     glm::dvec2 pp;
     if (project(vp, k.width, k.height, k.c_prime[q], pp)) {
       const glm::dvec2 dp = pp - pc;
@@ -161,6 +180,7 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
   if (e.samples > 0) {
     e.paper_px = std::sqrt(sum_paper / e.samples);
     e.exact_px = std::sqrt(sum_exact / e.samples);
+    e.resample_scale = std::exp(sum_log_scale / e.samples);
   }
   return e;
 }

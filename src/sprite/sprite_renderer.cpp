@@ -23,6 +23,7 @@ struct SpriteRenderer::State {
   SpritePass pass;
   gl::Query timer{GL_TIME_ELAPSED};
   SpriteError last;
+  std::string trigger;
 
   State(GlTerrain& s, int w, int h, const SpriteOptions& o)
       : scene(s), width(w), height(h), options(o), grid(make_coarse_grid(s.terrain().heights, o.lod_quads)),
@@ -46,8 +47,10 @@ bool SpriteRenderer::has_keyframe() const { return s_->key.valid; }
 void SpriteRenderer::reset() {
   s_->key.valid = false;
   s_->last = {};
+  s_->trigger.clear();
 }
 const SpriteError& SpriteRenderer::last_error() const { return s_->last; }
+const std::string& SpriteRenderer::last_trigger() const { return s_->trigger; }
 const SpriteOptions& SpriteRenderer::options() const { return s_->options; }
 const CoarseGrid& SpriteRenderer::grid() const { return s_->grid; }
 const std::vector<std::uint8_t>& SpriteRenderer::fallback_quads() const { return s_->key.fallback; }
@@ -60,7 +63,8 @@ SpriteError SpriteRenderer::error(const Camera& camera) const {
 bool SpriteRenderer::keyframe_due(const SpriteError& e) const {
   // Eq. (2): mean squared error over the samples > threshold^2.
   return e.value(s_->options.metric) > s_->options.threshold_px ||
-         e.fallback_fraction() > s_->options.max_fallback_fraction;
+         e.fallback_fraction() > s_->options.max_fallback_fraction ||
+         e.resample_scale > s_->options.max_resample_scale;
 }
 
 void SpriteRenderer::make_keyframe(const Camera& camera) {
@@ -79,9 +83,18 @@ Frame SpriteRenderer::render_as(const Camera& camera, int d) {
   glBeginQuery(GL_TIME_ELAPSED, s.timer.id());
   SpriteError e = self.error(camera);
   bool key = d == kKey || (d == kAuto && (!s.key.valid || self.keyframe_due(e)));
+  s.trigger.clear();
   if (!s.key.valid) {
     key = true;
     e = {};
+    s.trigger = "first";
+  } else if (d == kKey) {
+    s.trigger = "forced";
+  } else if (key) {
+    const SpriteOptions& o = s.options;
+    s.trigger = e.value(o.metric) > o.threshold_px            ? "error"
+                : e.fallback_fraction() > o.max_fallback_fraction ? "fallback"
+                                                                  : "scale";
   }
   gl::RenderTarget* result = &s.out;
   long long triangles = 0;

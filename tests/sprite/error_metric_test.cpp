@@ -131,6 +131,18 @@ TEST(ErrorMetric, OnlyVisibleCentresCount) {
   EXPECT_NEAR(e.exact_px, 0.0, 1e-9);
 }
 
+TEST(ErrorMetric, ResampleScaleIsTheChangeInPixelFootprint) {
+  Heightfield h = flat(65, 10.0);
+  CoarseGrid g = make_coarse_grid(h, 4);
+  Camera key = overhead(glm::dvec3(0), 1000.0);
+  KeyframeSamples k = make_keyframe_samples(g, key, 256, 256, all_visible(g));
+  EXPECT_NEAR(sprite_error(g, k, key).resample_scale, 1.0, 1e-9);
+  // Straight down over a plane every pixel's footprint grows with the height:
+  // twice as high, each keyframe pixel covers half as many new pixels per side.
+  EXPECT_NEAR(sprite_error(g, k, overhead(glm::dvec3(0), 2000.0)).resample_scale, 2.0, 1e-6);
+  EXPECT_NEAR(sprite_error(g, k, overhead(glm::dvec3(0), 500.0)).resample_scale, 2.0, 1e-6);
+}
+
 TEST(Visibility, DepthBufferHidesPointsBehindNearerSurface) {
   Camera key = overhead(glm::dvec3(0), 1000.0);
   std::vector<float> depth(64 * 64, 1000.f);

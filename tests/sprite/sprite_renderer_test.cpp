@@ -149,7 +149,7 @@ TEST(SpriteRenderer, KeyframeTriggerFiresWhenTheThresholdIsExceededAndNotBefore)
   t.texture = derived_texture(t.heights, 256, 256);
   GlTerrain scene(t);
   for (ErrorMetric m : {ErrorMetric::kPaper, ErrorMetric::kExact}) {
-    SpriteOptions o{.lod_quads = 16, .threshold_px = 0.5, .metric = m, .read_color = false};
+    SpriteOptions o{.lod_quads = 16, .threshold_px = 0.5, .metric = m, .max_resample_scale = INFINITY, .read_color = false};
     SpriteRenderer r(scene, 128, 128, o);
     auto path = paper_path(t.heights, 120, 1.0);
     int keys = 0;

@@ -53,7 +53,8 @@ class SpriteRenderer : public Renderer {
   Frame render(const Camera& camera) override;
   std::string name() const override;
 
-  /// Forced decisions, for figures and tests. render_sprite needs a keyframe.
+  /// Forced decisions, for figures and tests. render_sprite without a
+  /// keyframe draws one (class "key") instead.
   Frame render_keyframe(const Camera& camera);
   Frame render_sprite(const Camera& camera);
   /// Makes `camera` the keyframe without reading anything back (for cheap

@@ -10,6 +10,9 @@ namespace terrasprite {
 class SpritePass {
  public:
   SpritePass();
+  ~SpritePass();
+  SpritePass(const SpritePass&) = delete;
+  SpritePass& operator=(const SpritePass&) = delete;
   /// Draws `coarse` (a GlTerrain grid mesh of quads_x quads per row) into the
   /// bound target, textured from `key`; quads flagged in key.flags, and
   /// fragments outside the keyframe or on its sky, take the drape texture.
@@ -18,6 +21,7 @@ class SpritePass {
 
  private:
   gl::Program program_;
+  GLuint drape_sampler_ = 0;  // trilinear, no hardware anisotropy (see the fragment shader)
   GLint u_vp_, u_key_vp_, u_uv_, u_qx_, u_lighting_;
 };
 

@@ -51,6 +51,8 @@ void add_bench_lodsprite(CLI::App& bench) {
                   "also keyframe when this fraction of in-view quads fall back to the drape texture (default 1 = off)");
   cmd->add_option("--scale-trigger", o->config.max_resample_scale,
                   "also keyframe when the keyframe's pixels are resampled by more than this factor (default 1.25; inf = off)");
+  cmd->add_option("--sharp-px", o->config.sharp_px,
+                  "quads whose coarse geometry errs less than this many pixels take the drape texture (default 0.5; 0 = off)");
   cmd->add_option("--thresholds", o->thresholds, "threshold sweep (default 0.25,0.5,1,2,4,8)");
   cmd->add_option("--frame-counts", o->frame_counts, "frame-count sweep (default 115,230,460,920,1840)");
   cmd->add_option("--lod-sweep", o->lod_sweep, "coarse-mesh sweep at the chosen threshold (default 8,16,32,64)");

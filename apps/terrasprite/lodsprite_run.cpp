@@ -153,6 +153,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
   so.metric = cfg.metric;
   so.max_fallback_fraction = cfg.max_fallback_fraction;
   so.max_resample_scale = cfg.max_resample_scale;
+  so.sharp_px = cfg.sharp_px;
   SpriteRenderer sprite(scene, w, h, so);
   // Warm-up: shader compilation and first-use costs stay out of the timings.
   full.render(path[0]);
@@ -329,6 +330,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
       {"threshold_px", cfg.threshold_px},
       {"metric", metric_name(cfg.metric)},
       {"max_fallback_fraction", cfg.max_fallback_fraction},
+      {"sharp_px", cfg.sharp_px},
       {"max_resample_scale", std::isfinite(cfg.max_resample_scale) ? nlohmann::json(cfg.max_resample_scale) : nlohmann::json(nullptr)},
       {"psnr_cap_db", kPsnrCapDb},
       {"full", {{"total_ms", full_total}, {"median_ms", median(full_ms)}}},

@@ -24,6 +24,7 @@ struct LodspriteConfig {
   ErrorMetric metric = ErrorMetric::kPaper;
   double max_fallback_fraction = 1.0;
   double max_resample_scale = 1.25;
+  double sharp_px = 0.5;
   std::vector<double> thresholds = {0.25, 0.5, 1, 2, 4, 8};
   std::vector<int> frame_counts = {115, 230, 460, 920, 1840};
   std::vector<int> lod_sweep = {8, 16, 32, 64};

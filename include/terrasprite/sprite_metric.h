@@ -35,6 +35,9 @@ struct CoarseGrid {
   std::vector<double> edge_offset;
   /// Unit surface normal of the full-resolution grid at C (central differences).
   std::vector<glm::dvec3> normal;
+  /// Per quad: the largest vertical distance (m) between a full-resolution
+  /// sample inside it and the coarse surface (its two triangles).
+  std::vector<double> max_deviation;
 
   int quad_count() const { return quads_x * quads_y; }
   const glm::dvec3& vertex(int col, int row) const { return vertices[static_cast<std::size_t>(row) * (quads_x + 1) + col]; }

@@ -29,6 +29,11 @@ struct SpriteOptions {
   /// (the keyframe's pixels stretched or shrunk by more than this factor on
   /// average); infinity disables it.
   double max_resample_scale = 1.25;
+  /// Ours: a coarse quad whose largest deviation from the full-resolution
+  /// surface projects below this many pixels in the current view takes the
+  /// drape texture, as plain LOD would: there the coarse geometry is already
+  /// right and the drape is sharper than a resampled keyframe. 0 disables.
+  double sharp_px = 0.5;
   bool lighting = false;       ///< same sun as RasterOptions::lighting, on keyframes and fallback alike
   bool read_color = true;      ///< read colour back into Frame::color (after the timed span)
   bool read_depth = false;     ///< read linear depth back into Frame::depth (after the timed span)

@@ -57,6 +57,7 @@ CoarseGrid make_coarse_grid(const Heightfield& h, int quads) {
   g.has_centre.resize(n);
   g.edge_offset.resize(n);
   g.normal.resize(n);
+  g.max_deviation.resize(n);
   for (int r = 0; r < g.quads_y; ++r)
     for (int c = 0; c < g.quads_x; ++c) {
       const std::size_t q = static_cast<std::size_t>(r) * g.quads_x + c;
@@ -79,6 +80,17 @@ CoarseGrid make_coarse_grid(const Heightfield& h, int quads) {
       const double dzdx = i1 > i0 ? (h.at(i1, cj) - h.at(i0, cj)) / ((i1 - i0) * h.spacing_x) : 0.0;
       const double dzdy = j1 > j0 ? (h.at(ci, j0) - h.at(ci, j1)) / ((j1 - j0) * h.spacing_y) : 0.0;  // rows run south
       g.normal[q] = glm::normalize(glm::dvec3(-dzdx, -dzdy, 1.0));
+      // Coarse surface over the quad: triangles (a, d, e) below the diagonal, (a, e, b) above it.
+      const double za = a.z, zb = g.vertex(c + 1, r).z, zd = g.vertex(c, r + 1).z, ze = e.z;
+      double dev = 0;
+      for (int j = g.ys[r]; j <= g.ys[r + 1]; ++j)
+        for (int i = g.xs[c]; i <= g.xs[c + 1]; ++i) {
+          const double u = double(i - g.xs[c]) / (g.xs[c + 1] - g.xs[c]);
+          const double v = double(j - g.ys[r]) / (g.ys[r + 1] - g.ys[r]);
+          const double z = v >= u ? za + v * (zd - za) + u * (ze - zd) : za + u * (zb - za) + v * (ze - zb);
+          dev = std::max(dev, std::abs(double(h.at(i, j)) - z));
+        }
+      g.max_deviation[q] = dev;
     }
   return g;
 }

@@ -24,6 +24,7 @@ struct SpriteRenderer::State {
   gl::Query timer{GL_TIME_ELAPSED};
   SpriteError last;
   std::string trigger;
+  std::vector<std::uint8_t> flags;  // this frame's per-quad drape flags
 
   State(GlTerrain& s, int w, int h, const SpriteOptions& o)
       : scene(s), width(w), height(h), options(o), grid(make_coarse_grid(s.terrain().heights, o.lod_quads)),
@@ -104,6 +105,18 @@ Frame SpriteRenderer::render_as(const Camera& camera, int d) {
     triangles = scene.mesh(0).triangles;
   } else {
     const GpuMesh& coarse = scene.mesh(s.options.lod_quads);
+    if (s.options.sharp_px > 0) {
+      // Quads whose coarse geometry is already right at this distance take the drape texture.
+      const double pixel = camera.pixel_angle(s.height);
+      s.flags = s.key.fallback;
+      for (std::size_t q = 0; q < s.flags.size(); ++q) {
+        const double d = glm::length(s.grid.centre[q] - camera.position);
+        if (s.grid.max_deviation[q] < s.options.sharp_px * pixel * d) s.flags[q] = 1;
+      }
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+      glTextureSubImage2D(s.key.flags.id(), 0, 0, 0, s.grid.quads_x, s.grid.quads_y, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
+                          s.flags.data());
+    }
     s.out.bind_and_clear();
     s.pass.draw(scene, coarse, s.grid.quads_x, s.key, glm::mat4(gl::view_projection_reversed_z(camera)),
                 s.options.lighting);

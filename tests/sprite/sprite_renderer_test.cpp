@@ -52,7 +52,7 @@ TEST(SpriteRenderer, SpriteFromTheKeyframeCameraMatchesTheKeyframe) {
   GlContext gl;
   Terrain t = gentle_hills(129);
   GlTerrain scene(t);
-  SpriteRenderer r(scene, 256, 256, SpriteOptions{.lod_quads = 16});
+  SpriteRenderer r(scene, 256, 256, SpriteOptions{.lod_quads = 16, .sharp_px = 0});  // every quad from the keyframe
   for (double pitch : {-90.0, -60.0, -35.0}) {
     Camera c = tilted_view(t.heights, pitch);
     Frame key = r.render_keyframe(c);

@@ -10,6 +10,7 @@ void add_bench(CLI::App& app) {
   bench->require_subcommand(1);
   add_bench_render(*bench);
   add_bench_voxel(*bench);
+  add_bench_lodsprite(*bench);
 }
 
 }  // namespace terrasprite::cli

@@ -7,11 +7,12 @@
 #include <thread>
 
 #include "terrasprite/error.h"
+#include "terrasprite/sprite_renderer.h"
 
 namespace terrasprite::cli {
 
 std::vector<std::string> render_modes() {
-  return {"full", "lod", "voxel"};
+  return {"full", "lod", "sprite", "voxel"};
 }
 
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
@@ -34,6 +35,16 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
     s.renderer = std::move(owned);
     s.device = fmt::format("cpu voxel {}, {} threads", to_string(r->options().variant),
                            std::max(1u, std::thread::hardware_concurrency()));
+    return s;
+  }
+  if (mode == "sprite") {
+    SpriteOptions o;
+    o.lod_quads = lod_quads;
+    o.read_depth = true;
+    s.gl = std::make_unique<GlContext>();
+    s.device = s.gl->renderer();
+    s.scene = std::make_unique<GlTerrain>(terrain);
+    s.renderer = std::make_unique<SpriteRenderer>(*s.scene, width, height, o);
     return s;
   }
   throw InputError(fmt::format("--mode {}: unknown mode", mode));

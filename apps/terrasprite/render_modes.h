@@ -20,8 +20,9 @@ struct RenderStack {
   std::string device;                   // GL_RENDERER, or the CPU renderer's description
 };
 
-/// Modes: full, lod, voxel (CPU, all cores). Throws InputError for an unknown mode, DeviceError
-/// when a GL mode finds no GL device. `terrain` must outlive the stack.
+/// Modes: full, lod, sprite (LOD-sprite with default SpriteOptions and `lod_quads`), voxel
+/// (CPU, all cores). Throws InputError for an unknown mode, DeviceError when a GL mode finds no
+/// GL device. `terrain` must outlive the stack.
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
                               int height, int lod_quads, bool lighting = false);
 

@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: MIT
+// The LOD-sprite paper reproduction (Chen et al. 1999): full resolution, plain
+// LOD and LOD-sprite timed on one path, scored against the full-resolution
+// reference, plus the sweeps and figures of the paper's section 4.
+#pragma once
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "terrasprite/frame.h"
+#include "terrasprite/output_dir.h"
+#include "terrasprite/sprite_metric.h"
+#include "terrasprite/terrain.h"
+
+namespace terrasprite::cli {
+
+struct LodspriteConfig {
+  std::string path = "paper";
+  int frames = 460;
+  int width = 512, height = 512;
+  int lod_quads = 16;
+  double threshold_px = 1.0;
+  ErrorMetric metric = ErrorMetric::kPaper;
+  double max_fallback_fraction = 1.0;
+  double max_resample_scale = 1.25;
+  double sharp_px = 0.5;
+  std::vector<double> thresholds = {0.25, 0.5, 1, 2, 4, 8};
+  std::vector<int> frame_counts = {115, 230, 460, 920, 1840};
+  std::vector<int> lod_sweep = {8, 16, 32, 64};
+  int sweep_score_every = 1;  ///< sweeps score SSIM on every n-th frame
+  bool flip = true;           ///< FLIP per frame in the main run
+  /// Called with (frame, sprite frame) after scoring, e.g. to save it.
+  std::function<void(int, const Frame&)> on_sprite_frame;
+};
+
+/// Runs everything; writes figures (PNG) and plots into `out`, returns the
+/// JSON document (issue 4's keys). `label` prefixes the progress bar.
+nlohmann::json run_lodsprite(const LodspriteConfig& config, const Terrain& terrain, OutputDir& out,
+                             const std::string& label);
+
+/// "paper" | "exact" -> metric; throws InputError naming --metric.
+ErrorMetric parse_metric(const std::string& text);
+const char* metric_name(ErrorMetric m);
+
+}  // namespace terrasprite::cli

@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: MIT
+// The LOD-sprite error metric: Chen, Swan, Kuo, Kaufman, "LOD-Sprite Technique
+// for Accelerated Terrain Rendering", IEEE Visualization 1999, section 3.2:
+// Eq. (1), the angle by which the coarse surface displaces a full-resolution
+// vertex C to C' as seen from the new eye, and Eq. (2), a new keyframe when
+// the mean squared error (in pixels) exceeds the squared threshold.
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+#include "terrasprite/sprite_metric.h"
+#include "terrasprite/terrain_mesh.h"
+
+namespace terrasprite {
+namespace {
+
+// Moller-Trumbore; returns the ray parameter or NaN for a miss.
+double ray_triangle(glm::dvec3 o, glm::dvec3 d, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+  const glm::dvec3 e1 = b - a, e2 = c - a, p = glm::cross(d, e2);
+  const double det = glm::dot(e1, p);
+  if (std::abs(det) < 1e-12) return std::numeric_limits<double>::quiet_NaN();
+  const double inv = 1.0 / det;
+  const glm::dvec3 s = o - a;
+  const double u = glm::dot(s, p) * inv;
+  const double eps = 1e-9;
+  if (u < -eps || u > 1 + eps) return std::numeric_limits<double>::quiet_NaN();
+  const glm::dvec3 q = glm::cross(s, e1);
+  const double v = glm::dot(d, q) * inv;
+  if (v < -eps || u + v > 1 + eps) return std::numeric_limits<double>::quiet_NaN();
+  return glm::dot(e2, q) * inv;
+}
+
+bool inside_image(glm::dvec2 px, int w, int h) { return px.x >= 0 && px.x <= w && px.y >= 0 && px.y <= h; }
+
+// project_to_pixel with the view-projection matrix built once per frame.
+bool project(const glm::dmat4& vp, int w, int h, glm::dvec3 p, glm::dvec2& pixel) {
+  const glm::dvec4 clip = vp * glm::dvec4(p, 1.0);
+  if (clip.w <= 1e-12) return false;
+  pixel = {(clip.x / clip.w * 0.5 + 0.5) * w, (0.5 - clip.y / clip.w * 0.5) * h};
+  return true;
+}
+
+}  // namespace
+
+CoarseGrid make_coarse_grid(const Heightfield& h, int quads) {
+  assert(h.width >= 2 && h.height >= 2);
+  CoarseGrid g;
+  g.xs = quad_indices(h.width, quads);
+  g.ys = quad_indices(h.height, quads);
+  g.quads_x = int(g.xs.size()) - 1;
+  g.quads_y = int(g.ys.size()) - 1;
+  for (int j : g.ys)
+    for (int i : g.xs) g.vertices.emplace_back(h.world_x(i), h.world_y(j), double(h.at(i, j)));
+  const std::size_t n = static_cast<std::size_t>(g.quad_count());
+  g.centre.resize(n);
+  g.has_centre.resize(n);
+  g.edge_offset.resize(n);
+  g.normal.resize(n);
+  g.max_deviation.resize(n);
+  for (int r = 0; r < g.quads_y; ++r)
+    for (int c = 0; c < g.quads_x; ++c) {
+      const std::size_t q = static_cast<std::size_t>(r) * g.quads_x + c;
+      const int ci = (g.xs[c] + g.xs[c + 1]) / 2, cj = (g.ys[r] + g.ys[r + 1]) / 2;
+      g.has_centre[q] = (g.xs[c + 1] - g.xs[c] >= 2 && g.ys[r + 1] - g.ys[r] >= 2) ? 1 : 0;
+      const glm::dvec3 C(h.world_x(ci), h.world_y(cj), double(h.at(ci, cj)));
+      g.centre[q] = C;
+      // Distance from C to the diagonal edge a (NW) - e (SE) beneath it.
+      const glm::dvec3 a = g.vertex(c, r), e = g.vertex(c + 1, r + 1);
+      const glm::dvec3 ae = e - a;
+      const double t = std::clamp(glm::dot(C - a, ae) / glm::dot(ae, ae), 0.0, 1.0);
+      const glm::dvec3 closest = a + t * ae;
+      const glm::dvec2 axy(a), ae2(ae);
+      const double t2 = std::clamp(glm::dot(glm::dvec2(C) - axy, ae2) / glm::dot(ae2, ae2), 0.0, 1.0);
+      const double edge_z = a.z + t2 * ae.z;
+      const double dist = glm::length(C - closest);
+      g.edge_offset[q] = C.z >= edge_z ? dist : -dist;
+      const int i0 = std::max(ci - 1, 0), i1 = std::min(ci + 1, h.width - 1);
+      const int j0 = std::max(cj - 1, 0), j1 = std::min(cj + 1, h.height - 1);
+      const double dzdx = i1 > i0 ? (h.at(i1, cj) - h.at(i0, cj)) / ((i1 - i0) * h.spacing_x) : 0.0;
+      const double dzdy = j1 > j0 ? (h.at(ci, j0) - h.at(ci, j1)) / ((j1 - j0) * h.spacing_y) : 0.0;  // rows run south
+      g.normal[q] = glm::normalize(glm::dvec3(-dzdx, -dzdy, 1.0));
+      // Coarse surface over the quad: triangles (a, d, e) below the diagonal, (a, e, b) above it.
+      const double za = a.z, zb = g.vertex(c + 1, r).z, zd = g.vertex(c, r + 1).z, ze = e.z;
+      double dev = 0;
+      for (int j = g.ys[r]; j <= g.ys[r + 1]; ++j)
+        for (int i = g.xs[c]; i <= g.xs[c + 1]; ++i) {
+          const double u = double(i - g.xs[c]) / (g.xs[c + 1] - g.xs[c]);
+          const double v = double(j - g.ys[r]) / (g.ys[r + 1] - g.ys[r]);
+          const double z = v >= u ? za + v * (zd - za) + u * (ze - zd) : za + u * (zb - za) + v * (ze - zb);
+          dev = std::max(dev, std::abs(double(h.at(i, j)) - z));
+        }
+      g.max_deviation[q] = dev;
+    }
+  return g;
+}
+
+glm::dvec3 coarse_reprojection(const CoarseGrid& g, int col, int row, glm::dvec3 eye, glm::dvec3 point) {
+  const glm::dvec3 to = point - eye;
+  const double t_point = glm::length(to);
+  if (t_point <= 0) return point;
+  const glm::dvec3 d = to / t_point;
+  double best_t = std::numeric_limits<double>::quiet_NaN();
+  for (int r = std::max(row - 1, 0); r <= std::min(row + 1, g.quads_y - 1); ++r)
+    for (int c = std::max(col - 1, 0); c <= std::min(col + 1, g.quads_x - 1); ++c) {
+      const glm::dvec3 a = g.vertex(c, r), b = g.vertex(c + 1, r), dd = g.vertex(c, r + 1), e = g.vertex(c + 1, r + 1);
+      for (double t : {ray_triangle(eye, d, a, dd, e), ray_triangle(eye, d, a, e, b)})
+        if (t > 0 && (std::isnan(best_t) || std::abs(t - t_point) < std::abs(best_t - t_point))) best_t = t;
+    }
+  return std::isnan(best_t) ? point : eye + best_t * d;
+}
+
+KeyframeSamples make_keyframe_samples(const CoarseGrid& g, const Camera& key, int width, int height,
+                                      std::span<const std::uint8_t> visible) {
+  assert(visible.size() == static_cast<std::size_t>(g.quad_count()));
+  KeyframeSamples k;
+  k.key = key;
+  k.width = width;
+  k.height = height;
+  k.c_prime.resize(visible.size());
+  k.visible.assign(visible.begin(), visible.end());
+  const glm::dvec3 fwd = key.forward();
+  double best = -2.0;
+  k.beta_reference = key.position + fwd * (0.5 * (key.near_m + key.far_m));
+  for (int r = 0; r < g.quads_y; ++r)
+    for (int c = 0; c < g.quads_x; ++c) {
+      const std::size_t q = static_cast<std::size_t>(r) * g.quads_x + c;
+      if (!g.has_centre[q]) {
+        k.visible[q] = 0;
+        k.c_prime[q] = g.centre[q];
+        continue;
+      }
+      k.c_prime[q] = coarse_reprojection(g, c, r, key.position, g.centre[q]);
+      if (!k.visible[q]) continue;
+      const double along = glm::dot(glm::normalize(g.centre[q] - key.position), fwd);
+      if (along > best) {
+        best = along;
+        k.beta_reference = g.centre[q];
+      }
+    }
+  return k;
+}
+
+SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Camera& view) {
+  SpriteError e;
+  // Eq. (1) approximated as in the paper: one angle beta for every vertex,
+  // the angle between the two eyes seen from the sample nearest the key's
+  // view axis. In triangle (C, C', new eye) with |CC'| = b along the key ray,
+  // the displacement subtends theta = atan2(b sin(beta), d +- b cos(beta)),
+  // d = |new eye - C|, + when C' lies beyond C (C above the coarse surface).
+  const glm::dvec3 P = k.beta_reference;
+  const glm::dvec3 u1 = k.key.position - P, u2 = view.position - P;
+  const double l1 = glm::length(u1), l2 = glm::length(u2);
+  const double cos_beta = (l1 > 0 && l2 > 0) ? std::clamp(glm::dot(u1, u2) / (l1 * l2), -1.0, 1.0) : 1.0;
+  const double sin_beta = std::sqrt(std::max(0.0, 1.0 - cos_beta * cos_beta));
+  const double pixel = view.pixel_angle(k.height);
+  const glm::dmat4 vp = view.view_projection();
+  const glm::dvec3 forward = view.forward();
+  double sum_paper = 0, sum_exact = 0, sum_log_scale = 0;
+  const glm::dvec3 key_forward = k.key.forward();
+  // Pixels covering a small patch at C: dA |cos(incidence)| / (d^2 cos^3(off-axis angle)), up to constants
+  // shared by both views (same field of view and image size).
+  auto footprint = [](glm::dvec3 eye, glm::dvec3 axis, glm::dvec3 c, glm::dvec3 normal) {
+    const glm::dvec3 to = eye - c;
+    const double d = glm::length(to);
+    const double incidence = std::max(std::abs(glm::dot(normal, to / d)), 1e-3);
+    const double off_axis = std::max(glm::dot(-to / d, axis), 1e-3);
+    return incidence / (d * d * off_axis * off_axis * off_axis);
+  };
+  for (std::size_t q = 0; q < k.visible.size(); ++q) {
+    if (!g.has_centre[q]) continue;
+    const glm::dvec3& C = g.centre[q];
+    glm::dvec2 pc;
+    if (!project(vp, k.width, k.height, C, pc) || !inside_image(pc, k.width, k.height)) continue;
+    if (glm::dot(C - view.position, forward) < view.near_m) continue;
+    ++e.in_view;
+    if (!k.visible[q]) continue;
+    ++e.samples;
+    const double b = g.edge_offset[q];
+    const double d = glm::length(view.position - C);
+    const double theta = std::atan2(std::abs(b) * sin_beta, d + b * cos_beta) / pixel;
+    sum_paper += theta * theta;
+    const double area_ratio = footprint(view.position, forward, C, g.normal[q]) /
+                              footprint(k.key.position, key_forward, C, g.normal[q]);
+    sum_log_scale += std::abs(0.5 * std::log(area_ratio));
+    glm::dvec2 pp;
+    if (project(vp, k.width, k.height, k.c_prime[q], pp)) {
+      const glm::dvec2 dp = pp - pc;
+      sum_exact += glm::dot(dp, dp);
+    }
+  }
+  if (e.samples > 0) {
+    e.paper_px = std::sqrt(sum_paper / e.samples);
+    e.exact_px = std::sqrt(sum_exact / e.samples);
+    e.resample_scale = std::exp(sum_log_scale / e.samples);
+  }
+  return e;
+}
+
+}  // namespace terrasprite

@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: MIT
+// Keyframes of the LOD-sprite technique (Chen et al. 1999, sections 3.1 and
+// 3.3): render the full-resolution mesh straight into textures, then decide
+// from its depth buffer which coarse polygons the keyframe can texture.
+#include "sprite/keyframe.h"
+
+
+namespace terrasprite {
+
+Keyframe::Keyframe(int width, int height, const CoarseGrid& grid) : target(width, height) {
+  glTextureStorage2D(flags.id(), 1, GL_R8UI, grid.quads_x, grid.quads_y);
+  glTextureParameteri(flags.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(flags.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  fallback.assign(static_cast<std::size_t>(grid.quad_count()), 1);
+}
+
+void Keyframe::capture(GlTerrain::Impl& scene, const CoarseGrid& grid, const Camera& c, bool lighting) {
+  camera = c;
+  view_projection = glm::mat4(gl::view_projection_reversed_z(c));
+  target.bind_and_clear();
+  // Sky is transparent black: sprite fragments tell keyframe sky from
+  // terrain, and bilinear taps across a silhouette stay premultiplied.
+  glClearColor(0.f, 0.f, 0.f, 0.f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  scene.draw(scene.mesh(0), view_projection, lighting);
+
+  const std::vector<float> depth = target.read_depth(c.near_m, c.far_m);
+  const DepthView dv{depth, target.width(), target.height()};
+  const int vx = grid.quads_x + 1, vy = grid.quads_y + 1;
+  std::vector<std::uint8_t> vertex_visible(static_cast<std::size_t>(vx) * vy);
+  for (std::size_t v = 0; v < vertex_visible.size(); ++v)
+    vertex_visible[v] = visible_in_keyframe(c, dv, grid.vertices[v]) ? 1 : 0;
+  std::vector<std::uint8_t> centre_visible(static_cast<std::size_t>(grid.quad_count()));
+  for (int r = 0; r < grid.quads_y; ++r)
+    for (int q0 = 0; q0 < grid.quads_x; ++q0) {
+      const std::size_t q = static_cast<std::size_t>(r) * grid.quads_x + q0;
+      const bool centre = grid.has_centre[q] && visible_in_keyframe(c, dv, grid.centre[q]);
+      centre_visible[q] = centre ? 1 : 0;
+      // Paper 3.3: a polygon with any vertex hidden or outside the keyframe
+      // takes the original texture. The centre vertex counts too: a ridge
+      // inside the quad can hide its middle while its corners show.
+      const bool corners = vertex_visible[r * vx + q0] && vertex_visible[r * vx + q0 + 1] &&
+                           vertex_visible[(r + 1) * vx + q0] && vertex_visible[(r + 1) * vx + q0 + 1];
+      fallback[q] = (corners && (centre || !grid.has_centre[q])) ? 0 : 1;
+    }
+  samples = make_keyframe_samples(grid, c, target.width(), target.height(), centre_visible);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(flags.id(), 0, 0, 0, grid.quads_x, grid.quads_y, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
+                      fallback.data());
+  valid = true;
+}
+
+}  // namespace terrasprite

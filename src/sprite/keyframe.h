@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: MIT
+// A LOD-sprite keyframe: the full-resolution render kept as textures, its
+// camera, and what the sprite frames need to know about it.
+#pragma once
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "gl/render_target.h"
+#include "raster/gl_terrain.h"
+#include "terrasprite/sprite_metric.h"
+
+namespace terrasprite {
+
+struct Keyframe {
+  gl::RenderTarget target;              // colour (transparent black on sky) + depth textures, sampled by sprite frames
+  gl::Texture flags{GL_TEXTURE_2D};     // R8UI, quads_x x quads_y: 1 = quad takes the drape texture
+  Camera camera;
+  glm::mat4 view_projection{1.f};       // reversed-Z GL matrix the keyframe was drawn with
+  KeyframeSamples samples;              // the error metric's per-quad C' and visibility
+  std::vector<std::uint8_t> fallback;   // per quad, as uploaded to `flags`
+  bool valid = false;
+
+  Keyframe(int width, int height, const CoarseGrid& grid);
+  /// Renders `camera` from the full-resolution mesh into the textures, reads
+  /// the depth back, and classifies the coarse vertices and quad centres
+  /// (visible, hidden, outside the view). Drains the pipeline (depth read-back).
+  void capture(GlTerrain::Impl& scene, const CoarseGrid& grid, const Camera& camera, bool lighting);
+};
+
+}  // namespace terrasprite

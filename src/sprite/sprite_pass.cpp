@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: MIT
+// Projective texture mapping of the keyframe onto the coarse mesh (Chen et
+// al. 1999, section 3.1), with the visibility fallback of section 3.3.
+#include "sprite/sprite_pass.h"
+
+#include <glm/gtc/type_ptr.hpp>
+#include <string>
+
+namespace terrasprite {
+namespace {
+
+const char* kVertex = R"(#version 450 core
+layout(location = 0) in vec3 a_pos;
+layout(location = 1) in vec3 a_normal;
+uniform mat4 u_vp;
+uniform mat4 u_key_vp;
+out vec4 v_key;     // keyframe clip coordinates, divided per fragment
+out vec2 v_xy;
+out vec3 v_normal;
+void main() {
+  v_key = u_key_vp * vec4(a_pos, 1.0);
+  v_xy = a_pos.xy;
+  v_normal = a_normal;
+  gl_Position = u_vp * vec4(a_pos, 1.0);
+}
+)";
+
+const char* kFragment = R"(
+in vec4 v_key;
+in vec2 v_xy;
+in vec3 v_normal;
+uniform sampler2D u_key;
+uniform sampler2D u_drape;
+uniform usampler2D u_flags;
+uniform int u_qx;
+uniform int u_lighting;
+out vec4 o_color;
+void main() {
+  // Drape derivatives here, in uniform control flow.
+  vec2 uv_drape = drape_uv(v_xy);
+  vec2 gx = dFdx(uv_drape), gy = dFdy(uv_drape);
+  // Two triangles per coarse quad, in row order: the primitive names the quad.
+  int q = gl_PrimitiveID >> 1;
+  if (texelFetch(u_flags, ivec2(q % u_qx, q / u_qx), 0).r == 0u && v_key.w > 0.0) {
+    vec2 uv = v_key.xy / v_key.w * 0.5 + 0.5;
+    if (uv == clamp(uv, 0.0, 1.0)) {
+      // Keyframe sky (alpha 0) behind a coarse point means the full surface
+      // is not there: the coarse mesh sticks out past the true silhouette.
+      vec4 k = texture(u_key, uv);
+      if (k.a < 0.5) discard;
+      o_color = vec4(k.rgb / k.a, 1.0);  // undo the blend with sky at silhouette texels
+      return;
+    }
+  }
+  // Anisotropic filtering by hand: up to 8 trilinear taps along the
+  // footprint's major axis. llvmpipe's own anisotropic path (any max
+  // anisotropy > 1) spent 5-12 s on one frame of the paper path; the sampler
+  // on this unit is trilinear only.
+  bool x_major = dot(gx, gx) >= dot(gy, gy);
+  vec2 major = x_major ? gx : gy, minor = x_major ? gy : gx;
+  float n = clamp(ceil(length(major) / max(length(minor), 1e-20)), 1.0, 8.0);
+  vec4 c = vec4(0.0);
+  for (float i = 0.0; i < n; i += 1.0)
+    c += textureGrad(u_drape, uv_drape + major * ((i + 0.5) / n - 0.5), major / n, minor);
+  c /= n;
+  if (u_lighting != 0) {
+    const vec3 sun = normalize(vec3(-0.5, 0.5, 0.7071));
+    c.rgb *= 0.45 + 0.75 * max(dot(normalize(v_normal), sun), 0.0);
+  }
+  o_color = vec4(c.rgb, 1.0);
+}
+)";
+
+}  // namespace
+
+SpritePass::SpritePass()
+    : program_(gl::link_program(kVertex, std::string("#version 450 core\n") + kDrapeUvGlsl + kFragment)) {
+  glCreateSamplers(1, &drape_sampler_);
+  glSamplerParameteri(drape_sampler_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glSamplerParameteri(drape_sampler_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glSamplerParameteri(drape_sampler_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glSamplerParameteri(drape_sampler_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  const GLuint p = program_.id();
+  u_vp_ = glGetUniformLocation(p, "u_vp");
+  u_key_vp_ = glGetUniformLocation(p, "u_key_vp");
+  u_uv_ = glGetUniformLocation(p, "u_uv");
+  u_qx_ = glGetUniformLocation(p, "u_qx");
+  u_lighting_ = glGetUniformLocation(p, "u_lighting");
+  glProgramUniform1i(p, glGetUniformLocation(p, "u_key"), 0);
+  glProgramUniform1i(p, glGetUniformLocation(p, "u_drape"), 1);
+  glProgramUniform1i(p, glGetUniformLocation(p, "u_flags"), 2);
+}
+
+void SpritePass::draw(GlTerrain::Impl& scene, const GpuMesh& coarse, int quads_x, const Keyframe& key,
+                      const glm::mat4& vp, bool lighting) {
+  const GLuint p = program_.id();
+  glUseProgram(p);
+  glUniformMatrix4fv(u_vp_, 1, GL_FALSE, glm::value_ptr(vp));
+  glUniformMatrix4fv(u_key_vp_, 1, GL_FALSE, glm::value_ptr(key.view_projection));
+  glUniform4fv(u_uv_, 1, glm::value_ptr(scene.uv_transform()));
+  glUniform1i(u_qx_, quads_x);
+  glUniform1i(u_lighting_, lighting ? 1 : 0);
+  glBindTextureUnit(0, key.target.color_texture());
+  glBindTextureUnit(1, scene.drape.id());
+  glBindSampler(1, drape_sampler_);
+  glBindTextureUnit(2, key.flags.id());
+  glBindVertexArray(coarse.vao.id());
+  glDrawElements(GL_TRIANGLES, coarse.index_count, GL_UNSIGNED_INT, nullptr);
+  glBindSampler(1, 0);
+}
+
+SpritePass::~SpritePass() { glDeleteSamplers(1, &drape_sampler_); }
+
+}  // namespace terrasprite

@@ -1,0 +1,158 @@
+// SPDX-License-Identifier: MIT
+// The LOD-sprite error metric (Eq. 1-2) on the CPU: still cameras, an
+// analytic bump, growth with movement.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "terrasprite/camera_path.h"
+#include "terrasprite/sprite_metric.h"
+#include "terrasprite/terrain_gen.h"
+
+namespace terrasprite {
+namespace {
+
+Heightfield flat(int n, double spacing) {
+  Heightfield h;
+  h.width = h.height = n;
+  h.spacing_x = h.spacing_y = spacing;
+  h.heights.assign(static_cast<std::size_t>(n) * n, 0.f);
+  h.name = "flat";
+  return h;
+}
+
+std::vector<std::uint8_t> all_visible(const CoarseGrid& g) { return std::vector<std::uint8_t>(g.quad_count(), 1); }
+
+Camera overhead(glm::dvec3 above, double height) {
+  Camera c = Camera::look_at(above + glm::dvec3(0, 0, height), above, 60.0, 1.0);
+  c.near_m = 1.0;
+  c.far_m = 1e5;
+  return c;
+}
+
+TEST(CoarseGrid, CentresAreFullResolutionVerticesInsideQuads) {
+  Heightfield h = flat(65, 10.0);
+  CoarseGrid g = make_coarse_grid(h, 4);
+  ASSERT_EQ(g.quads_x, 4);
+  ASSERT_EQ(g.quad_count(), 16);
+  EXPECT_EQ(g.xs, (std::vector<int>{0, 16, 32, 48, 64}));
+  EXPECT_DOUBLE_EQ(g.centre[0].x, h.world_x(8));
+  EXPECT_DOUBLE_EQ(g.centre[0].y, h.world_y(8));
+  for (auto b : g.has_centre) EXPECT_EQ(b, 1);
+  // One sample per quad: no vertex strictly inside.
+  CoarseGrid fine = make_coarse_grid(flat(5, 1.0), 4);
+  for (auto b : fine.has_centre) EXPECT_EQ(b, 0);
+}
+
+TEST(ErrorMetric, StillCameraHasZeroError) {
+  SynthOptions so;
+  so.size = 65;
+  Heightfield h = synthesize_terrain(so);
+  CoarseGrid g = make_coarse_grid(h, 4);
+  for (int frame : {0, 100, 250, 400}) {
+    Camera key = paper_path(h, 460, 1.0)[frame];
+    KeyframeSamples k = make_keyframe_samples(g, key, 256, 256, all_visible(g));
+    SpriteError e = sprite_error(g, k, key);
+    EXPECT_GT(e.samples, 0) << frame;
+    EXPECT_NEAR(e.paper_px, 0.0, 1e-5) << frame;  // acos rounding of beta
+    EXPECT_NEAR(e.exact_px, 0.0, 1e-6) << frame;
+  }
+}
+
+// A flat plane with one raised full-resolution sample at a quad centre C,
+// seen straight down by the keyframe: C' lies exactly b below C. From a new
+// eye looking at C, the displacement subtends the angle between C and C'.
+TEST(ErrorMetric, BumpGivesTheAnalyticPixelError) {
+  Heightfield h = flat(65, 10.0);
+  const double b = 20.0;
+  h.at(24, 24) = float(b);  // centre of quad (1, 1): samples 16..32
+  CoarseGrid g = make_coarse_grid(h, 4);
+  const int q = 1 * 4 + 1;
+  const glm::dvec3 C = g.centre[q];
+  ASSERT_DOUBLE_EQ(C.z, b);
+  EXPECT_NEAR(g.edge_offset[q], b, 1e-9);
+  const int size = 512;
+  Camera key = overhead(C, 3000.0);
+  KeyframeSamples k = make_keyframe_samples(g, key, size, size, all_visible(g));
+  EXPECT_NEAR(glm::length(k.c_prime[q] - (C - glm::dvec3(0, 0, b))), 0.0, 1e-6);
+
+  for (double side : {200.0, 800.0, 2000.0}) {
+    Camera view = Camera::look_at(C + glm::dvec3(side, 0.3 * side, 2500.0), C, 60.0, 1.0);
+    view.near_m = 1.0;
+    view.far_m = 1e5;
+    SpriteError e = sprite_error(g, k, view);
+    ASSERT_EQ(e.samples, 16) << side;  // every centre in view, all visible
+    const glm::dvec3 a = glm::normalize(C - view.position);
+    const glm::dvec3 a2 = glm::normalize(C - glm::dvec3(0, 0, b) - view.position);
+    const double theta = std::acos(std::clamp(glm::dot(a, a2), -1.0, 1.0));
+    // Paper: angle / pixel angle. Only this quad errs, so RMS = its error / sqrt(16).
+    const double paper = theta / view.pixel_angle(size);
+    EXPECT_NEAR(e.paper_px * 4.0, paper, 1e-6 * paper) << side;
+    // Exact: C projects to the image centre, C' at focal length * tan(theta).
+    const double focal_px = 0.5 * size / std::tan(glm::radians(view.fov_y_deg) * 0.5);
+    const double exact = focal_px * std::tan(theta);
+    EXPECT_NEAR(e.exact_px * 4.0, exact, 1e-4 * exact) << side;
+    EXPECT_GT(exact, 0.1);
+  }
+}
+
+TEST(ErrorMetric, GrowsWithCameraMovement) {
+  SynthOptions so;
+  so.size = 129;
+  Heightfield h = synthesize_terrain(so);
+  CoarseGrid g = make_coarse_grid(h, 16);
+  auto path = paper_path(h, 460, 1.0);
+  for (int start : {30, 150, 300, 380}) {
+    KeyframeSamples k = make_keyframe_samples(g, path[start], 512, 512, all_visible(g));
+    double prev_paper = 0, prev_exact = 0;
+    for (int step : {1, 3, 6, 12}) {
+      SpriteError e = sprite_error(g, k, path[start + step]);
+      EXPECT_GT(e.paper_px, prev_paper) << start << "+" << step;
+      EXPECT_GT(e.exact_px, prev_exact) << start << "+" << step;
+      prev_paper = e.paper_px;
+      prev_exact = e.exact_px;
+    }
+  }
+}
+
+TEST(ErrorMetric, OnlyVisibleCentresCount) {
+  Heightfield h = flat(65, 10.0);
+  h.at(24, 24) = 20.f;
+  CoarseGrid g = make_coarse_grid(h, 4);
+  auto vis = all_visible(g);
+  vis[5] = 0;  // the bump's quad hidden in the keyframe
+  Camera key = overhead(g.centre[5], 3000.0);
+  KeyframeSamples k = make_keyframe_samples(g, key, 256, 256, vis);
+  Camera view = Camera::look_at(g.centre[5] + glm::dvec3(800, 0, 2500), g.centre[5], 60.0, 1.0);
+  SpriteError e = sprite_error(g, k, view);
+  EXPECT_EQ(e.samples, 15);
+  EXPECT_EQ(e.in_view, 16);
+  EXPECT_NEAR(e.fallback_fraction(), 1.0 / 16, 1e-12);
+  EXPECT_NEAR(e.exact_px, 0.0, 1e-9);
+}
+
+TEST(ErrorMetric, ResampleScaleIsTheChangeInPixelFootprint) {
+  Heightfield h = flat(65, 10.0);
+  CoarseGrid g = make_coarse_grid(h, 4);
+  Camera key = overhead(glm::dvec3(0), 1000.0);
+  KeyframeSamples k = make_keyframe_samples(g, key, 256, 256, all_visible(g));
+  EXPECT_NEAR(sprite_error(g, k, key).resample_scale, 1.0, 1e-9);
+  // Straight down over a plane every pixel's footprint grows with the height:
+  // twice as high, each keyframe pixel covers half as many new pixels per side.
+  EXPECT_NEAR(sprite_error(g, k, overhead(glm::dvec3(0), 2000.0)).resample_scale, 2.0, 1e-6);
+  EXPECT_NEAR(sprite_error(g, k, overhead(glm::dvec3(0), 500.0)).resample_scale, 2.0, 1e-6);
+}
+
+TEST(Visibility, DepthBufferHidesPointsBehindNearerSurface) {
+  Camera key = overhead(glm::dvec3(0), 1000.0);
+  std::vector<float> depth(64 * 64, 1000.f);
+  DepthView dv{depth, 64, 64};
+  EXPECT_TRUE(visible_in_keyframe(key, dv, glm::dvec3(0, 0, 0)));
+  EXPECT_TRUE(visible_in_keyframe(key, dv, glm::dvec3(10, 0, 100)));     // in front of the surface
+  EXPECT_FALSE(visible_in_keyframe(key, dv, glm::dvec3(10, 0, -100)));   // behind it
+  EXPECT_FALSE(visible_in_keyframe(key, dv, glm::dvec3(5000, 0, 0)));    // outside the view
+  EXPECT_FALSE(visible_in_keyframe(key, dv, glm::dvec3(0, 0, 2000)));    // behind the eye
+}
+
+}  // namespace
+}  // namespace terrasprite

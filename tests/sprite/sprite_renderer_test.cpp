@@ -1,0 +1,175 @@
+// SPDX-License-Identifier: MIT
+// The LOD-sprite renderer on GL: a sprite from the keyframe's own camera,
+// the visibility fallback (occlusion and the keyframe frustum), the trigger.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "terrasprite/camera_path.h"
+#include "terrasprite/gl_context.h"
+#include "terrasprite/sprite_renderer.h"
+#include "terrasprite/terrain_gen.h"
+
+namespace terrasprite {
+namespace {
+
+double psnr(const Image& a, const Image& b) {
+  double se = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < a.rgba.size(); ++i) {
+    if (i % 4 == 3) continue;
+    const double d = double(a.rgba[i]) - double(b.rgba[i]);
+    se += d * d;
+    ++n;
+  }
+  return se == 0 ? INFINITY : 10.0 * std::log10(255.0 * 255.0 / (se / n));
+}
+
+Terrain gentle_hills(int n) {
+  Terrain t;
+  Heightfield& h = t.heights;
+  h.width = h.height = n;
+  h.spacing_x = h.spacing_y = 10.0;
+  h.name = "hills";
+  h.heights.resize(static_cast<std::size_t>(n) * n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) h.at(i, j) = float(30.0 * std::sin(i * 0.07) * std::cos(j * 0.05));
+  t.texture = derived_texture(h, 2 * (n - 1), 2 * (n - 1));
+  return t;
+}
+
+Camera tilted_view(const Heightfield& h, double pitch_deg, glm::dvec3 offset = glm::dvec3(0)) {
+  const double E = h.extent();
+  Camera c = Camera::look_at(glm::dvec3(0, -E * std::cos(glm::radians(-pitch_deg)), E * std::sin(glm::radians(-pitch_deg))) + offset,
+                             offset, 60.0, 1.0);
+  fit_clip_planes(c, h);
+  return c;
+}
+
+bool is_sky(const std::uint8_t* p) { return p[0] == kSkyColor[0] && p[1] == kSkyColor[1] && p[2] == kSkyColor[2]; }
+
+TEST(SpriteRenderer, SpriteFromTheKeyframeCameraMatchesTheKeyframe) {
+  GlContext gl;
+  Terrain t = gentle_hills(129);
+  GlTerrain scene(t);
+  SpriteRenderer r(scene, 256, 256, SpriteOptions{.lod_quads = 16, .sharp_px = 0});  // every quad from the keyframe
+  for (double pitch : {-90.0, -60.0, -35.0}) {
+    Camera c = tilted_view(t.heights, pitch);
+    Frame key = r.render_keyframe(c);
+    Frame sprite = r.render_sprite(c);
+    EXPECT_EQ(key.cls, "key");
+    EXPECT_EQ(sprite.cls, "sprite");
+    EXPECT_GT(psnr(key.color, sprite.color), 40.0) << pitch;
+    EXPECT_LT(sprite.triangles, key.triangles);
+  }
+}
+
+// A wall-like ridge across the terrain hides the valley north of it from a
+// low keyframe camera in the south. Seen from above, the valley must show the
+// drape texture (green), not keyframe pixels smeared from the ridge (red).
+TEST(SpriteRenderer, ValleyHiddenByARidgeTakesTheOriginalTexture) {
+  GlContext gl;
+  Terrain t;
+  Heightfield& h = t.heights;
+  h.width = h.height = 65;
+  h.spacing_x = h.spacing_y = 10.0;
+  h.name = "ridge";
+  h.heights.assign(65 * 65, 0.f);
+  for (int j = 28; j <= 36; ++j)
+    for (int i = 0; i < 65; ++i) h.at(i, j) = 150.f;
+  t.texture = Image(64, 64);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      std::uint8_t* p = t.texture.px(x, y);
+      const bool ridge = y >= 26 && y <= 38;
+      p[0] = ridge ? 230 : 20;
+      p[1] = ridge ? 20 : 200;
+      p[2] = 20;
+      p[3] = 255;
+    }
+  GlTerrain scene(t);
+  SpriteRenderer r(scene, 256, 256, SpriteOptions{.lod_quads = 8});
+  Camera key = Camera::look_at({0, -700, 40}, {0, 0, 100}, 60.0, 1.0);
+  fit_clip_planes(key, h);
+  r.render_keyframe(key);
+  // Valley quads (coarse rows 0-2, north of the ridge) are hidden: fallback.
+  const auto& fb = r.fallback_quads();
+  for (int row = 0; row <= 2; ++row)
+    for (int col = 2; col < 6; ++col) EXPECT_EQ(fb[row * 8 + col], 1) << row << "," << col;
+  // South plain quads near the view centre are visible: keyframe texture.
+  EXPECT_EQ(fb[6 * 8 + 3], 0);
+
+  Camera above = Camera::look_at({0, -100, 900}, {0, 150, 0}, 60.0, 1.0);
+  fit_clip_planes(above, h);
+  Frame f = r.render_sprite(above);
+  int checked = 0;
+  for (double y = 180; y <= 300; y += 20)
+    for (double x = -150; x <= 150; x += 50) {
+      glm::dvec2 px;
+      ASSERT_TRUE(project_to_pixel(above, 256, 256, {x, y, 0}, px));
+      if (px.x < 1 || px.y < 1 || px.x > 255 || px.y > 255) continue;
+      const std::uint8_t* p = f.color.px(int(px.x), int(px.y));
+      EXPECT_GT(p[1], 150) << "valley point " << x << "," << y << " not green";
+      EXPECT_LT(p[0], 80) << "valley point " << x << "," << y << " shows smeared ridge pixels";
+      ++checked;
+    }
+  EXPECT_GT(checked, 10);
+}
+
+// The keyframe sees only the west of the terrain; a view of the east, all
+// terrain, is textured everywhere (never sky or black), like plain LOD.
+TEST(SpriteRenderer, GeometryFromOutsideTheKeyframeIsTextured) {
+  GlContext gl;
+  Terrain t = gentle_hills(129);
+  GlTerrain scene(t);
+  SpriteRenderer r(scene, 128, 128, SpriteOptions{.lod_quads = 16});
+  MeshRenderer lod(scene, 128, 128, 16);
+  Camera west = Camera::look_at({-400, 0, 500}, {-400, 0, 0}, 60.0, 1.0);
+  Camera east = Camera::look_at({350, 0, 400}, {350, 0, 0}, 60.0, 1.0);
+  fit_clip_planes(west, t.heights);
+  fit_clip_planes(east, t.heights);
+  r.render_keyframe(west);
+  Frame f = r.render_sprite(east);
+  int blank = 0;
+  for (int y = 0; y < 128; ++y)
+    for (int x = 0; x < 128; ++x) {
+      const std::uint8_t* p = f.color.px(x, y);
+      if (is_sky(p) || (p[0] + p[1] + p[2]) == 0) ++blank;
+    }
+  EXPECT_EQ(blank, 0);
+  EXPECT_GT(psnr(lod.render(east).color, f.color), 35.0);
+}
+
+TEST(SpriteRenderer, KeyframeTriggerFiresWhenTheThresholdIsExceededAndNotBefore) {
+  GlContext gl;
+  SynthOptions so;
+  so.size = 129;
+  Terrain t;
+  t.heights = synthesize_terrain(so);
+  t.texture = derived_texture(t.heights, 256, 256);
+  GlTerrain scene(t);
+  for (ErrorMetric m : {ErrorMetric::kPaper, ErrorMetric::kExact}) {
+    SpriteOptions o{.lod_quads = 16, .threshold_px = 0.5, .metric = m, .max_resample_scale = INFINITY, .read_color = false};
+    SpriteRenderer r(scene, 128, 128, o);
+    auto path = paper_path(t.heights, 120, 1.0);
+    int keys = 0;
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      const SpriteError before = r.error(path[i]);
+      Frame f = r.render(path[i]);
+      const bool expect_key = i == 0 || before.value(m) > o.threshold_px;
+      EXPECT_EQ(f.cls, expect_key ? "key" : "sprite") << i << " error " << before.value(m);
+      if (i > 0) {
+        EXPECT_DOUBLE_EQ(r.last_error().value(m), before.value(m));
+      }
+      if (f.cls == "sprite") {
+        EXPECT_LE(r.last_error().value(m), o.threshold_px);
+      }
+      keys += f.cls == "key";
+    }
+    EXPECT_GT(keys, 1);
+    EXPECT_LT(keys, 120);
+  }
+}
+
+}  // namespace
+}  // namespace terrasprite

@@ -18,11 +18,7 @@
 #include <cmath>
 #include <cstring>
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define TS_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define TS_CLONES
-#endif
+#include "quality/clones.h"
 
 namespace terrasprite::quality::detail {
 
@@ -100,8 +96,8 @@ inline void convolve(int n, const float* w, int taps, float* out, At at, At1 at1
 
 }  // namespace
 
-TS_CLONES void filter_row(const float* in, int n, const float* w, int taps, float* out,
-                          int symmetry) {
+TS_CLONES_V3 void filter_row(const float* in, int n, const float* w, int taps, float* out,
+                             int symmetry) {
   auto at = [in](int k, int x) { return load(in + x + k); };
   auto at1 = [in](int k, int x) { return in[x + k]; };
   if (symmetry == kSymmetric)
@@ -112,8 +108,8 @@ TS_CLONES void filter_row(const float* in, int n, const float* w, int taps, floa
     convolve<0>(n, w, taps, out, at, at1);
 }
 
-TS_CLONES void filter_column(const float* const* rows, int taps, const float* w, int n, float* out,
-                             int symmetry) {
+TS_CLONES_V3 void filter_column(const float* const* rows, int taps, const float* w, int n,
+                                float* out, int symmetry) {
   auto at = [rows](int k, int x) { return load(rows[k] + x); };
   auto at1 = [rows](int k, int x) { return rows[k][x]; };
   if (symmetry == kSymmetric)

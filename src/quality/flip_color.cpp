@@ -21,13 +21,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "quality/clones.h"
 #include "quality/fast_math.h"
-
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define TS_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define TS_CLONES
-#endif
 
 namespace terrasprite::quality::detail {
 
@@ -107,8 +102,8 @@ FlipColor::FlipColor() {
 // table, any channel layout) into a small SoA buffer, then the matrix in a
 // plain loop that GCC vectorises (one interleaved scalar loop did neither and
 // cost a fifth of FLIP's instructions).
-TS_CLONES void FlipColor::to_ycxcz_row(const std::uint8_t* src, int channels, int width, float* yy,
-                                       float* cx, float* cz, float* lum) const {
+TS_CLONES_V3 void FlipColor::to_ycxcz_row(const std::uint8_t* src, int channels, int width,
+                                          float* yy, float* cx, float* cz, float* lum) const {
   const float m0 = to_ycxcz_[0], m1 = to_ycxcz_[1], m2 = to_ycxcz_[2], m3 = to_ycxcz_[3],
               m4 = to_ycxcz_[4], m5 = to_ycxcz_[5], m6 = to_ycxcz_[6], m7 = to_ycxcz_[7],
               m8 = to_ycxcz_[8];
@@ -134,8 +129,8 @@ TS_CLONES void FlipColor::to_ycxcz_row(const std::uint8_t* src, int channels, in
   }
 }
 
-TS_CLONES void FlipColor::error_row(const FlipRows& ref, const FlipRows& test, float w1, float w2,
-                                    int width, float* out) const {
+TS_CLONES_V3 void FlipColor::error_row(const FlipRows& ref, const FlipRows& test, float w1,
+                                       float w2, int width, float* out) const {
   const float cmax = static_cast<float>(cmax_);
   const float pccmax = kPc * cmax;
   const float inv_sqrt2 = static_cast<float>(1 / std::numbers::sqrt2);

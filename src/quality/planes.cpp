@@ -5,15 +5,14 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include "quality/clones.h"
 #include "terrasprite/error.h"
 
 // Built for AVX2 and the baseline (as filter.cpp): the 8-bit -> float luma
 // loop only vectorises well with AVX2's wider shuffles.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define TS_CLONES __attribute__((target_clones("avx2", "default")))
 #define TS_INLINE __attribute__((always_inline)) inline
 #else
-#define TS_CLONES
 #define TS_INLINE inline
 #endif
 
@@ -55,7 +54,8 @@ namespace {
 // One row of a plane, with the channel count and the channel fixed at compile
 // time so the loop is a plain vectorisable gather-and-scale.
 template <int C>
-TS_INLINE void extract_row(const std::uint8_t* __restrict src, int width, Channel channel, float* __restrict dst) {
+TS_INLINE void extract_row(const std::uint8_t* __restrict src, int width, Channel channel,
+                           float* __restrict dst) {
   const int k = C == 1 ? 0 : (channel == Channel::kG ? 1 : channel == Channel::kB ? 2 : 0);
   if (channel == Channel::kLuma && C != 1) {
     for (int x = 0; x < width; ++x) {
@@ -72,7 +72,7 @@ TS_INLINE void extract_row(const std::uint8_t* __restrict src, int width, Channe
 
 }  // namespace
 
-TS_CLONES void extract_row(const ImageView& image, Channel channel, int y, float* dst) {
+TS_CLONES_AVX2 void extract_row(const ImageView& image, Channel channel, int y, float* dst) {
   switch (image.channels) {
     case 1:
       extract_row<1>(image.row(y), image.width, channel, dst);

@@ -6,11 +6,7 @@
 // adds in the same order.
 #include "quality/row_sum.h"
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define TS_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define TS_CLONES
-#endif
+#include "quality/clones.h"
 
 namespace terrasprite::quality::detail {
 
@@ -21,7 +17,7 @@ typedef float v4f __attribute__((vector_size(16)));
 typedef std::int32_t v4i __attribute__((vector_size(16)));
 }  // namespace
 
-TS_CLONES double row_sum(const float* v, const std::uint8_t* mask, int n) {
+TS_CLONES_AVX2 double row_sum(const float* v, const std::uint8_t* mask, int n) {
   v4d a = {}, b = {};
   int i = 0;
   for (; i + 8 <= n; i += 8) {

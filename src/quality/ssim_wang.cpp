@@ -15,15 +15,10 @@
 #include <algorithm>
 #include <array>
 
+#include "quality/clones.h"
 #include "quality/filter.h"
 #include "quality/ssim_core.h"
 #include "terrasprite/error.h"
-
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define TS_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define TS_CLONES
-#endif
 
 namespace terrasprite::quality::detail {
 
@@ -44,9 +39,9 @@ constexpr float kC2 = (0.03f * 255) * (0.03f * 255);
 
 // The per-pixel loops, built for AVX2 and the baseline like filter.cpp's, with
 // restrict pointers so GCC vectorises them without alias checks.
-TS_CLONES void products(const float* __restrict a, const float* __restrict b, int n,
-                        float* __restrict x, float* __restrict y, float* __restrict sq,
-                        float* __restrict xy) {
+TS_CLONES_AVX2 void products(const float* __restrict a, const float* __restrict b, int n,
+                             float* __restrict x, float* __restrict y, float* __restrict sq,
+                             float* __restrict xy) {
   for (int i = 0; i < n; ++i) {
     const float p = a[i] - kShift, q = b[i] - kShift;
     x[i] = p, y[i] = q, sq[i] = p * p + q * q, xy[i] = p * q;
@@ -58,9 +53,9 @@ typedef double v4d __attribute__((vector_size(32)));
 typedef float v4f __attribute__((vector_size(16)));
 
 // SSIM and its contrast-structure term from the filtered moments (Eq. 13).
-TS_CLONES void ssim_terms(const float* __restrict m1, const float* __restrict m2,
-                          const float* __restrict esq, const float* __restrict e12, int n,
-                          float* __restrict s, float* __restrict c) {
+TS_CLONES_AVX2 void ssim_terms(const float* __restrict m1, const float* __restrict m2,
+                               const float* __restrict esq, const float* __restrict e12, int n,
+                               float* __restrict s, float* __restrict c) {
   for (int i = 0; i < n; ++i) {
     const float mu1 = m1[i] + kShift, mu2 = m2[i] + kShift;
     // Bracketed so that x == y gives exactly 2 (E[x^2] - mu^2) == 2 cov: SSIM 1.
@@ -76,8 +71,8 @@ TS_CLONES void ssim_terms(const float* __restrict m1, const float* __restrict m2
 // of scalar double adds (GCC may not reorder it without -ffast-math), which
 // cost as much as Eq. 13 itself; four-lane double accumulators give the same
 // sums up to double rounding (~1e-16 relative).
-TS_CLONES void row_sums(const float* __restrict s, const float* __restrict c, int n, double& ss,
-                        double& cs) {
+TS_CLONES_AVX2 void row_sums(const float* __restrict s, const float* __restrict c, int n,
+                             double& ss, double& cs) {
   v4d as = {}, ac = {};
   int i = 0;
   for (; i + 4 <= n; i += 4) {

@@ -1,0 +1,14 @@
+// SPDX-License-Identifier: MIT
+// Internal to quality/: function multi-versioning, so default builds stay
+// portable (no -march=native) while AVX2 machines run vector clones chosen at
+// load time. TS_CLONES_AVX2: AVX2 + baseline; TS_CLONES_V3: x86-64-v3 (AVX2 +
+// FMA) + baseline, for loops that gain from fused multiply-adds.
+#pragma once
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define TS_CLONES_AVX2 __attribute__((target_clones("avx2", "default")))
+#define TS_CLONES_V3 __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define TS_CLONES_AVX2
+#define TS_CLONES_V3
+#endif

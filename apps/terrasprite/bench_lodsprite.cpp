@@ -16,7 +16,8 @@ std::vector<T> list_of(const std::string& text, const char* option) {
   std::vector<T> out;
   for (double v : parse_list(text, option)) {
     if constexpr (std::is_integral_v<T>) {
-      if (v != double(T(v))) throw InputError(fmt::format("{} {}: {} is not a whole number", option, text, v));
+      if (v != double(T(v)))
+        throw InputError(fmt::format("{} {}: {} is not a whole number", option, text, v));
     }
     out.push_back(T(v));
   }
@@ -26,7 +27,9 @@ std::vector<T> list_of(const std::string& text, const char* option) {
 }  // namespace
 
 void add_bench_lodsprite(CLI::App& bench) {
-  auto* cmd = bench.add_subcommand("lodsprite", "LOD-sprite vs full resolution vs plain LOD: the paper's reproduction (JSON + plots + index.html)");
+  auto* cmd = bench.add_subcommand("lodsprite",
+                                   "LOD-sprite vs full resolution vs plain LOD: the paper's "
+                                   "reproduction (JSON + plots + index.html)");
   struct Opts {
     TerrainOptions terrain;
     LodspriteConfig config;
@@ -45,18 +48,26 @@ void add_bench_lodsprite(CLI::App& bench) {
   cmd->add_option("--path", o->config.path, "'paper' (default) or a JSON path file");
   cmd->add_option("--frames", o->config.frames, "frames along the path (default 460)");
   cmd->add_option("--size", o->size, "image size WxH (default 512x512)");
-  cmd->add_option("--threshold", o->config.threshold_px, "keyframe threshold, pixels (default 1.0)");
-  cmd->add_option("--metric", o->metric, "error metric that triggers keyframes: paper (default) | exact");
+  cmd->add_option("--threshold", o->config.threshold_px,
+                  "keyframe threshold, pixels (default 1.0)");
+  cmd->add_option("--metric", o->metric,
+                  "error metric that triggers keyframes: paper (default) | exact");
   cmd->add_option("--fallback-trigger", o->config.max_fallback_fraction,
-                  "also keyframe when this fraction of in-view quads fall back to the drape texture (default 1 = off)");
+                  "also keyframe when this fraction of in-view quads fall back to the drape "
+                  "texture (default 1 = off)");
   cmd->add_option("--scale-trigger", o->config.max_resample_scale,
-                  "also keyframe when the keyframe's pixels are resampled by more than this factor (default 1.25; inf = off)");
+                  "also keyframe when the keyframe's pixels are resampled by more than this factor "
+                  "(default 1.25; inf = off)");
   cmd->add_option("--sharp-px", o->config.sharp_px,
-                  "quads whose coarse geometry errs less than this many pixels take the drape texture (default 0.5; 0 = off)");
+                  "quads whose coarse geometry errs less than this many pixels take the drape "
+                  "texture (default 0.5; 0 = off)");
   cmd->add_option("--thresholds", o->thresholds, "threshold sweep (default 0.25,0.5,1,2,4,8)");
-  cmd->add_option("--frame-counts", o->frame_counts, "frame-count sweep (default 115,230,460,920,1840)");
-  cmd->add_option("--lod-sweep", o->lod_sweep, "coarse-mesh sweep at the chosen threshold (default 8,16,32,64)");
-  cmd->add_option("--sweep-score-every", o->config.sweep_score_every, "sweeps score SSIM on every n-th frame (default 1)");
+  cmd->add_option("--frame-counts", o->frame_counts,
+                  "frame-count sweep (default 115,230,460,920,1840)");
+  cmd->add_option("--lod-sweep", o->lod_sweep,
+                  "coarse-mesh sweep at the chosen threshold (default 8,16,32,64)");
+  cmd->add_option("--sweep-score-every", o->config.sweep_score_every,
+                  "sweeps score SSIM on every n-th frame (default 1)");
   cmd->add_option("--out", o->out, "report directory (default out/lodsprite)");
   cmd->add_option("--json", o->json, "also write the JSON here");
   cmd->callback([o] {
@@ -64,7 +75,8 @@ void add_bench_lodsprite(CLI::App& bench) {
     std::tie(c.width, c.height) = parse_size(o->size, "--size");
     c.metric = parse_metric(o->metric);
     if (!(c.max_resample_scale >= 1.0))
-      throw InputError(fmt::format("--scale-trigger {}: must be at least 1 (inf disables it)", c.max_resample_scale));
+      throw InputError(fmt::format("--scale-trigger {}: must be at least 1 (inf disables it)",
+                                   c.max_resample_scale));
     c.thresholds = list_of<double>(o->thresholds, "--thresholds");
     c.frame_counts = list_of<int>(o->frame_counts, "--frame-counts");
     c.lod_sweep = list_of<int>(o->lod_sweep, "--lod-sweep");

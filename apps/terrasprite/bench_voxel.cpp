@@ -56,7 +56,9 @@ double mean(const std::vector<double>& v) {
   return v.empty() ? 0 : s / v.size();
 }
 
-nlohmann::json num_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+nlohmann::json num_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
 
 // A static view over the terrain for the pitch sweep: south of the centre,
 // high enough to see the whole terrain at -90 and a horizon at -10.
@@ -72,7 +74,8 @@ Camera pitch_camera(const Heightfield& h, double pitch_deg, double aspect) {
   return c;
 }
 
-void write_plot(const OutputDir& out, const std::vector<std::string>& names, const std::vector<std::vector<double>>& ms) {
+void write_plot(const OutputDir& out, const std::vector<std::string>& names,
+                const std::vector<std::vector<double>>& ms) {
   std::ofstream dat(out.file("frame_times.dat"));
   dat << "# frame";
   for (const auto& n : names) dat << ' ' << n << "_ms";
@@ -88,29 +91,38 @@ void write_plot(const OutputDir& out, const std::vector<std::string>& names, con
      << "set xlabel 'frame along the path'\nset ylabel 'ms per frame'\nset key top left\nset grid\n"
      << "plot ";
   for (std::size_t k = 0; k < names.size(); ++k)
-    gp << (k ? ", " : "") << "'frame_times.dat' using 1:" << k + 2 << " with lines title '" << names[k] << "'";
+    gp << (k ? ", " : "") << "'frame_times.dat' using 1:" << k + 2 << " with lines title '"
+       << names[k] << "'";
   gp << '\n';
   gp.close();
-  const std::string cmd = fmt::format("cd '{}' && gnuplot frame_times.gp 2>/dev/null", out.partial().string());
-  if (std::system(cmd.c_str()) != 0) fmt::print(stderr, "warning: gnuplot failed; frame_times.dat kept without a plot\n");
+  const std::string cmd =
+      fmt::format("cd '{}' && gnuplot frame_times.gp 2>/dev/null", out.partial().string());
+  if (std::system(cmd.c_str()) != 0)
+    fmt::print(stderr, "warning: gnuplot failed; frame_times.dat kept without a plot\n");
 }
 
 void run(const BenchVoxelOpts& o) {
   auto [w, h] = parse_size(o.size, "--size");
-  if (o.frames < 1 || o.frames > 100000) throw InputError(fmt::format("--frames {}: must be between 1 and 100000", o.frames));
-  if (o.score_every < 1) throw InputError(fmt::format("--score-every {}: must be at least 1", o.score_every));
+  if (o.frames < 1 || o.frames > 100000)
+    throw InputError(fmt::format("--frames {}: must be between 1 and 100000", o.frames));
+  if (o.score_every < 1)
+    throw InputError(fmt::format("--score-every {}: must be at least 1", o.score_every));
   std::vector<int> threads;
   for (double t : parse_list(o.threads, "--threads")) {
-    if (t < 1 || t > 1024 || t != std::floor(t)) throw InputError(fmt::format("--threads {}: counts must be whole, 1..1024", o.threads));
+    if (t < 1 || t > 1024 || t != std::floor(t))
+      throw InputError(fmt::format("--threads {}: counts must be whole, 1..1024", o.threads));
     threads.push_back(int(t));
   }
   std::vector<double> pitches = parse_list(o.pitches, "--pitches");
   for (double p : pitches)
-    if (p < -90 || p > 90) throw InputError(fmt::format("--pitches {}: angles must be within -90..90", o.pitches));
+    if (p < -90 || p > 90)
+      throw InputError(fmt::format("--pitches {}: angles must be within -90..90", o.pitches));
   std::vector<int> sizes;
   if (!o.terrain_sizes.empty() && o.terrain_sizes != "none")
     for (double s : parse_list(o.terrain_sizes, "--terrain-sizes")) {
-      if (s < 2 || s > 32769 || s != std::floor(s)) throw InputError(fmt::format("--terrain-sizes {}: sizes must be whole, 2..32769", o.terrain_sizes));
+      if (s < 2 || s > 32769 || s != std::floor(s))
+        throw InputError(
+            fmt::format("--terrain-sizes {}: sizes must be whole, 2..32769", o.terrain_sizes));
       sizes.push_back(int(s));
     }
   const int tmax = *std::max_element(threads.begin(), threads.end());
@@ -119,7 +131,8 @@ void run(const BenchVoxelOpts& o) {
   OutputDir out(o.out.empty() ? std::string("out/bench_voxel") : o.out);
 
   VoxelTerrain vt(terrain);
-  const std::vector<VoxelVariant> variants = {VoxelVariant::kNaive, VoxelVariant::kCoherent, VoxelVariant::kMultires};
+  const std::vector<VoxelVariant> variants = {VoxelVariant::kNaive, VoxelVariant::kCoherent,
+                                              VoxelVariant::kMultires};
   // renderers[v][t]
   std::vector<std::vector<std::unique_ptr<VoxelRenderer>>> renderers(variants.size());
   for (std::size_t v = 0; v < variants.size(); ++v)
@@ -134,17 +147,21 @@ void run(const BenchVoxelOpts& o) {
   ro.supersample = o.supersample;
   ro.threads = tmax;
   VoxelReference reference(vt, w, h, ro);
-  for (std::size_t v = 1; v < renderers.size(); ++v)  // warm-up: thread pools, first touch (naive needs none)
+  for (std::size_t v = 1; v < renderers.size();
+       ++v)  // warm-up: thread pools, first touch (naive needs none)
     for (auto& r : renderers[v]) r->render(path[0]);
 
   // ms[v][t] over all frames (naive: scored frames only); sub[v] at tmax over scored frames.
-  std::vector<std::vector<std::vector<double>>> ms(variants.size(), std::vector<std::vector<double>>(threads.size()));
+  std::vector<std::vector<std::vector<double>>> ms(
+      variants.size(), std::vector<std::vector<double>>(threads.size()));
   std::vector<std::vector<double>> scored_ms(variants.size());
-  std::vector<std::vector<double>> ssim(variants.size()), psnr(variants.size()), flip(variants.size());
+  std::vector<std::vector<double>> ssim(variants.size()), psnr(variants.size()),
+      flip(variants.size());
   std::vector<std::vector<double>> ssim_terrain(variants.size());
   nlohmann::json per_frame = nlohmann::json::array();
   std::vector<double> ref_ms;
-  const std::size_t ti_max = std::size_t(std::find(threads.begin(), threads.end(), tmax) - threads.begin());
+  const std::size_t ti_max =
+      std::size_t(std::find(threads.begin(), threads.end(), tmax) - threads.begin());
   Progress progress("bench voxel");
   for (std::size_t i = 0; i < path.size(); ++i) {
     const bool scored = i % std::size_t(o.score_every) == 0;
@@ -168,12 +185,15 @@ void run(const BenchVoxelOpts& o) {
       pf["reference_ms"] = ref.ms;
       // The paper path's frames are mostly sky: also score the terrain alone.
       std::vector<std::uint8_t> terrain_mask(ref.depth.size());
-      for (std::size_t k = 0; k < terrain_mask.size(); ++k) terrain_mask[k] = std::isfinite(ref.depth[k]);
+      for (std::size_t k = 0; k < terrain_mask.size(); ++k)
+        terrain_mask[k] = std::isfinite(ref.depth[k]);
       for (std::size_t v = 0; v < variants.size(); ++v) {
         const double s = quality::ssim(ref.color.view(), at_max[v].color.view()).ssim;
-        const double st = quality::ssim(ref.color.view(), at_max[v].color.view(), {}, terrain_mask).ssim;
+        const double st =
+            quality::ssim(ref.color.view(), at_max[v].color.view(), {}, terrain_mask).ssim;
         if (std::isfinite(st)) ssim_terrain[v].push_back(st);
-        const double p = std::min(quality::psnr(ref.color.view(), at_max[v].color.view()).rgb, 100.0);
+        const double p =
+            std::min(quality::psnr(ref.color.view(), at_max[v].color.view()).rgb, 100.0);
         const double fl = quality::flip(ref.color.view(), at_max[v].color.view()).mean;
         ssim[v].push_back(s);
         psnr[v].push_back(p);
@@ -188,32 +208,37 @@ void run(const BenchVoxelOpts& o) {
   }
 
   auto scaling = [&](std::size_t v) -> double {
-    auto one = std::find(threads.begin(), threads.end(), 1), two = std::find(threads.begin(), threads.end(), 2);
+    auto one = std::find(threads.begin(), threads.end(), 1),
+         two = std::find(threads.begin(), threads.end(), 2);
     if (one == threads.end() || two == threads.end()) return NAN;
-    return median(ms[v][one - threads.begin()]) / std::max(median(ms[v][two - threads.begin()]), 1e-9);
+    return median(ms[v][one - threads.begin()]) /
+           std::max(median(ms[v][two - threads.begin()]), 1e-9);
   };
   const double naive_scored = median(scored_ms[0]);
   nlohmann::json jv = nlohmann::json::array();
   for (std::size_t v = 0; v < variants.size(); ++v) {
     const double med = median(ms[v][ti_max]);
-    jv.push_back({{"name", to_string(variants[v])},
-                  {"threads", tmax},
-                  {"frames_timed", ms[v][ti_max].size()},
-                  {"median_ms", med},
-                  {"p95_ms", percentile(ms[v][ti_max], 0.95)},
-                  {"ns_per_pixel", med * 1e6 / (double(w) * h)},
-                  {"speedup_vs_naive", naive_scored / std::max(median(scored_ms[v]), 1e-9)},
-                  {"scaling_2v1", num_or_null(scaling(v))},
-                  {"median_ms_by_threads", [&] {
-                     nlohmann::json m = nlohmann::json::object();
-                     for (std::size_t t = 0; t < threads.size(); ++t) m[std::to_string(threads[t])] = median(ms[v][t]);
-                     return m;
-                   }()},
-                  {"mean_ssim", mean(ssim[v])},
-                  {"min_ssim", ssim[v].empty() ? 0 : *std::min_element(ssim[v].begin(), ssim[v].end())},
-                  {"mean_ssim_terrain", mean(ssim_terrain[v])},
-                  {"mean_psnr", mean(psnr[v])},
-                  {"mean_flip", mean(flip[v])}});
+    jv.push_back(
+        {{"name", to_string(variants[v])},
+         {"threads", tmax},
+         {"frames_timed", ms[v][ti_max].size()},
+         {"median_ms", med},
+         {"p95_ms", percentile(ms[v][ti_max], 0.95)},
+         {"ns_per_pixel", med * 1e6 / (double(w) * h)},
+         {"speedup_vs_naive", naive_scored / std::max(median(scored_ms[v]), 1e-9)},
+         {"scaling_2v1", num_or_null(scaling(v))},
+         {"median_ms_by_threads",
+          [&] {
+            nlohmann::json m = nlohmann::json::object();
+            for (std::size_t t = 0; t < threads.size(); ++t)
+              m[std::to_string(threads[t])] = median(ms[v][t]);
+            return m;
+          }()},
+         {"mean_ssim", mean(ssim[v])},
+         {"min_ssim", ssim[v].empty() ? 0 : *std::min_element(ssim[v].begin(), ssim[v].end())},
+         {"mean_ssim_terrain", mean(ssim_terrain[v])},
+         {"mean_psnr", mean(psnr[v])},
+         {"mean_flip", mean(flip[v])}});
   }
 
   // Static pitch sweep (paper Table 1): the default variant at each thread count.
@@ -223,7 +248,10 @@ void run(const BenchVoxelOpts& o) {
     for (std::size_t t = 0; t < threads.size(); ++t) {
       std::vector<double> m;
       for (int k = 0; k < 5; ++k) m.push_back(renderers[2][t]->render(c).ms);
-      pitch_table.push_back({{"pitch_deg", p}, {"threads", threads[t]}, {"median_ms", median(m)}, {"fps", 1000.0 / std::max(median(m), 1e-9)}});
+      pitch_table.push_back({{"pitch_deg", p},
+                             {"threads", threads[t]},
+                             {"median_ms", median(m)},
+                             {"fps", 1000.0 / std::max(median(m), 1e-9)}});
     }
   }
 
@@ -247,7 +275,8 @@ void run(const BenchVoxelOpts& o) {
     {
       Terrain big = load_terrain(to);  // dropped once the pyramids are built
       e.voxels = std::make_unique<VoxelTerrain>(big);
-      e.path = make_path(o.path, big.heights, std::max(1, std::min(o.sweep_frames, o.frames)), double(w) / h);
+      e.path = make_path(o.path, big.heights, std::max(1, std::min(o.sweep_frames, o.frames)),
+                         double(w) / h);
     }
     VoxelOptions vo;
     vo.threads = tmax;
@@ -261,7 +290,10 @@ void run(const BenchVoxelOpts& o) {
     for (std::size_t i = 0; i < entries[0].path.size(); ++i)
       for (auto& e : entries) e.ms.push_back(e.renderer->render(e.path[i]).ms);
     for (auto& e : entries)
-      sweep.push_back({{"samples", e.samples}, {"frames", e.path.size()}, {"median_ms", median(e.ms)}, {"p95_ms", percentile(e.ms, 0.95)}});
+      sweep.push_back({{"samples", e.samples},
+                       {"frames", e.path.size()},
+                       {"median_ms", median(e.ms)},
+                       {"p95_ms", percentile(e.ms, 0.95)}});
   }
 
   std::vector<std::string> names;
@@ -273,22 +305,23 @@ void run(const BenchVoxelOpts& o) {
   write_plot(out, names, plot);
 
   const double default_scaling = scaling(2);
-  nlohmann::json j = {{"device", fmt::format("cpu, {} hardware threads", std::thread::hardware_concurrency())},
-                      {"terrain", terrain_json(terrain)},
-                      {"size", {w, h}},
-                      {"path", o.path},
-                      {"frames", int(path.size())},
-                      {"score_every", o.score_every},
-                      {"scored_frames", ref_ms.size()},
-                      {"pixel_voxel_ratio", o.ratio},
-                      {"reference", {{"supersample", o.supersample}, {"median_ms", median(ref_ms)}}},
-                      {"threads", threads},
-                      {"default_variant", "multires"},
-                      {"variants", jv},
-                      {"scaling_2v1", num_or_null(default_scaling)},
-                      {"pitch_table", pitch_table},
-                      {"terrain_size_sweep", sweep},
-                      {"per_frame", per_frame}};
+  nlohmann::json j = {
+      {"device", fmt::format("cpu, {} hardware threads", std::thread::hardware_concurrency())},
+      {"terrain", terrain_json(terrain)},
+      {"size", {w, h}},
+      {"path", o.path},
+      {"frames", int(path.size())},
+      {"score_every", o.score_every},
+      {"scored_frames", ref_ms.size()},
+      {"pixel_voxel_ratio", o.ratio},
+      {"reference", {{"supersample", o.supersample}, {"median_ms", median(ref_ms)}}},
+      {"threads", threads},
+      {"default_variant", "multires"},
+      {"variants", jv},
+      {"scaling_2v1", num_or_null(default_scaling)},
+      {"pitch_table", pitch_table},
+      {"terrain_size_sweep", sweep},
+      {"per_frame", per_frame}};
   write_json(j, out.file("bench_voxel.json"));  // JSON last: the directory is complete
   out.commit();
   if (!o.json.empty()) write_json(j, o.json);
@@ -300,7 +333,8 @@ void run(const BenchVoxelOpts& o) {
 }  // namespace
 
 void add_bench_voxel(CLI::App& bench) {
-  auto* cmd = bench.add_subcommand("voxel", "CPU voxel ray caster: speed per variant, thread scaling, quality vs reference");
+  auto* cmd = bench.add_subcommand(
+      "voxel", "CPU voxel ray caster: speed per variant, thread scaling, quality vs reference");
   auto o = std::make_shared<BenchVoxelOpts>();
   add_terrain_options(*cmd, o->terrain);
   cmd->add_option("--size", o->size, "image size WxH (default 1920x1080)");
@@ -308,13 +342,20 @@ void add_bench_voxel(CLI::App& bench) {
   cmd->add_option("--frames", o->frames, "frames along the path (default 460)");
   cmd->add_option("--threads", o->threads, "thread counts to time, comma-separated (default 1,2)");
   cmd->add_option("--pitches", o->pitches, "static pitch sweep, degrees (default -10,-30,-60,-90)");
-  cmd->add_option("--score-every", o->score_every, "time naive and score against the reference every N-th frame (default 20)");
-  cmd->add_option("--terrain-sizes", o->terrain_sizes, "synthetic terrain sizes for the size sweep (default 1025,4097; 'none' to skip)");
-  cmd->add_option("--sweep-frames", o->sweep_frames, "frames per terrain in the size sweep (default 46)");
-  cmd->add_option("--pixel-voxel-ratio", o->ratio, "multires: coarsen where a voxel covers fewer pixels than this (default 1)");
-  cmd->add_option("--supersample", o->supersample, "reference rays per pixel side (default 2, i.e. 2x2)");
+  cmd->add_option("--score-every", o->score_every,
+                  "time naive and score against the reference every N-th frame (default 20)");
+  cmd->add_option("--terrain-sizes", o->terrain_sizes,
+                  "synthetic terrain sizes for the size sweep (default 1025,4097; 'none' to skip)");
+  cmd->add_option("--sweep-frames", o->sweep_frames,
+                  "frames per terrain in the size sweep (default 46)");
+  cmd->add_option("--pixel-voxel-ratio", o->ratio,
+                  "multires: coarsen where a voxel covers fewer pixels than this (default 1)");
+  cmd->add_option("--supersample", o->supersample,
+                  "reference rays per pixel side (default 2, i.e. 2x2)");
   cmd->add_option("--json", o->json, "also write the JSON here");
-  cmd->add_option("--out", o->out, "output directory: plot, reference and multires frames, JSON (default out/bench_voxel)");
+  cmd->add_option(
+      "--out", o->out,
+      "output directory: plot, reference and multires frames, JSON (default out/bench_voxel)");
   cmd->callback([o] { run(*o); });
 }
 

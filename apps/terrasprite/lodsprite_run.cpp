@@ -51,8 +51,12 @@ double ssim_only(const Image& reference, const Image& test) {
   return quality::ssim(reference.view(), test.view(), so).ssim;
 }
 
-double sum(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0); }
-double mean(const std::vector<double>& v) { return v.empty() ? 0.0 : sum(v) / double(v.size()); }
+double sum(const std::vector<double>& v) {
+  return std::accumulate(v.begin(), v.end(), 0.0);
+}
+double mean(const std::vector<double>& v) {
+  return v.empty() ? 0.0 : sum(v) / double(v.size());
+}
 
 struct PassResult {
   int keyframes = 0;
@@ -64,8 +68,8 @@ struct PassResult {
 // One timed LOD-sprite pass over `path`; the kept frames are SSIM-scored
 // against the references after the whole pass, so scoring threads never
 // overlap a timed frame.
-PassResult sprite_pass(GlTerrain& scene, std::span<const Camera> path, int w, int h, SpriteOptions o,
-                       const std::vector<Image>& refs, int every) {
+PassResult sprite_pass(GlTerrain& scene, std::span<const Camera> path, int w, int h,
+                       SpriteOptions o, const std::vector<Image>& refs, int every) {
   o.read_color = true;
   SpriteRenderer r(scene, w, h, o);
   r.render_keyframe(path[0]);  // warm-up, then start afresh
@@ -91,14 +95,16 @@ PassResult sprite_pass(GlTerrain& scene, std::span<const Camera> path, int w, in
 
 // Speed-up from per-class medians, robust to the machine's stalls:
 // n full frames against k keyframes and n - k sprite frames.
-double median_speedup(int n, int keys, double full_median, double key_median, double sprite_median) {
+double median_speedup(int n, int keys, double full_median, double key_median,
+                      double sprite_median) {
   const double cost = keys * key_median + (n - keys) * sprite_median;
   return cost > 0 ? n * full_median / cost : 0.0;
 }
 
 // Keyframe count only: the metric decides, keyframes are rendered (their depth
 // buffer feeds the visibility), sprite frames are not drawn.
-int simulate_keyframes(GlTerrain& scene, std::span<const Camera> path, int w, int h, SpriteOptions o) {
+int simulate_keyframes(GlTerrain& scene, std::span<const Camera> path, int w, int h,
+                       SpriteOptions o) {
   o.read_color = false;
   SpriteRenderer r(scene, w, h, o);
   int keys = 0;
@@ -112,16 +118,23 @@ int simulate_keyframes(GlTerrain& scene, std::span<const Camera> path, int w, in
 }
 
 void validate(const LodspriteConfig& c) {
-  if (c.frames < 1 || c.frames > 1000000) throw InputError(fmt::format("--frames {}: must be between 1 and 1000000", c.frames));
-  if (c.lod_quads < 1) throw InputError(fmt::format("--lod-quads {}: must be at least 1", c.lod_quads));
-  if (!(c.threshold_px > 0)) throw InputError(fmt::format("--threshold {}: must be positive", c.threshold_px));
+  if (c.frames < 1 || c.frames > 1000000)
+    throw InputError(fmt::format("--frames {}: must be between 1 and 1000000", c.frames));
+  if (c.lod_quads < 1)
+    throw InputError(fmt::format("--lod-quads {}: must be at least 1", c.lod_quads));
+  if (!(c.threshold_px > 0))
+    throw InputError(fmt::format("--threshold {}: must be positive", c.threshold_px));
   for (double t : c.thresholds)
-    if (!(t > 0)) throw InputError(fmt::format("--thresholds: {} is not a positive number of pixels", t));
+    if (!(t > 0))
+      throw InputError(fmt::format("--thresholds: {} is not a positive number of pixels", t));
   for (int n : c.frame_counts)
-    if (n < 1 || n > 100000) throw InputError(fmt::format("--frame-counts: {} must be between 1 and 100000", n));
+    if (n < 1 || n > 100000)
+      throw InputError(fmt::format("--frame-counts: {} must be between 1 and 100000", n));
   for (int q : c.lod_sweep)
     if (q < 1) throw InputError(fmt::format("--lod-sweep: {} quads must be at least 1", q));
-  if (c.sweep_score_every < 1) throw InputError(fmt::format("--sweep-score-every {}: must be at least 1", c.sweep_score_every));
+  if (c.sweep_score_every < 1)
+    throw InputError(
+        fmt::format("--sweep-score-every {}: must be at least 1", c.sweep_score_every));
 }
 
 }  // namespace
@@ -132,7 +145,9 @@ ErrorMetric parse_metric(const std::string& text) {
   throw InputError(fmt::format("--metric {}: must be 'paper' or 'exact'", text));
 }
 
-const char* metric_name(ErrorMetric m) { return m == ErrorMetric::kPaper ? "paper" : "exact"; }
+const char* metric_name(ErrorMetric m) {
+  return m == ErrorMetric::kPaper ? "paper" : "exact";
+}
 
 nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain, OutputDir& out,
                              const std::string& label) {
@@ -164,7 +179,8 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
 
   // ---- main run: interleaved, timed, then scored outside the timed spans ----
   std::vector<double> full_ms(n), lod_ms(n), sprite_ms(n), key_ms, spr_ms;
-  std::vector<double> lod_psnr, lod_ssim, lod_flip, sp_psnr, sp_ssim, sp_flip, sp_psnr_sprite_only, lod_psnr_sprite_only;
+  std::vector<double> lod_psnr, lod_ssim, lod_flip, sp_psnr, sp_ssim, sp_flip, sp_psnr_sprite_only,
+      lod_psnr_sprite_only;
   std::vector<int> key_of(n, 0);
   std::vector<Image> refs;
   nlohmann::json per_frame = nlohmann::json::array();
@@ -200,14 +216,25 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
     }
     ssim_above += ss.ssim > ls.ssim;
     ssim_above_sprite_frames += !key && ss.ssim > ls.ssim;
-    per_frame.push_back({{"frame", i}, {"class", c.cls}, {"ms", c.ms}, {"gpu_ms", c.gpu_ms},
-                         {"full_ms", a.ms}, {"lod_ms", b.ms},
-                         {"error_px", e.paper_px}, {"error_px_exact", e.exact_px},
-                         {"error_samples", e.samples}, {"fallback_fraction", e.fallback_fraction()},
-                         {"resample_scale", e.resample_scale}, {"trigger", sprite.last_trigger()},
+    per_frame.push_back({{"frame", i},
+                         {"class", c.cls},
+                         {"ms", c.ms},
+                         {"gpu_ms", c.gpu_ms},
+                         {"full_ms", a.ms},
+                         {"lod_ms", b.ms},
+                         {"error_px", e.paper_px},
+                         {"error_px_exact", e.exact_px},
+                         {"error_samples", e.samples},
+                         {"fallback_fraction", e.fallback_fraction()},
+                         {"resample_scale", e.resample_scale},
+                         {"trigger", sprite.last_trigger()},
                          {"keyframe", current_key},
-                         {"psnr", ss.psnr}, {"ssim", ss.ssim}, {"flip", ss.flip},
-                         {"lod_psnr", ls.psnr}, {"lod_ssim", ls.ssim}, {"lod_flip", ls.flip}});
+                         {"psnr", ss.psnr},
+                         {"ssim", ss.ssim},
+                         {"flip", ss.flip},
+                         {"lod_psnr", ls.psnr},
+                         {"lod_ssim", ls.ssim},
+                         {"lod_flip", ls.flip}});
     if (cfg.on_sprite_frame) cfg.on_sprite_frame(i, c);
     if (i % every == 0) refs.push_back(std::move(a.color));
     progress(i + 1, n);
@@ -225,23 +252,26 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
   };
 
   // ---- sweeps (paper Figs. 10-12 and the coarse-mesh size) ----
-  nlohmann::json threshold_sweep = nlohmann::json::array(), frame_count_sweep = nlohmann::json::array(),
-                 lod_sweep = nlohmann::json::array();
+  nlohmann::json threshold_sweep = nlohmann::json::array(),
+                 frame_count_sweep = nlohmann::json::array(), lod_sweep = nlohmann::json::array();
   Progress sweep_progress(label + " sweeps");
-  const int sweep_total = int(cfg.thresholds.size() + cfg.frame_counts.size() + cfg.lod_sweep.size());
+  const int sweep_total =
+      int(cfg.thresholds.size() + cfg.frame_counts.size() + cfg.lod_sweep.size());
   int sweep_done = 0;
   const double full_median = median(full_ms);
   const double key_median = median(key_ms), spr_median = median(spr_ms);
   auto sweep_entry = [&](const PassResult& p, const std::string& method) {
-    return nlohmann::json{{"keyframes", p.keyframes},
-                          {"keyframe_fraction", double(p.keyframes) / n},
-                          {"speedup", full_total / std::max(p.total_ms, 1e-9)},
-                          {"speedup_from_medians", median_speedup(n, p.keyframes, full_median, p.key_median_ms, p.sprite_median_ms)},
-                          {"total_ms", p.total_ms},
-                          {"key_median_ms", p.key_median_ms},
-                          {"sprite_median_ms", p.sprite_median_ms},
-                          {"mean_ssim", p.mean_ssim},
-                          {"measured_in", method}};
+    return nlohmann::json{
+        {"keyframes", p.keyframes},
+        {"keyframe_fraction", double(p.keyframes) / n},
+        {"speedup", full_total / std::max(p.total_ms, 1e-9)},
+        {"speedup_from_medians",
+         median_speedup(n, p.keyframes, full_median, p.key_median_ms, p.sprite_median_ms)},
+        {"total_ms", p.total_ms},
+        {"key_median_ms", p.key_median_ms},
+        {"sprite_median_ms", p.sprite_median_ms},
+        {"mean_ssim", p.mean_ssim},
+        {"measured_in", method}};
   };
   const PassResult main_pass{keyframes, sprite_total, key_median, spr_median, mean_every(sp_ssim)};
   for (double t : cfg.thresholds) {
@@ -260,7 +290,8 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
   for (int frames : cfg.frame_counts) {
     std::vector<Camera> p = make_path(cfg.path, terrain.heights, frames, aspect);
     const int keys = simulate_keyframes(scene, p, w, h, so);
-    frame_count_sweep.push_back({{"frames", frames}, {"keyframes", keys}, {"keyframe_fraction", double(keys) / frames}});
+    frame_count_sweep.push_back(
+        {{"frames", frames}, {"keyframes", keys}, {"keyframe_fraction", double(keys) / frames}});
     sweep_progress(++sweep_done, sweep_total);
   }
   for (int q : cfg.lod_sweep) {
@@ -290,7 +321,8 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
   checker.tex_rect = {0, 0, 1, 1};
   checker.texture_name = "checker";
   nlohmann::json figures = nlohmann::json::object();
-  for (auto [name, t] : {std::pair<const char*, const Terrain*>{"fig13", &checker}, {"fig14", &terrain}}) {
+  for (auto [name, t] :
+       {std::pair<const char*, const Terrain*>{"fig13", &checker}, {"fig14", &terrain}}) {
     std::unique_ptr<GlTerrain> own;
     GlTerrain* s = &scene;
     if (t != &terrain) {
@@ -306,10 +338,14 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
     save_png(ff.color, out.file(base + "_full.png"));
     save_png(lf.color, out.file(base + "_lod.png"));
     save_png(sf.color, out.file(base + "_sprite.png"));
-    save_png(quality::difference_image(ff.color.view(), lf.color.view()), out.file(base + "_diff_lod.png"));
-    save_png(quality::difference_image(ff.color.view(), sf.color.view()), out.file(base + "_diff_sprite.png"));
+    save_png(quality::difference_image(ff.color.view(), lf.color.view()),
+             out.file(base + "_diff_lod.png"));
+    save_png(quality::difference_image(ff.color.view(), sf.color.view()),
+             out.file(base + "_diff_sprite.png"));
     const Score ls = score(ff.color, lf.color, cfg.flip), ss = score(ff.color, sf.color, cfg.flip);
-    figures[name] = {{"texture", t->texture_name}, {"frame", fig_frame}, {"keyframe", key_of[fig_frame]},
+    figures[name] = {{"texture", t->texture_name},
+                     {"frame", fig_frame},
+                     {"keyframe", key_of[fig_frame]},
                      {"lod", {{"psnr", ls.psnr}, {"ssim", ls.ssim}, {"flip", ls.flip}}},
                      {"sprite", {{"psnr", ss.psnr}, {"ssim", ss.ssim}, {"flip", ss.flip}}}};
   }
@@ -331,38 +367,64 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
       {"metric", metric_name(cfg.metric)},
       {"max_fallback_fraction", cfg.max_fallback_fraction},
       {"sharp_px", cfg.sharp_px},
-      {"max_resample_scale", std::isfinite(cfg.max_resample_scale) ? nlohmann::json(cfg.max_resample_scale) : nlohmann::json(nullptr)},
+      {"max_resample_scale", std::isfinite(cfg.max_resample_scale)
+                                 ? nlohmann::json(cfg.max_resample_scale)
+                                 : nlohmann::json(nullptr)},
       {"psnr_cap_db", kPsnrCapDb},
       {"full", {{"total_ms", full_total}, {"median_ms", median(full_ms)}}},
-      {"lod", {{"total_ms", sum(lod_ms)}, {"median_ms", median(lod_ms)}, {"mean_psnr", mean(lod_psnr)},
-               {"mean_psnr_sprite_frames", mean(lod_psnr_sprite_only)},
-               {"mean_ssim", mean(lod_ssim)}, {"min_ssim", *std::min_element(lod_ssim.begin(), lod_ssim.end())},
-               {"mean_flip", mean(lod_flip)}}},
-      {"sprite", {{"total_ms", sprite_total}, {"median_ms", median(sprite_ms)}, {"keyframes", keyframes},
-                  {"sprite_frames", n - keyframes}, {"key_median_ms", key_median}, {"sprite_median_ms", spr_median},
-                  {"mean_psnr", mean(sp_psnr)}, {"mean_psnr_sprite_frames", mean(sp_psnr_sprite_only)},
-                  {"mean_ssim", mean(sp_ssim)}, {"min_ssim", *std::min_element(sp_ssim.begin(), sp_ssim.end())},
-                  {"mean_flip", mean(sp_flip)},
-                  {"ssim_above_lod_fraction", double(ssim_above) / n},
-                  {"ssim_above_lod_fraction_sprite_frames",
-                   n > keyframes ? double(ssim_above_sprite_frames) / (n - keyframes) : 1.0}}},
+      {"lod",
+       {{"total_ms", sum(lod_ms)},
+        {"median_ms", median(lod_ms)},
+        {"mean_psnr", mean(lod_psnr)},
+        {"mean_psnr_sprite_frames", mean(lod_psnr_sprite_only)},
+        {"mean_ssim", mean(lod_ssim)},
+        {"min_ssim", *std::min_element(lod_ssim.begin(), lod_ssim.end())},
+        {"mean_flip", mean(lod_flip)}}},
+      {"sprite",
+       {{"total_ms", sprite_total},
+        {"median_ms", median(sprite_ms)},
+        {"keyframes", keyframes},
+        {"sprite_frames", n - keyframes},
+        {"key_median_ms", key_median},
+        {"sprite_median_ms", spr_median},
+        {"mean_psnr", mean(sp_psnr)},
+        {"mean_psnr_sprite_frames", mean(sp_psnr_sprite_only)},
+        {"mean_ssim", mean(sp_ssim)},
+        {"min_ssim", *std::min_element(sp_ssim.begin(), sp_ssim.end())},
+        {"mean_flip", mean(sp_flip)},
+        {"ssim_above_lod_fraction", double(ssim_above) / n},
+        {"ssim_above_lod_fraction_sprite_frames",
+         n > keyframes ? double(ssim_above_sprite_frames) / (n - keyframes) : 1.0}}},
       {"speedup", speedup},
       {"speedup_from_medians", median_speedup(n, keyframes, full_median, key_median, spr_median)},
-      {"stalls", {{"full", stalls(full_ms)}, {"lod", stalls(lod_ms)}, {"key", stalls(key_ms)}, {"sprite", stalls(spr_ms)}}},
-      {"bound", {{"f", f}, {"r", r}, {"speedup_bound", bound}, {"efficiency", speedup / bound},
-                 {"key_over_full_median", key_median / std::max(median(full_ms), 1e-9)}}},
-      {"targets", {{"keyframes_at_most_28", keyframes <= 28},
-                   {"efficiency_at_least_0_9", speedup / bound >= 0.9},
-                   {"ssim_above_lod_on_95pct", double(ssim_above) / n >= 0.95},
-                   {"mean_psnr_above_lod", mean(sp_psnr) > mean(lod_psnr)},
-                   {"mean_psnr_above_lod_on_sprite_frames", mean(sp_psnr_sprite_only) > mean(lod_psnr_sprite_only)},
-                   {"paper_speedup", 12.32}, {"paper_keyframes", 28}}},
+      {"stalls",
+       {{"full", stalls(full_ms)},
+        {"lod", stalls(lod_ms)},
+        {"key", stalls(key_ms)},
+        {"sprite", stalls(spr_ms)}}},
+      {"bound",
+       {{"f", f},
+        {"r", r},
+        {"speedup_bound", bound},
+        {"efficiency", speedup / bound},
+        {"key_over_full_median", key_median / std::max(median(full_ms), 1e-9)}}},
+      {"targets",
+       {{"keyframes_at_most_28", keyframes <= 28},
+        {"efficiency_at_least_0_9", speedup / bound >= 0.9},
+        {"ssim_above_lod_on_95pct", double(ssim_above) / n >= 0.95},
+        {"mean_psnr_above_lod", mean(sp_psnr) > mean(lod_psnr)},
+        {"mean_psnr_above_lod_on_sprite_frames",
+         mean(sp_psnr_sprite_only) > mean(lod_psnr_sprite_only)},
+        {"paper_speedup", 12.32},
+        {"paper_keyframes", 28}}},
       {"sweep_score_every", every},
-      {"sweep_speedup_method", "speedup: measured, total frame time of the sprite pass (the main run, or a separate "
-                               "timed pass for other settings, scored after the pass) against the main run's "
-                               "full-resolution total; speedup_from_medians: derived, n x median full / (k x median "
-                               "key + (n - k) x median sprite) with that pass's medians"},
-      {"frame_count_sweep_method", "keyframe decisions only: the metric on every frame, keyframes rendered"},
+      {"sweep_speedup_method",
+       "speedup: measured, total frame time of the sprite pass (the main run, or a separate "
+       "timed pass for other settings, scored after the pass) against the main run's "
+       "full-resolution total; speedup_from_medians: derived, n x median full / (k x median "
+       "key + (n - k) x median sprite) with that pass's medians"},
+      {"frame_count_sweep_method",
+       "keyframe decisions only: the metric on every frame, keyframes rendered"},
       {"threshold_sweep", threshold_sweep},
       {"frame_count_sweep", frame_count_sweep},
       {"lod_sweep", lod_sweep},

@@ -4,10 +4,9 @@
 // on the CPU and without GL, so it can be tested and simulated cheaply.
 #pragma once
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <span>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "terrasprite/camera.h"
 #include "terrasprite/heightfield.h"
@@ -26,10 +25,12 @@ namespace terrasprite {
 ///   d ---- e
 struct CoarseGrid {
   int quads_x = 0, quads_y = 0;
-  std::vector<int> xs, ys;             ///< coarse sample indices per axis (quads + 1 each)
-  std::vector<glm::dvec3> vertices;    ///< (quads_y + 1) x (quads_x + 1) coarse vertices, row-major, metres
-  std::vector<glm::dvec3> centre;      ///< C per quad (row-major, quads_y x quads_x), metres
-  std::vector<std::uint8_t> has_centre;  ///< 0 where the quad is one sample wide (no vertex strictly inside)
+  std::vector<int> xs, ys;  ///< coarse sample indices per axis (quads + 1 each)
+  std::vector<glm::dvec3>
+      vertices;  ///< (quads_y + 1) x (quads_x + 1) coarse vertices, row-major, metres
+  std::vector<glm::dvec3> centre;  ///< C per quad (row-major, quads_y x quads_x), metres
+  std::vector<std::uint8_t>
+      has_centre;  ///< 0 where the quad is one sample wide (no vertex strictly inside)
   /// b of the paper's approximation: distance (m) from C to the quad's coarse
   /// diagonal edge a-e, signed + where C lies above the edge, - below.
   std::vector<double> edge_offset;
@@ -40,7 +41,9 @@ struct CoarseGrid {
   std::vector<double> max_deviation;
 
   int quad_count() const { return quads_x * quads_y; }
-  const glm::dvec3& vertex(int col, int row) const { return vertices[static_cast<std::size_t>(row) * (quads_x + 1) + col]; }
+  const glm::dvec3& vertex(int col, int row) const {
+    return vertices[static_cast<std::size_t>(row) * (quads_x + 1) + col];
+  }
 };
 
 /// Builds the grid; quads is clamped like quad_indices. h has >= 2 x 2 samples.
@@ -49,7 +52,8 @@ CoarseGrid make_coarse_grid(const Heightfield& h, int quads);
 /// Where the ray from `eye` through `point` meets the coarse surface of quad
 /// (col, row) or its 8 neighbours: the hit nearest to `point` along the ray.
 /// Returns `point` itself when the ray misses all of them (grazing rays).
-glm::dvec3 coarse_reprojection(const CoarseGrid& grid, int col, int row, glm::dvec3 eye, glm::dvec3 point);
+glm::dvec3 coarse_reprojection(const CoarseGrid& grid, int col, int row, glm::dvec3 eye,
+                               glm::dvec3 point);
 
 /// Depth buffer of a keyframe: linear depth in metres along the key camera's
 /// view axis, width*height, row 0 on top (RenderTarget::read_depth), +inf = sky.
@@ -62,7 +66,8 @@ struct DepthView {
 /// image) and not hidden in `depth`: its view-axis distance is at most the
 /// farthest depth in the 3x3 pixels around its projection, plus a relative
 /// tolerance `rel_tolerance` (rasterised depth differs from a vertex's within a pixel).
-bool visible_in_keyframe(const Camera& key, const DepthView& depth, glm::dvec3 p, double rel_tolerance = 0.003);
+bool visible_in_keyframe(const Camera& key, const DepthView& depth, glm::dvec3 p,
+                         double rel_tolerance = 0.003);
 
 /// Pixel position (x right, y down, pixel centres at +0.5) of `p` in `camera`'s
 /// width x height image; false when p is behind the eye.
@@ -74,15 +79,16 @@ bool project_to_pixel(const Camera& camera, int width, int height, glm::dvec3 p,
 struct KeyframeSamples {
   Camera key;
   int width = 0, height = 0;
-  std::vector<glm::dvec3> c_prime;      ///< per quad, metres
-  std::vector<std::uint8_t> visible;    ///< per quad: C unoccluded and inside the key view
-  glm::dvec3 beta_reference{0.0};       ///< the visible C nearest the key's view axis (where beta is measured)
+  std::vector<glm::dvec3> c_prime;    ///< per quad, metres
+  std::vector<std::uint8_t> visible;  ///< per quad: C unoccluded and inside the key view
+  glm::dvec3 beta_reference{
+      0.0};  ///< the visible C nearest the key's view axis (where beta is measured)
 };
 
 /// Builds the samples. `visible` holds one flag per quad (C visible in the
 /// keyframe); its size is grid.quad_count().
-KeyframeSamples make_keyframe_samples(const CoarseGrid& grid, const Camera& key, int width, int height,
-                                      std::span<const std::uint8_t> visible);
+KeyframeSamples make_keyframe_samples(const CoarseGrid& grid, const Camera& key, int width,
+                                      int height, std::span<const std::uint8_t> visible);
 
 enum class ErrorMetric {
   kPaper,  ///< the paper's approximation: common angle beta, b from C's distance to the coarse edge
@@ -93,12 +99,16 @@ enum class ErrorMetric {
 /// mean squared per-sample error, in pixels, so the paper's test
 /// "mean squared error > threshold^2" reads error > threshold.
 struct SpriteError {
-  double paper_px = 0;   ///< Eq. 1-2: angle(C, C') seen from the new eye / pixel angle (fov / height)
-  double exact_px = 0;   ///< |project(C) - project(C')| in pixels
-  int samples = 0;       ///< quads whose C is in the new view and was visible in the keyframe
-  int in_view = 0;       ///< quads whose C is in the new view
-  /// Fraction of in-view centres that were not visible in the keyframe (they fall back to the drape texture).
-  double fallback_fraction() const { return in_view > 0 ? double(in_view - samples) / in_view : 0.0; }
+  double paper_px =
+      0;  ///< Eq. 1-2: angle(C, C') seen from the new eye / pixel angle (fov / height)
+  double exact_px = 0;  ///< |project(C) - project(C')| in pixels
+  int samples = 0;      ///< quads whose C is in the new view and was visible in the keyframe
+  int in_view = 0;      ///< quads whose C is in the new view
+  /// Fraction of in-view centres that were not visible in the keyframe (they fall back to the drape
+  /// texture).
+  double fallback_fraction() const {
+    return in_view > 0 ? double(in_view - samples) / in_view : 0.0;
+  }
   /// How much the keyframe's pixels are stretched or shrunk in the new view:
   /// per sample, the linear scale s between the pixel footprints of the
   /// surface at C in the two views (distance, foreshortening against C's

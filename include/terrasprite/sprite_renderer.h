@@ -13,8 +13,8 @@
 namespace terrasprite {
 
 struct SpriteOptions {
-  int lod_quads = 16;          ///< coarse grid quads per side (>= 1)
-  double threshold_px = 1.0;   ///< keyframe when the metric's RMS error (pixels) exceeds this (> 0)
+  int lod_quads = 16;         ///< coarse grid quads per side (>= 1)
+  double threshold_px = 1.0;  ///< keyframe when the metric's RMS error (pixels) exceeds this (> 0)
   /// Which variant triggers keyframes (both are reported). The paper's, by
   /// measurement: on the synthetic paper path (115 frames, 1 px) it spent 17
   /// keyframes for mean SSIM 0.930, where exact reprojection needed 45 (SSIM
@@ -34,9 +34,9 @@ struct SpriteOptions {
   /// drape texture, as plain LOD would: there the coarse geometry is already
   /// right and the drape is sharper than a resampled keyframe. 0 disables.
   double sharp_px = 0.5;
-  bool lighting = false;       ///< same sun as RasterOptions::lighting, on keyframes and fallback alike
-  bool read_color = true;      ///< read colour back into Frame::color (after the timed span)
-  bool read_depth = false;     ///< read linear depth back into Frame::depth (after the timed span)
+  bool lighting = false;   ///< same sun as RasterOptions::lighting, on keyframes and fallback alike
+  bool read_color = true;  ///< read colour back into Frame::color (after the timed span)
+  bool read_depth = false;  ///< read linear depth back into Frame::depth (after the timed span)
 };
 
 /// One width x height LOD-sprite renderer over `scene` (which must outlive it;

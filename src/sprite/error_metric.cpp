@@ -31,7 +31,9 @@ double ray_triangle(glm::dvec3 o, glm::dvec3 d, glm::dvec3 a, glm::dvec3 b, glm:
   return glm::dot(e2, q) * inv;
 }
 
-bool inside_image(glm::dvec2 px, int w, int h) { return px.x >= 0 && px.x <= w && px.y >= 0 && px.y <= h; }
+bool inside_image(glm::dvec2 px, int w, int h) {
+  return px.x >= 0 && px.x <= w && px.y >= 0 && px.y <= h;
+}
 
 // project_to_pixel with the view-projection matrix built once per frame.
 bool project(const glm::dmat4& vp, int w, int h, glm::dvec3 p, glm::dvec2& pixel) {
@@ -71,14 +73,16 @@ CoarseGrid make_coarse_grid(const Heightfield& h, int quads) {
       const double t = std::clamp(glm::dot(C - a, ae) / glm::dot(ae, ae), 0.0, 1.0);
       const glm::dvec3 closest = a + t * ae;
       const glm::dvec2 axy(a), ae2(ae);
-      const double t2 = std::clamp(glm::dot(glm::dvec2(C) - axy, ae2) / glm::dot(ae2, ae2), 0.0, 1.0);
+      const double t2 =
+          std::clamp(glm::dot(glm::dvec2(C) - axy, ae2) / glm::dot(ae2, ae2), 0.0, 1.0);
       const double edge_z = a.z + t2 * ae.z;
       const double dist = glm::length(C - closest);
       g.edge_offset[q] = C.z >= edge_z ? dist : -dist;
       const int i0 = std::max(ci - 1, 0), i1 = std::min(ci + 1, h.width - 1);
       const int j0 = std::max(cj - 1, 0), j1 = std::min(cj + 1, h.height - 1);
       const double dzdx = i1 > i0 ? (h.at(i1, cj) - h.at(i0, cj)) / ((i1 - i0) * h.spacing_x) : 0.0;
-      const double dzdy = j1 > j0 ? (h.at(ci, j0) - h.at(ci, j1)) / ((j1 - j0) * h.spacing_y) : 0.0;  // rows run south
+      const double dzdy = j1 > j0 ? (h.at(ci, j0) - h.at(ci, j1)) / ((j1 - j0) * h.spacing_y)
+                                  : 0.0;  // rows run south
       g.normal[q] = glm::normalize(glm::dvec3(-dzdx, -dzdy, 1.0));
       // Coarse surface over the quad: triangles (a, d, e) below the diagonal, (a, e, b) above it.
       const double za = a.z, zb = g.vertex(c + 1, r).z, zd = g.vertex(c, r + 1).z, ze = e.z;
@@ -87,7 +91,8 @@ CoarseGrid make_coarse_grid(const Heightfield& h, int quads) {
         for (int i = g.xs[c]; i <= g.xs[c + 1]; ++i) {
           const double u = double(i - g.xs[c]) / (g.xs[c + 1] - g.xs[c]);
           const double v = double(j - g.ys[r]) / (g.ys[r + 1] - g.ys[r]);
-          const double z = v >= u ? za + v * (zd - za) + u * (ze - zd) : za + u * (zb - za) + v * (ze - zb);
+          const double z =
+              v >= u ? za + v * (zd - za) + u * (ze - zd) : za + u * (zb - za) + v * (ze - zb);
           dev = std::max(dev, std::abs(double(h.at(i, j)) - z));
         }
       g.max_deviation[q] = dev;
@@ -95,7 +100,8 @@ CoarseGrid make_coarse_grid(const Heightfield& h, int quads) {
   return g;
 }
 
-glm::dvec3 coarse_reprojection(const CoarseGrid& g, int col, int row, glm::dvec3 eye, glm::dvec3 point) {
+glm::dvec3 coarse_reprojection(const CoarseGrid& g, int col, int row, glm::dvec3 eye,
+                               glm::dvec3 point) {
   const glm::dvec3 to = point - eye;
   const double t_point = glm::length(to);
   if (t_point <= 0) return point;
@@ -103,9 +109,11 @@ glm::dvec3 coarse_reprojection(const CoarseGrid& g, int col, int row, glm::dvec3
   double best_t = std::numeric_limits<double>::quiet_NaN();
   for (int r = std::max(row - 1, 0); r <= std::min(row + 1, g.quads_y - 1); ++r)
     for (int c = std::max(col - 1, 0); c <= std::min(col + 1, g.quads_x - 1); ++c) {
-      const glm::dvec3 a = g.vertex(c, r), b = g.vertex(c + 1, r), dd = g.vertex(c, r + 1), e = g.vertex(c + 1, r + 1);
+      const glm::dvec3 a = g.vertex(c, r), b = g.vertex(c + 1, r), dd = g.vertex(c, r + 1),
+                       e = g.vertex(c + 1, r + 1);
       for (double t : {ray_triangle(eye, d, a, dd, e), ray_triangle(eye, d, a, e, b)})
-        if (t > 0 && (std::isnan(best_t) || std::abs(t - t_point) < std::abs(best_t - t_point))) best_t = t;
+        if (t > 0 && (std::isnan(best_t) || std::abs(t - t_point) < std::abs(best_t - t_point)))
+          best_t = t;
     }
   return std::isnan(best_t) ? point : eye + best_t * d;
 }
@@ -151,15 +159,16 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
   const glm::dvec3 P = k.beta_reference;
   const glm::dvec3 u1 = k.key.position - P, u2 = view.position - P;
   const double l1 = glm::length(u1), l2 = glm::length(u2);
-  const double cos_beta = (l1 > 0 && l2 > 0) ? std::clamp(glm::dot(u1, u2) / (l1 * l2), -1.0, 1.0) : 1.0;
+  const double cos_beta =
+      (l1 > 0 && l2 > 0) ? std::clamp(glm::dot(u1, u2) / (l1 * l2), -1.0, 1.0) : 1.0;
   const double sin_beta = std::sqrt(std::max(0.0, 1.0 - cos_beta * cos_beta));
   const double pixel = view.pixel_angle(k.height);
   const glm::dmat4 vp = view.view_projection();
   const glm::dvec3 forward = view.forward();
   double sum_paper = 0, sum_exact = 0, sum_log_scale = 0;
   const glm::dvec3 key_forward = k.key.forward();
-  // Pixels covering a small patch at C: dA |cos(incidence)| / (d^2 cos^3(off-axis angle)), up to constants
-  // shared by both views (same field of view and image size).
+  // Pixels covering a small patch at C: dA |cos(incidence)| / (d^2 cos^3(off-axis angle)), up to
+  // constants shared by both views (same field of view and image size).
   auto footprint = [](glm::dvec3 eye, glm::dvec3 axis, glm::dvec3 c, glm::dvec3 normal) {
     const glm::dvec3 to = eye - c;
     const double d = glm::length(to);

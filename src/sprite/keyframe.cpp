@@ -4,7 +4,6 @@
 // from its depth buffer which coarse polygons the keyframe can texture.
 #include "sprite/keyframe.h"
 
-
 namespace terrasprite {
 
 Keyframe::Keyframe(int width, int height, const CoarseGrid& grid) : target(width, height) {
@@ -14,7 +13,8 @@ Keyframe::Keyframe(int width, int height, const CoarseGrid& grid) : target(width
   fallback.assign(static_cast<std::size_t>(grid.quad_count()), 1);
 }
 
-void Keyframe::capture(GlTerrain::Impl& scene, const CoarseGrid& grid, const Camera& c, bool lighting) {
+void Keyframe::capture(GlTerrain::Impl& scene, const CoarseGrid& grid, const Camera& c,
+                       bool lighting) {
   camera = c;
   view_projection = glm::mat4(gl::view_projection_reversed_z(c));
   target.bind_and_clear();
@@ -40,13 +40,14 @@ void Keyframe::capture(GlTerrain::Impl& scene, const CoarseGrid& grid, const Cam
       // takes the original texture. The centre vertex counts too: a ridge
       // inside the quad can hide its middle while its corners show.
       const bool corners = vertex_visible[r * vx + q0] && vertex_visible[r * vx + q0 + 1] &&
-                           vertex_visible[(r + 1) * vx + q0] && vertex_visible[(r + 1) * vx + q0 + 1];
+                           vertex_visible[(r + 1) * vx + q0] &&
+                           vertex_visible[(r + 1) * vx + q0 + 1];
       fallback[q] = (corners && (centre || !grid.has_centre[q])) ? 0 : 1;
     }
   samples = make_keyframe_samples(grid, c, target.width(), target.height(), centre_visible);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTextureSubImage2D(flags.id(), 0, 0, 0, grid.quads_x, grid.quads_y, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
-                      fallback.data());
+  glTextureSubImage2D(flags.id(), 0, 0, 0, grid.quads_x, grid.quads_y, GL_RED_INTEGER,
+                      GL_UNSIGNED_BYTE, fallback.data());
   valid = true;
 }
 

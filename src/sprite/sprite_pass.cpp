@@ -74,7 +74,8 @@ void main() {
 }  // namespace
 
 SpritePass::SpritePass()
-    : program_(gl::link_program(kVertex, std::string("#version 450 core\n") + kDrapeUvGlsl + kFragment)) {
+    : program_(gl::link_program(kVertex,
+                                std::string("#version 450 core\n") + kDrapeUvGlsl + kFragment)) {
   glCreateSamplers(1, &drape_sampler_);
   glSamplerParameteri(drape_sampler_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glSamplerParameteri(drape_sampler_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -91,8 +92,8 @@ SpritePass::SpritePass()
   glProgramUniform1i(p, glGetUniformLocation(p, "u_flags"), 2);
 }
 
-void SpritePass::draw(GlTerrain::Impl& scene, const GpuMesh& coarse, int quads_x, const Keyframe& key,
-                      const glm::mat4& vp, bool lighting) {
+void SpritePass::draw(GlTerrain::Impl& scene, const GpuMesh& coarse, int quads_x,
+                      const Keyframe& key, const glm::mat4& vp, bool lighting) {
   const GLuint p = program_.id();
   glUseProgram(p);
   glUniformMatrix4fv(u_vp_, 1, GL_FALSE, glm::value_ptr(vp));
@@ -109,6 +110,8 @@ void SpritePass::draw(GlTerrain::Impl& scene, const GpuMesh& coarse, int quads_x
   glBindSampler(1, 0);
 }
 
-SpritePass::~SpritePass() { glDeleteSamplers(1, &drape_sampler_); }
+SpritePass::~SpritePass() {
+  glDeleteSamplers(1, &drape_sampler_);
+}
 
 }  // namespace terrasprite

@@ -4,8 +4,9 @@
 // keyframe, otherwise a sprite frame from the coarse mesh.
 #include "terrasprite/sprite_renderer.h"
 
-#include <chrono>
 #include <fmt/format.h>
+
+#include <chrono>
 
 #include "sprite/keyframe.h"
 #include "sprite/sprite_pass.h"
@@ -27,14 +28,21 @@ struct SpriteRenderer::State {
   std::vector<std::uint8_t> flags;  // this frame's per-quad drape flags
 
   State(GlTerrain& s, int w, int h, const SpriteOptions& o)
-      : scene(s), width(w), height(h), options(o), grid(make_coarse_grid(s.terrain().heights, o.lod_quads)),
-        key(w, h, grid), out(w, h) {}
+      : scene(s),
+        width(w),
+        height(h),
+        options(o),
+        grid(make_coarse_grid(s.terrain().heights, o.lod_quads)),
+        key(w, h, grid),
+        out(w, h) {}
 };
 
 SpriteRenderer::SpriteRenderer(GlTerrain& scene, int width, int height, SpriteOptions options) {
-  if (options.lod_quads < 1) throw InputError(fmt::format("--lod-quads {}: must be at least 1", options.lod_quads));
+  if (options.lod_quads < 1)
+    throw InputError(fmt::format("--lod-quads {}: must be at least 1", options.lod_quads));
   if (!(options.threshold_px > 0))
-    throw InputError(fmt::format("--threshold {}: must be a positive number of pixels", options.threshold_px));
+    throw InputError(
+        fmt::format("--threshold {}: must be a positive number of pixels", options.threshold_px));
   s_ = std::make_unique<State>(scene, width, height, options);
   // Upload both meshes now, not inside the first timed frame.
   scene.impl().mesh(0);
@@ -43,18 +51,32 @@ SpriteRenderer::SpriteRenderer(GlTerrain& scene, int width, int height, SpriteOp
 
 SpriteRenderer::~SpriteRenderer() = default;
 
-std::string SpriteRenderer::name() const { return fmt::format("sprite{}", s_->options.lod_quads); }
-bool SpriteRenderer::has_keyframe() const { return s_->key.valid; }
+std::string SpriteRenderer::name() const {
+  return fmt::format("sprite{}", s_->options.lod_quads);
+}
+bool SpriteRenderer::has_keyframe() const {
+  return s_->key.valid;
+}
 void SpriteRenderer::reset() {
   s_->key.valid = false;
   s_->last = {};
   s_->trigger.clear();
 }
-const SpriteError& SpriteRenderer::last_error() const { return s_->last; }
-const std::string& SpriteRenderer::last_trigger() const { return s_->trigger; }
-const SpriteOptions& SpriteRenderer::options() const { return s_->options; }
-const CoarseGrid& SpriteRenderer::grid() const { return s_->grid; }
-const std::vector<std::uint8_t>& SpriteRenderer::fallback_quads() const { return s_->key.fallback; }
+const SpriteError& SpriteRenderer::last_error() const {
+  return s_->last;
+}
+const std::string& SpriteRenderer::last_trigger() const {
+  return s_->trigger;
+}
+const SpriteOptions& SpriteRenderer::options() const {
+  return s_->options;
+}
+const CoarseGrid& SpriteRenderer::grid() const {
+  return s_->grid;
+}
+const std::vector<std::uint8_t>& SpriteRenderer::fallback_quads() const {
+  return s_->key.fallback;
+}
 
 SpriteError SpriteRenderer::error(const Camera& camera) const {
   if (!s_->key.valid) return {};
@@ -93,7 +115,7 @@ Frame SpriteRenderer::render_as(const Camera& camera, int d) {
     s.trigger = "forced";
   } else if (key) {
     const SpriteOptions& o = s.options;
-    s.trigger = e.value(o.metric) > o.threshold_px            ? "error"
+    s.trigger = e.value(o.metric) > o.threshold_px                ? "error"
                 : e.fallback_fraction() > o.max_fallback_fraction ? "fallback"
                                                                   : "scale";
   }
@@ -114,12 +136,12 @@ Frame SpriteRenderer::render_as(const Camera& camera, int d) {
         if (s.grid.max_deviation[q] < s.options.sharp_px * pixel * d) s.flags[q] = 1;
       }
       glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-      glTextureSubImage2D(s.key.flags.id(), 0, 0, 0, s.grid.quads_x, s.grid.quads_y, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
-                          s.flags.data());
+      glTextureSubImage2D(s.key.flags.id(), 0, 0, 0, s.grid.quads_x, s.grid.quads_y, GL_RED_INTEGER,
+                          GL_UNSIGNED_BYTE, s.flags.data());
     }
     s.out.bind_and_clear();
-    s.pass.draw(scene, coarse, s.grid.quads_x, s.key, glm::mat4(gl::view_projection_reversed_z(camera)),
-                s.options.lighting);
+    s.pass.draw(scene, coarse, s.grid.quads_x, s.key,
+                glm::mat4(gl::view_projection_reversed_z(camera)), s.options.lighting);
     triangles = coarse.triangles;
   }
   glEndQuery(GL_TIME_ELAPSED);
@@ -148,8 +170,14 @@ Frame SpriteRenderer::render_as(const Camera& camera, int d) {
   return f;
 }
 
-Frame SpriteRenderer::render(const Camera& camera) { return render_as(camera, kAuto); }
-Frame SpriteRenderer::render_keyframe(const Camera& camera) { return render_as(camera, kKey); }
-Frame SpriteRenderer::render_sprite(const Camera& camera) { return render_as(camera, kSprite); }
+Frame SpriteRenderer::render(const Camera& camera) {
+  return render_as(camera, kAuto);
+}
+Frame SpriteRenderer::render_keyframe(const Camera& camera) {
+  return render_as(camera, kKey);
+}
+Frame SpriteRenderer::render_sprite(const Camera& camera) {
+  return render_as(camera, kSprite);
+}
 
 }  // namespace terrasprite

@@ -8,7 +8,8 @@
 
 namespace terrasprite {
 
-bool project_to_pixel(const Camera& camera, int width, int height, glm::dvec3 p, glm::dvec2& pixel) {
+bool project_to_pixel(const Camera& camera, int width, int height, glm::dvec3 p,
+                      glm::dvec2& pixel) {
   const glm::dvec4 clip = camera.view_projection() * glm::dvec4(p, 1.0);
   if (clip.w <= 1e-12) return false;
   pixel.x = (clip.x / clip.w * 0.5 + 0.5) * width;
@@ -16,7 +17,8 @@ bool project_to_pixel(const Camera& camera, int width, int height, glm::dvec3 p,
   return true;
 }
 
-bool visible_in_keyframe(const Camera& key, const DepthView& d, glm::dvec3 p, double rel_tolerance) {
+bool visible_in_keyframe(const Camera& key, const DepthView& d, glm::dvec3 p,
+                         double rel_tolerance) {
   glm::dvec2 px;
   if (!project_to_pixel(key, d.width, d.height, p, px)) return false;
   if (!(px.x >= 0.0 && px.x <= d.width && px.y >= 0.0 && px.y <= d.height)) return false;

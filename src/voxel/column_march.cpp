@@ -25,7 +25,8 @@
 
 namespace terrasprite {
 
-ColumnMarcher::ColumnMarcher(const VoxelTerrain::Data& terrain, const double eye[3], const MarchSettings& settings)
+ColumnMarcher::ColumnMarcher(const VoxelTerrain::Data& terrain, const double eye[3],
+                             const MarchSettings& settings)
     : d_(terrain), s_(settings) {
   eu_ = d_.grid_u(eye[0]);
   ev_ = d_.grid_v(eye[1]);
@@ -35,7 +36,8 @@ ColumnMarcher::ColumnMarcher(const VoxelTerrain::Data& terrain, const double eye
   lmax_ = s_.multires ? int(d_.levels.size()) - 1 : 0;
 }
 
-void ColumnMarcher::march(double dx, double dy, std::span<const double> slopes, std::span<MarchHit> hits) const {
+void ColumnMarcher::march(double dx, double dy, std::span<const double> slopes,
+                          std::span<MarchHit> hits) const {
   const std::size_t n = slopes.size();
   constexpr float kInf = std::numeric_limits<float>::infinity();
   auto sky_from = [&](std::size_t r) {
@@ -134,7 +136,8 @@ void ColumnMarcher::march(double dx, double dy, std::span<const double> slopes, 
   long m;
   {
     const double step = double(1 << L);
-    m = dir > 0 ? long(std::ceil(std::max(a0, 0.0) / step) * step) : long(std::floor(a0 / step) * step);
+    m = dir > 0 ? long(std::ceil(std::max(a0, 0.0) / step) * step)
+                : long(std::floor(a0 / step) * step);
     if (dir < 0 && m < 0) m = 0;
   }
   double t_prev = t0, t_cur;
@@ -196,14 +199,18 @@ void ColumnMarcher::march(double dx, double dy, std::span<const double> slopes, 
         }
       }
       if (skipped) {
-        while (L < lmax_ && (m & ((2L << L) - 1)) == 0 && dist2(t_cur) >= t1_ * double(1 << L) * t1_ * double(1 << L)) ++L;
+        while (L < lmax_ && (m & ((2L << L) - 1)) == 0 &&
+               dist2(t_cur) >= t1_ * double(1 << L) * t1_ * double(1 << L))
+          ++L;
         continue;
       }
     }
     // One step; coarsen first when this line is on the coarser grid.
     t_prev = t_cur;
     h_prev = h_cur;
-    while (L < lmax_ && (m & ((2L << L) - 1)) == 0 && dist2(t_cur) >= t1_ * double(1 << L) * t1_ * double(1 << L)) ++L;
+    while (L < lmax_ && (m & ((2L << L) - 1)) == 0 &&
+           dist2(t_cur) >= t1_ * double(1 << L) * t1_ * double(1 << L))
+      ++L;
     m += dir * (1L << L);
     if (dir * (double(m) - a1) > 0.0) {
       t_cur = t1;

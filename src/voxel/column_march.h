@@ -11,11 +11,11 @@ namespace terrasprite {
 
 /// What a march needs that is fixed for a frame.
 struct MarchSettings {
-  bool multires = true;      // coarsen with distance (else level 0 only)
-  bool blend = true;         // morph towards the next level by distance
-  bool max_skip = true;      // hierarchical empty-space skipping
-  double pixel_angle = 1e-3; // radians per pixel at the image centre
-  double ratio = 1.0;        // pixel_voxel_ratio
+  bool multires = true;       // coarsen with distance (else level 0 only)
+  bool blend = true;          // morph towards the next level by distance
+  bool max_skip = true;       // hierarchical empty-space skipping
+  double pixel_angle = 1e-3;  // radians per pixel at the image centre
+  double ratio = 1.0;         // pixel_voxel_ratio
 };
 
 /// A ray's result: horizontal distance to the hit in metres (+inf = left the
@@ -31,7 +31,8 @@ struct MarchHit {
 /// height field cannot hide a nearer hit above it. Writes one hit per slope.
 class ColumnMarcher {
  public:
-  ColumnMarcher(const VoxelTerrain::Data& terrain, const double eye[3], const MarchSettings& settings);
+  ColumnMarcher(const VoxelTerrain::Data& terrain, const double eye[3],
+                const MarchSettings& settings);
   void march(double dx, double dy, std::span<const double> slopes, std::span<MarchHit> hits) const;
 
  private:

@@ -58,7 +58,8 @@ bool PlaneLayout::rows(int c, int width, int height, std::int64_t& k0, std::int6
     s1 = std::min(s1, std::max(a, b));
     return true;
   };
-  if (!slab(vx, wx, -kMargin, width + kMargin) || !slab(vy, wy, -kMargin, height + kMargin) || !(s1 >= s0))
+  if (!slab(vx, wx, -kMargin, width + kMargin) || !slab(vy, wy, -kMargin, height + kMargin) ||
+      !(s1 >= s0))
     return false;
   k0 = std::max<std::int64_t>(0, std::int64_t(std::floor(s0 / dr)) - 1);
   k1 = std::int64_t(std::ceil(s1 / dr)) + 1;
@@ -118,7 +119,8 @@ PlaneLayout make_plane_layout(const Camera& cam, int width, int height, double o
   }
   // Adjacent columns are at most 1/oversample pixels apart at the far end.
   const double span = std::max(hi - lo, 1e-12);
-  L.columns = std::clamp(int(std::ceil(span * reach * oversample)) + 1, 1, 64 * std::max(width, height));
+  L.columns =
+      std::clamp(int(std::ceil(span * reach * oversample)) + 1, 1, 64 * std::max(width, height));
   L.c0 = lo;
   L.dc = span / L.columns;
   return L;

@@ -16,14 +16,14 @@ namespace terrasprite {
 /// around V and samples by radius: polar form. Image coordinates are pixels,
 /// x right, y down, pixel centres at +0.5.
 struct PlaneLayout {
-  double vx = 0, vy = 0;      // vertical vanishing point
+  double vx = 0, vy = 0;  // vertical vanishing point
   bool polar = false;
-  bool wrap = false;          // polar over the whole circle (V inside the image)
-  bool rise_outward = true;   // ray elevation grows moving away from V
-  double ex = 0, ey = 1;      // axis unit vector (from V towards the image)
-  double c0 = 0, dc = 1;      // column c has parameter c0 + (c + 0.5) dc (angle from e, or lambda)
+  bool wrap = false;         // polar over the whole circle (V inside the image)
+  bool rise_outward = true;  // ray elevation grows moving away from V
+  double ex = 0, ey = 1;     // axis unit vector (from V towards the image)
+  double c0 = 0, dc = 1;     // column c has parameter c0 + (c + 0.5) dc (angle from e, or lambda)
   int columns = 0;
-  double dr = 1;              // sample spacing along a column (pixels)
+  double dr = 1;  // sample spacing along a column (pixels)
 
   /// Sample k of column c is at V + k * dr * (wx, wy).
   void column_dir(int c, double& wx, double& wy) const { direction(c0 + (c + 0.5) * dc, wx, wy); }

@@ -3,9 +3,10 @@
 // multiresolution traversal): level L halves level L-1 with a [1 2 1]/4 tent,
 // heights and colours alike; a max pyramid over cells bounds the surface for
 // hierarchical empty-space skipping.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <limits>
 
 #include "terrasprite/error.h"
@@ -14,14 +15,17 @@
 namespace terrasprite {
 namespace {
 
-int level_size(int n0, int level) { return ((n0 - 1 + (1 << level) - 1) >> level) + 1; }
+int level_size(int n0, int level) {
+  return ((n0 - 1 + (1 << level) - 1) >> level) + 1;
+}
 
 // Drape texture box-filtered onto the height samples (Terrain's mapping:
 // u = r0 + s r2, v = r1 + t r3 over s = i/(w-1), t = j/(h-1)).
 std::vector<std::uint32_t> colour_map(const Terrain& t) {
   const Heightfield& hf = t.heights;
   const Image& tex = t.texture;
-  std::vector<std::uint32_t> out(static_cast<std::size_t>(hf.width) * hf.height, pack_rgba(128, 128, 128));
+  std::vector<std::uint32_t> out(static_cast<std::size_t>(hf.width) * hf.height,
+                                 pack_rgba(128, 128, 128));
   if (tex.empty()) return out;
   const auto& r = t.tex_rect;
   const double fx = hf.width > 1 ? std::abs(r[2]) * tex.width / (hf.width - 1) : 1.0;
@@ -55,7 +59,8 @@ std::vector<std::uint32_t> colour_map(const Terrain& t) {
         }
       }
       const float n = float(nx * ny);
-      out[static_cast<std::size_t>(j) * hf.width + i] = pack_rgba(acc[0] / n, acc[1] / n, acc[2] / n);
+      out[static_cast<std::size_t>(j) * hf.width + i] =
+          pack_rgba(acc[0] / n, acc[1] / n, acc[2] / n);
     }
   }
   return out;
@@ -92,8 +97,10 @@ PyramidLevel halve(const PyramidLevel& f, int w, int h) {
 
 VoxelTerrain::VoxelTerrain(const Terrain& terrain) : d_(std::make_unique<Data>()) {
   const Heightfield& hf = terrain.heights;
-  if (hf.width < 1 || hf.height < 1 || hf.heights.size() != static_cast<std::size_t>(hf.width) * hf.height)
-    throw InputError(fmt::format("{}: height field {}x{} has no samples", hf.name, hf.width, hf.height));
+  if (hf.width < 1 || hf.height < 1 ||
+      hf.heights.size() != static_cast<std::size_t>(hf.width) * hf.height)
+    throw InputError(
+        fmt::format("{}: height field {}x{} has no samples", hf.name, hf.width, hf.height));
   Data& d = *d_;
   d.w = hf.width;
   d.h = hf.height;
@@ -134,7 +141,8 @@ VoxelTerrain::VoxelTerrain(const Terrain& terrain) : d_(std::make_unique<Data>()
         for (int a = 0; a < nw; ++a) {
           float m = -std::numeric_limits<float>::infinity();
           for (int y = 2 * b; y <= std::min(2 * b + 1, ch - 1); ++y)
-            for (int x = 2 * a; x <= std::min(2 * a + 1, cw - 1); ++x) m = std::max(m, cells[std::size_t(y) * cw + x]);
+            for (int x = 2 * a; x <= std::min(2 * a + 1, cw - 1); ++x)
+              m = std::max(m, cells[std::size_t(y) * cw + x]);
           next[static_cast<std::size_t>(b) * nw + a] = m;
         }
       cells.swap(next);
@@ -149,7 +157,8 @@ VoxelTerrain::VoxelTerrain(const Terrain& terrain) : d_(std::make_unique<Data>()
       for (int a = 0; a < cw; ++a) {
         float m = -std::numeric_limits<float>::infinity();
         for (int y = std::max(b - 1, 0); y <= std::min(b + 1, ch - 1); ++y)
-          for (int x = std::max(a - 1, 0); x <= std::min(a + 1, cw - 1); ++x) m = std::max(m, cells[std::size_t(y) * cw + x]);
+          for (int x = std::max(a - 1, 0); x <= std::min(a + 1, cw - 1); ++x)
+            m = std::max(m, cells[std::size_t(y) * cw + x]);
         ml.bound[static_cast<std::size_t>(b) * cw + a] = m;
       }
     d.maxes.push_back(std::move(ml));
@@ -159,7 +168,9 @@ VoxelTerrain::VoxelTerrain(const Terrain& terrain) : d_(std::make_unique<Data>()
 
 VoxelTerrain::~VoxelTerrain() = default;
 
-int VoxelTerrain::levels() const { return int(d_->levels.size()); }
+int VoxelTerrain::levels() const {
+  return int(d_->levels.size());
+}
 
 VoxelVariant parse_voxel_variant(const std::string& text) {
   if (text == "naive") return VoxelVariant::kNaive;
@@ -170,9 +181,12 @@ VoxelVariant parse_voxel_variant(const std::string& text) {
 
 const char* to_string(VoxelVariant v) {
   switch (v) {
-    case VoxelVariant::kNaive: return "naive";
-    case VoxelVariant::kCoherent: return "coherent";
-    case VoxelVariant::kMultires: return "multires";
+    case VoxelVariant::kNaive:
+      return "naive";
+    case VoxelVariant::kCoherent:
+      return "coherent";
+    case VoxelVariant::kMultires:
+      return "multires";
   }
   return "?";
 }

@@ -4,6 +4,7 @@
 // (TBB work stealing over a range of columns, no barrier inside a column),
 // then the intermediate buffer is resampled to the image. The naive variant
 // marches every pixel's ray on its own.
+#include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -11,7 +12,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fmt/format.h>
 #include <thread>
 #include <vector>
 
@@ -22,8 +22,9 @@
 namespace terrasprite {
 namespace {
 
-constexpr std::uint32_t kSkyPacked =
-    std::uint32_t(kSkyColor[0]) | (std::uint32_t(kSkyColor[1]) << 8) | (std::uint32_t(kSkyColor[2]) << 16) | 0xff000000u;
+constexpr std::uint32_t kSkyPacked = std::uint32_t(kSkyColor[0]) |
+                                     (std::uint32_t(kSkyColor[1]) << 8) |
+                                     (std::uint32_t(kSkyColor[2]) << 16) | 0xff000000u;
 
 int resolve_threads(int threads) {
   if (threads > 0) return threads;
@@ -77,21 +78,28 @@ struct VoxelRenderer::State {
   void planes(const Camera& cam, Frame& out);
 };
 
-VoxelRenderer::VoxelRenderer(const VoxelTerrain& terrain, int width, int height, VoxelOptions options) {
+VoxelRenderer::VoxelRenderer(const VoxelTerrain& terrain, int width, int height,
+                             VoxelOptions options) {
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
     throw InputError(fmt::format("voxel renderer: image size {}x{} out of range", width, height));
   if (!(options.pixel_voxel_ratio > 0) || !std::isfinite(options.pixel_voxel_ratio))
-    throw InputError(fmt::format("--pixel-voxel-ratio {}: must be a positive number", options.pixel_voxel_ratio));
+    throw InputError(fmt::format("--pixel-voxel-ratio {}: must be a positive number",
+                                 options.pixel_voxel_ratio));
   if (!(options.plane_oversample >= 0.25 && options.plane_oversample <= 8))
-    throw InputError(fmt::format("plane oversampling {}: must be within 0.25..8", options.plane_oversample));
+    throw InputError(
+        fmt::format("plane oversampling {}: must be within 0.25..8", options.plane_oversample));
   s_ = std::make_unique<State>(terrain, width, height, options);
 }
 
 VoxelRenderer::~VoxelRenderer() = default;
 
-const VoxelOptions& VoxelRenderer::options() const { return s_->options; }
+const VoxelOptions& VoxelRenderer::options() const {
+  return s_->options;
+}
 
-std::string VoxelRenderer::name() const { return fmt::format("voxel-{}", to_string(s_->options.variant)); }
+std::string VoxelRenderer::name() const {
+  return fmt::format("voxel-{}", to_string(s_->options.variant));
+}
 
 Frame VoxelRenderer::render(const Camera& camera) {
   Frame out;
@@ -105,7 +113,8 @@ Frame VoxelRenderer::render(const Camera& camera) {
     else
       s_->planes(camera, out);
   });
-  out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  out.ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 
@@ -113,23 +122,28 @@ void VoxelRenderer::State::naive(const Camera& cam, Frame& out) {
   const double eye[3] = {cam.position.x, cam.position.y, cam.position.z};
   const ColumnMarcher marcher(terrain.data(), eye, settings_for(options, cam, h));
   const ImageRays rays(cam, w, h);
-  tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& range) {
-    for (int y = range.begin(); y < range.end(); ++y)
-      for (int x = 0; x < w; ++x) {
-        const glm::dvec3 d = rays.at(x + 0.5, y + 0.5);
-        const double hz = std::max(std::sqrt(d.x * d.x + d.y * d.y), 1e-12);
-        const double slope = d.z / hz;
-        MarchHit hit;
-        marcher.march(hz > 1e-12 ? d.x / hz : 1.0, hz > 1e-12 ? d.y / hz : 0.0, {&slope, 1}, {&hit, 1});
-        std::uint8_t* p = out.color.px(x, y);
-        const std::uint32_t c = std::isfinite(hit.t) ? hit.color : kSkyPacked;
-        p[0] = c & 0xff;
-        p[1] = (c >> 8) & 0xff;
-        p[2] = (c >> 16) & 0xff;
-        p[3] = 255;
-        out.depth[std::size_t(y) * w + x] = std::isfinite(hit.t) ? float(hit.t / hz) : Frame::kSky;
-      }
-  }, tbb::simple_partitioner());
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, h, 1),
+      [&](const tbb::blocked_range<int>& range) {
+        for (int y = range.begin(); y < range.end(); ++y)
+          for (int x = 0; x < w; ++x) {
+            const glm::dvec3 d = rays.at(x + 0.5, y + 0.5);
+            const double hz = std::max(std::sqrt(d.x * d.x + d.y * d.y), 1e-12);
+            const double slope = d.z / hz;
+            MarchHit hit;
+            marcher.march(hz > 1e-12 ? d.x / hz : 1.0, hz > 1e-12 ? d.y / hz : 0.0, {&slope, 1},
+                          {&hit, 1});
+            std::uint8_t* p = out.color.px(x, y);
+            const std::uint32_t c = std::isfinite(hit.t) ? hit.color : kSkyPacked;
+            p[0] = c & 0xff;
+            p[1] = (c >> 8) & 0xff;
+            p[2] = (c >> 16) & 0xff;
+            p[3] = 255;
+            out.depth[std::size_t(y) * w + x] =
+                std::isfinite(hit.t) ? float(hit.t / hz) : Frame::kSky;
+          }
+      },
+      tbb::simple_partitioner());
 }
 
 void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
@@ -176,7 +190,8 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
     }
     // The plane's horizontal direction, from the sample farthest from V.
     const std::int64_t kf = k1[c];
-    const glm::dvec3 df = rays.at(layout.vx + double(kf) * layout.dr * wx, layout.vy + double(kf) * layout.dr * wy);
+    const glm::dvec3 df =
+        rays.at(layout.vx + double(kf) * layout.dr * wx, layout.vy + double(kf) * layout.dr * wy);
     const double hf = std::sqrt(df.x * df.x + df.y * df.y);
     const double dx = hf > 1e-12 ? df.x / hf : 1.0, dy = hf > 1e-12 ? df.y / hf : 0.0;
     marcher.march(dx, dy, slopes, hits);
@@ -184,7 +199,8 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
       const std::int64_t k = layout.rise_outward ? k0[c] + i : k1[c] - i;
       const std::size_t at = offset[c] + std::size_t(k - k0[c]);
       const bool hit = std::isfinite(hits[i].t);
-      samples[at] = {hit ? hits[i].color : kSkyPacked, hit ? float(hits[i].t * inv_hz[i]) : Frame::kSky};
+      samples[at] = {hit ? hits[i].color : kSkyPacked,
+                     hit ? float(hits[i].t * inv_hz[i]) : Frame::kSky};
     }
   };
   // One pixel from the buffer: bilinear colour; depth bilinear on a surface,
@@ -250,19 +266,24 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
   if (layout.wrap) {
     // V inside the image (looking steeply down or up): the planes fan out
     // all around it. March every column, then resample.
-    tbb::parallel_for(tbb::blocked_range<int>(0, n, 2), [&](const tbb::blocked_range<int>& range) {
-      for (int c = range.begin(); c < range.end(); ++c) march_column(c);
-    }, tbb::simple_partitioner());
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, n, 2),
+        [&](const tbb::blocked_range<int>& range) {
+          for (int c = range.begin(); c < range.end(); ++c) march_column(c);
+        },
+        tbb::simple_partitioner());
     constexpr int kStrip = 8;  // vertical strips read few buffer columns, sequentially
-    tbb::parallel_for(tbb::blocked_range<int>(0, (w + kStrip - 1) / kStrip, 1), [&](const tbb::blocked_range<int>& range) {
-      const int x0 = range.begin() * kStrip, x1 = std::min(w, range.end() * kStrip);
-      for (int y = 0; y < h; ++y)
-        for (int x = x0; x < x1; ++x) {
-          double cf, kf;
-          locate(x, y, cf, kf);
-          resample(x, y, cf, kf);
-        }
-    });
+    tbb::parallel_for(tbb::blocked_range<int>(0, (w + kStrip - 1) / kStrip, 1),
+                      [&](const tbb::blocked_range<int>& range) {
+                        const int x0 = range.begin() * kStrip,
+                                  x1 = std::min(w, range.end() * kStrip);
+                        for (int y = 0; y < h; ++y)
+                          for (int x = x0; x < x1; ++x) {
+                            double cf, kf;
+                            locate(x, y, cf, kf);
+                            resample(x, y, cf, kf);
+                          }
+                      });
     return;
   }
 
@@ -284,15 +305,18 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
     layout.direction(p_hi, hx, hy);
     for (int y = 0; y < h; ++y) {
       const double dy = y + 0.5 - layout.vy;
-      // In the wedge: cross(w_lo, P - V) >= 0 and cross(P - V, w_hi) >= 0, with P = (x + 0.5, y + 0.5).
+      // In the wedge: cross(w_lo, P - V) >= 0 and cross(P - V, w_hi) >= 0, with P = (x + 0.5, y +
+      // 0.5).
       double xa = 0, xb = w - 1;
       if (bounded) {
         auto bound = [&](double coef, double rhs, bool upper_if_positive) {
           if (std::abs(coef) < 1e-12) return;
           const double x = layout.vx + rhs / coef - 0.5;
           const bool upper = (coef > 0) == upper_if_positive;
-          if (upper) xb = std::min(xb, std::ceil(x) + 2.0);
-          else xa = std::max(xa, std::floor(x) - 2.0);
+          if (upper)
+            xb = std::min(xb, std::ceil(x) + 2.0);
+          else
+            xa = std::max(xa, std::floor(x) - 2.0);
         };
         bound(ly, lx * dy, true);   // ly (x+.5-vx) <= lx dy
         bound(hy, hx * dy, false);  // hy (x+.5-vx) >= hx dy
@@ -305,19 +329,23 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
       }
     }
   };
-  tbb::parallel_for(tbb::blocked_range<int>(0, chunks, 1), [&](const tbb::blocked_range<int>& range) {
-    for (int j = range.begin(); j < range.end(); ++j) {
-      const int ca = j * kChunk, cb = std::min(n, ca + kChunk);
-      for (int c = ca; c < cb; ++c) march_column(c);
-      resample_keys(j == 0 ? -1 : ca, j == chunks - 1 ? n : cb - 1);
-    }
-  }, tbb::simple_partitioner());
-  tbb::parallel_for(tbb::blocked_range<int>(0, chunks - 1, 1), [&](const tbb::blocked_range<int>& range) {
-    for (int j = range.begin(); j < range.end(); ++j) {
-      const long seam = long(j + 1) * kChunk - 1;
-      resample_keys(seam, seam + 1);
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, chunks, 1),
+      [&](const tbb::blocked_range<int>& range) {
+        for (int j = range.begin(); j < range.end(); ++j) {
+          const int ca = j * kChunk, cb = std::min(n, ca + kChunk);
+          for (int c = ca; c < cb; ++c) march_column(c);
+          resample_keys(j == 0 ? -1 : ca, j == chunks - 1 ? n : cb - 1);
+        }
+      },
+      tbb::simple_partitioner());
+  tbb::parallel_for(tbb::blocked_range<int>(0, chunks - 1, 1),
+                    [&](const tbb::blocked_range<int>& range) {
+                      for (int j = range.begin(); j < range.end(); ++j) {
+                        const long seam = long(j + 1) * kChunk - 1;
+                        resample_keys(seam, seam + 1);
+                      }
+                    });
 }
 
 }  // namespace terrasprite

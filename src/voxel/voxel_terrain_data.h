@@ -90,8 +90,10 @@ inline void bilinear_color(const PyramidLevel& lev, double i, double j, float ou
 /// channels per multiply (16-bit lanes cannot overflow: 255 * 256 < 2^16).
 inline std::uint32_t lerp_packed(std::uint32_t a, std::uint32_t b, std::uint32_t f) {
   const std::uint32_t g = 256 - f;
-  const std::uint32_t rb = (((a & 0xff00ffu) * g + (b & 0xff00ffu) * f + 0x800080u) >> 8) & 0xff00ffu;
-  const std::uint32_t ga = ((((a >> 8) & 0xff00ffu) * g + ((b >> 8) & 0xff00ffu) * f + 0x800080u) >> 8) & 0xff00ffu;
+  const std::uint32_t rb =
+      (((a & 0xff00ffu) * g + (b & 0xff00ffu) * f + 0x800080u) >> 8) & 0xff00ffu;
+  const std::uint32_t ga =
+      ((((a >> 8) & 0xff00ffu) * g + ((b >> 8) & 0xff00ffu) * f + 0x800080u) >> 8) & 0xff00ffu;
   return rb | (ga << 8);
 }
 
@@ -101,7 +103,8 @@ inline std::uint32_t bilinear_color_packed(const PyramidLevel& lev, double i, do
   j = std::clamp(j, 0.0, double(lev.h - 1));
   int i0 = std::min(int(i), std::max(lev.w - 2, 0)), j0 = std::min(int(j), std::max(lev.h - 2, 0));
   int i1 = std::min(i0 + 1, lev.w - 1), j1 = std::min(j0 + 1, lev.h - 1);
-  const std::uint32_t fi = std::uint32_t((i - i0) * 256.0 + 0.5), fj = std::uint32_t((j - j0) * 256.0 + 0.5);
+  const std::uint32_t fi = std::uint32_t((i - i0) * 256.0 + 0.5),
+                      fj = std::uint32_t((j - j0) * 256.0 + 0.5);
   const std::uint32_t* r0 = lev.color.data() + std::size_t(j0) * lev.w;
   const std::uint32_t* r1 = lev.color.data() + std::size_t(j1) * lev.w;
   return lerp_packed(lerp_packed(r0[i0], r0[i1], fi), lerp_packed(r1[i0], r1[i1], fi), fj);

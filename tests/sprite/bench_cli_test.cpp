@@ -22,18 +22,22 @@ TEST(BenchLodsprite, WritesTheJsonContractAndTheReport) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   const std::string json = (dir / "s.json").string(), out = (dir / "report").string();
-  ASSERT_EQ(run("bench lodsprite --synthetic-size 65 --resample 65 --frames 6 --size 96x96 --lod-quads 4 "
-                "--thresholds 0.5,1 --frame-counts 6,12 --lod-sweep 4,8 --json " + json + " --out " + out),
-            0);
+  ASSERT_EQ(
+      run("bench lodsprite --synthetic-size 65 --resample 65 --frames 6 --size 96x96 --lod-quads 4 "
+          "--thresholds 0.5,1 --frame-counts 6,12 --lod-sweep 4,8 --json " +
+          json + " --out " + out),
+      0);
   std::ifstream f(json);
   const nlohmann::json d = nlohmann::json::parse(f);
-  for (const char* k : {"gl_renderer", "terrain", "size", "frames", "threshold_px", "full", "lod", "sprite", "speedup",
-                        "per_frame", "threshold_sweep", "frame_count_sweep", "lod_sweep", "bound"})
+  for (const char* k :
+       {"gl_renderer", "terrain", "size", "frames", "threshold_px", "full", "lod", "sprite",
+        "speedup", "per_frame", "threshold_sweep", "frame_count_sweep", "lod_sweep", "bound"})
     EXPECT_TRUE(d.contains(k)) << k;
-  for (const char* k : {"total_ms", "median_ms", "keyframes", "sprite_frames", "key_median_ms", "sprite_median_ms",
-                        "mean_psnr", "mean_ssim", "min_ssim", "mean_flip"})
+  for (const char* k : {"total_ms", "median_ms", "keyframes", "sprite_frames", "key_median_ms",
+                        "sprite_median_ms", "mean_psnr", "mean_ssim", "min_ssim", "mean_flip"})
     EXPECT_TRUE(d["sprite"].contains(k)) << k;
-  for (const char* k : {"f", "r", "speedup_bound", "efficiency"}) EXPECT_TRUE(d["bound"].contains(k)) << k;
+  for (const char* k : {"f", "r", "speedup_bound", "efficiency"})
+    EXPECT_TRUE(d["bound"].contains(k)) << k;
   ASSERT_EQ(d["per_frame"].size(), 6u);
   EXPECT_EQ(d["per_frame"][0]["class"], "key");
   EXPECT_EQ(d["per_frame"][0]["error_px"], 0.0);
@@ -41,7 +45,8 @@ TEST(BenchLodsprite, WritesTheJsonContractAndTheReport) {
   EXPECT_EQ(d["threshold_sweep"].size(), 2u);
   EXPECT_EQ(d["frame_count_sweep"].size(), 2u);
   EXPECT_EQ(d["lod_sweep"].size(), 2u);
-  for (const char* file : {"index.html", "lodsprite.json", "fig13_sprite.png", "fig14_diff_sprite.png", "per_frame.dat"})
+  for (const char* file : {"index.html", "lodsprite.json", "fig13_sprite.png",
+                           "fig14_diff_sprite.png", "per_frame.dat"})
     EXPECT_TRUE(fs::exists(fs::path(out) / file)) << file;
   fs::remove_all(dir);
 }

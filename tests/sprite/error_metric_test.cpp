@@ -21,7 +21,9 @@ Heightfield flat(int n, double spacing) {
   return h;
 }
 
-std::vector<std::uint8_t> all_visible(const CoarseGrid& g) { return std::vector<std::uint8_t>(g.quad_count(), 1); }
+std::vector<std::uint8_t> all_visible(const CoarseGrid& g) {
+  return std::vector<std::uint8_t>(g.quad_count(), 1);
+}
 
 Camera overhead(glm::dvec3 above, double height) {
   Camera c = Camera::look_at(above + glm::dvec3(0, 0, height), above, 60.0, 1.0);
@@ -148,10 +150,10 @@ TEST(Visibility, DepthBufferHidesPointsBehindNearerSurface) {
   std::vector<float> depth(64 * 64, 1000.f);
   DepthView dv{depth, 64, 64};
   EXPECT_TRUE(visible_in_keyframe(key, dv, glm::dvec3(0, 0, 0)));
-  EXPECT_TRUE(visible_in_keyframe(key, dv, glm::dvec3(10, 0, 100)));     // in front of the surface
-  EXPECT_FALSE(visible_in_keyframe(key, dv, glm::dvec3(10, 0, -100)));   // behind it
-  EXPECT_FALSE(visible_in_keyframe(key, dv, glm::dvec3(5000, 0, 0)));    // outside the view
-  EXPECT_FALSE(visible_in_keyframe(key, dv, glm::dvec3(0, 0, 2000)));    // behind the eye
+  EXPECT_TRUE(visible_in_keyframe(key, dv, glm::dvec3(10, 0, 100)));    // in front of the surface
+  EXPECT_FALSE(visible_in_keyframe(key, dv, glm::dvec3(10, 0, -100)));  // behind it
+  EXPECT_FALSE(visible_in_keyframe(key, dv, glm::dvec3(5000, 0, 0)));   // outside the view
+  EXPECT_FALSE(visible_in_keyframe(key, dv, glm::dvec3(0, 0, 2000)));   // behind the eye
 }
 
 }  // namespace

@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: MIT
 // The LOD-sprite renderer on GL: a sprite from the keyframe's own camera,
 // the visibility fallback (occlusion and the keyframe frustum), the trigger.
+#include "terrasprite/sprite_renderer.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "terrasprite/camera_path.h"
 #include "terrasprite/gl_context.h"
-#include "terrasprite/sprite_renderer.h"
 #include "terrasprite/terrain_gen.h"
 
 namespace terrasprite {
@@ -40,19 +41,24 @@ Terrain gentle_hills(int n) {
 
 Camera tilted_view(const Heightfield& h, double pitch_deg, glm::dvec3 offset = glm::dvec3(0)) {
   const double E = h.extent();
-  Camera c = Camera::look_at(glm::dvec3(0, -E * std::cos(glm::radians(-pitch_deg)), E * std::sin(glm::radians(-pitch_deg))) + offset,
+  Camera c = Camera::look_at(glm::dvec3(0, -E * std::cos(glm::radians(-pitch_deg)),
+                                        E * std::sin(glm::radians(-pitch_deg))) +
+                                 offset,
                              offset, 60.0, 1.0);
   fit_clip_planes(c, h);
   return c;
 }
 
-bool is_sky(const std::uint8_t* p) { return p[0] == kSkyColor[0] && p[1] == kSkyColor[1] && p[2] == kSkyColor[2]; }
+bool is_sky(const std::uint8_t* p) {
+  return p[0] == kSkyColor[0] && p[1] == kSkyColor[1] && p[2] == kSkyColor[2];
+}
 
 TEST(SpriteRenderer, SpriteFromTheKeyframeCameraMatchesTheKeyframe) {
   GlContext gl;
   Terrain t = gentle_hills(129);
   GlTerrain scene(t);
-  SpriteRenderer r(scene, 256, 256, SpriteOptions{.lod_quads = 16, .sharp_px = 0});  // every quad from the keyframe
+  SpriteRenderer r(scene, 256, 256,
+                   SpriteOptions{.lod_quads = 16, .sharp_px = 0});  // every quad from the keyframe
   for (double pitch : {-90.0, -60.0, -35.0}) {
     Camera c = tilted_view(t.heights, pitch);
     Frame key = r.render_keyframe(c);
@@ -149,7 +155,11 @@ TEST(SpriteRenderer, KeyframeTriggerFiresWhenTheThresholdIsExceededAndNotBefore)
   t.texture = derived_texture(t.heights, 256, 256);
   GlTerrain scene(t);
   for (ErrorMetric m : {ErrorMetric::kPaper, ErrorMetric::kExact}) {
-    SpriteOptions o{.lod_quads = 16, .threshold_px = 0.5, .metric = m, .max_resample_scale = INFINITY, .read_color = false};
+    SpriteOptions o{.lod_quads = 16,
+                    .threshold_px = 0.5,
+                    .metric = m,
+                    .max_resample_scale = INFINITY,
+                    .read_color = false};
     SpriteRenderer r(scene, 128, 128, o);
     auto path = paper_path(t.heights, 120, 1.0);
     int keys = 0;

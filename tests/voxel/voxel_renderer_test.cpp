@@ -2,6 +2,8 @@
 // Correctness of the voxel ray caster: analytic depth on a flat plane, the
 // horizon, occlusion by a spike, coherent traversal against per-pixel
 // marching under pitch and roll, agreement with the GL renderer, edge cases.
+#include "terrasprite/voxel_renderer.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,7 +16,6 @@
 #include "terrasprite/mesh_renderer.h"
 #include "terrasprite/quality.h"
 #include "terrasprite/terrain_gen.h"
-#include "terrasprite/voxel_renderer.h"
 
 namespace terrasprite {
 namespace {
@@ -50,9 +51,11 @@ bool is_sky(const Frame& f, int x, int y) {
   return p[0] == kSkyColor[0] && p[1] == kSkyColor[1] && p[2] == kSkyColor[2];
 }
 
-const VoxelVariant kAll[] = {VoxelVariant::kNaive, VoxelVariant::kCoherent, VoxelVariant::kMultires};
+const VoxelVariant kAll[] = {VoxelVariant::kNaive, VoxelVariant::kCoherent,
+                             VoxelVariant::kMultires};
 
-Frame render(const VoxelTerrain& vt, const Camera& c, int w, int h, VoxelVariant v, double ratio = 1.0) {
+Frame render(const VoxelTerrain& vt, const Camera& c, int w, int h, VoxelVariant v,
+             double ratio = 1.0) {
   VoxelOptions o;
   o.variant = v;
   o.threads = 2;
@@ -77,10 +80,12 @@ TEST(VoxelRenderer, FlatPlaneDepthIsAnalytic) {
             if (d.z >= 0) continue;
             double s = (100.0 - 400.0) / d.z;
             glm::dvec3 p = c.position + s * d;
-            if (std::abs(p.x) > 600 || std::abs(p.y) > 600) continue;  // off the plane or near its edge
+            if (std::abs(p.x) > 600 || std::abs(p.y) > 600)
+              continue;  // off the plane or near its edge
             double expect = s * glm::dot(d, c.forward());
             EXPECT_NEAR(f.depth[std::size_t(y) * W + x], expect, 0.01 * expect + 1.0)
-                << to_string(v) << " pitch " << pitch << " roll " << roll << " at " << x << "," << y;
+                << to_string(v) << " pitch " << pitch << " roll " << roll << " at " << x << ","
+                << y;
             ++checked;
           }
         EXPECT_GT(checked, W * H / 4) << "pitch " << pitch;
@@ -90,20 +95,23 @@ TEST(VoxelRenderer, FlatPlaneDepthIsAnalytic) {
 
 TEST(VoxelRenderer, HorizonRowIsAnalytic) {
   const int W = 64, H = 48;
-  Terrain t = flat_terrain(1025, 100.0, 0.0f);  // 102 km: its far edge lies within a pixel of the horizon
+  Terrain t =
+      flat_terrain(1025, 100.0, 0.0f);  // 102 km: its far edge lies within a pixel of the horizon
   VoxelTerrain vt(t);
   for (double pitch : {0.0, -10.0}) {
     Camera c = make_camera({0, 0, 10}, 0, pitch, 0, W, H);
     const double fy = H / (2.0 * std::tan(30.0 * 3.14159265358979323846 / 180.0));
     const double y_horizon = H / 2.0 - fy * std::tan(-pitch * 3.14159265358979323846 / 180.0);
-    const int first_ground = int(std::ceil(y_horizon - 0.5));  // first row whose centre is below the horizon
+    const int first_ground =
+        int(std::ceil(y_horizon - 0.5));  // first row whose centre is below the horizon
     for (VoxelVariant v : kAll) {
       Frame f = render(vt, c, W, H, v);
       for (int x = 0; x < W; x += 7) {
         int y = 0;
         while (y < H && is_sky(f, x, y)) ++y;
         EXPECT_NEAR(y, first_ground, 1) << to_string(v) << " pitch " << pitch << " column " << x;
-        for (int yy = y; yy < H; ++yy) EXPECT_FALSE(is_sky(f, x, yy)) << to_string(v) << " hole at " << x << "," << yy;
+        for (int yy = y; yy < H; ++yy)
+          EXPECT_FALSE(is_sky(f, x, yy)) << to_string(v) << " hole at " << x << "," << yy;
       }
     }
   }
@@ -151,7 +159,8 @@ TEST(VoxelRenderer, SpikeOccludesExactlyItsPixels) {
           }
         gross += !near_edge;
       }
-    EXPECT_EQ(gross, 0) << to_string(v) << ": spike pixels away from its silhouette differ from the exact surface";
+    EXPECT_EQ(gross, 0) << to_string(v)
+                        << ": spike pixels away from its silhouette differ from the exact surface";
     EXPECT_LE(diff, n_truth / 3) << to_string(v);
   }
 }
@@ -196,8 +205,11 @@ TEST(VoxelRenderer, CoherentMatchesNaiveUnderPitchAndRoll) {
   VoxelTerrain vplain(plain);
   // The peak's top, and a point 300 m below it that every view looks at from 1 km.
   const glm::dvec3 peak(t.heights.world_x(64), t.heights.world_y(40), t.heights.at(64, 40));
-  struct View { double pitch, roll; };
-  for (View view : {View{0, 0}, View{-30, 0}, View{-60, 0}, View{-90, 0}, View{-30, 30}, View{-60, -40}}) {
+  struct View {
+    double pitch, roll;
+  };
+  for (View view :
+       {View{0, 0}, View{-30, 0}, View{-60, 0}, View{-90, 0}, View{-30, 30}, View{-60, -40}}) {
     Camera c = make_camera({0, 0, 0}, 15, view.pitch, view.roll, W, H);
     c.position = peak - glm::dvec3(0, 0, 300) - 1000.0 * c.forward();
     Frame naive = render(vt, c, W, H, VoxelVariant::kNaive);
@@ -217,7 +229,8 @@ TEST(VoxelRenderer, CoherentMatchesNaiveUnderPitchAndRoll) {
     }
     EXPECT_GT(peak_naive, 3) << "the peak should be in view, pitch " << view.pitch;
     // Most of the peak survives; resampling may shave a pixel off its outline.
-    EXPECT_GE(peak_both, 0.7 * peak_naive) << "coherent misses the thin peak, pitch " << view.pitch << " roll " << view.roll;
+    EXPECT_GE(peak_both, 0.7 * peak_naive)
+        << "coherent misses the thin peak, pitch " << view.pitch << " roll " << view.roll;
   }
 }
 
@@ -249,7 +262,8 @@ TEST(VoxelRenderer, MatchesGlFullResolution) {
   VoxelTerrain vt(t);
   VoxelRenderer voxel(vt, W, H);
   for (double pitch : {-20.0, -45.0}) {
-    Camera c = make_camera({0.1 * E, -0.9 * E, t.heights.max_height() + 0.25 * E}, 10, pitch, 0, W, H);
+    Camera c =
+        make_camera({0.1 * E, -0.9 * E, t.heights.max_height() + 0.25 * E}, 10, pitch, 0, W, H);
     fit_clip_planes(c, t.heights);
     Frame a = full.render(c);
     Frame b = voxel.render(c);
@@ -273,7 +287,8 @@ TEST(VoxelRenderer, EdgeCasesGiveSensibleImages) {
     // Looking up: only sky.
     Frame up = render(vt, make_camera({0, 0, 250}, 0, 45, 0, W, H), W, H, v);
     for (int y = 0; y < H; ++y)
-      for (int x = 0; x < W; ++x) ASSERT_TRUE(is_sky(up, x, y) && std::isinf(up.depth[std::size_t(y) * W + x]));
+      for (int x = 0; x < W; ++x)
+        ASSERT_TRUE(is_sky(up, x, y) && std::isinf(up.depth[std::size_t(y) * W + x]));
     // Below the surface: ground colour, finite depth, no NaN.
     Frame below = render(vt, make_camera({0, 0, 20}, 0, -10, 0, W, H), W, H, v);
     for (float z : below.depth) EXPECT_FALSE(std::isnan(z));

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "terrasprite/camera.h"
 #include "terrasprite/image.h"
 
 namespace terrasprite {
@@ -19,6 +20,9 @@ struct Frame {
   double gpu_ms = -1.0;     ///< GL timer-query time, or -1 when unavailable
   long long triangles = 0;  ///< triangles submitted (0 for non-raster renderers)
   std::string cls;          ///< frame class: full, lod, key, sprite, voxel, warp
+  /// The camera the frame was rendered with (its view() and projection(),
+  /// near/far included), so a later stage (warp, quality) can reproject it.
+  Camera camera;
 
   static constexpr float kSky = std::numeric_limits<float>::infinity();
   int width() const { return color.width; }

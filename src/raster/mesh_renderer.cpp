@@ -53,6 +53,7 @@ Frame MeshRenderer::render(const Camera& camera) {
   f.gpu_ms = ns / 1e6 <= f.ms * 1.05 + 0.1 ? ns / 1e6 : -1.0;
   f.triangles = mesh.triangles;
   f.cls = s_->quads <= 0 ? "full" : "lod";
+  f.camera = camera;
   f.color = s_->target.read_color();
   if (s_->options.read_depth) f.depth = s_->target.read_depth(camera.near_m, camera.far_m);
   return f;

@@ -156,6 +156,7 @@ Frame SpriteRenderer::render_as(const Camera& camera, int d) {
   f.gpu_ms = ns / 1e6;
   f.triangles = triangles;
   f.cls = key ? "key" : "sprite";
+  f.camera = camera;
   if (s.options.read_color) {
     f.color = result->read_color();
     for (std::size_t i = 0; i < f.color.rgba.size(); i += 4)  // keyframe sky is transparent black

@@ -135,6 +135,7 @@ Frame VoxelReference::render(const Camera& cam) {
   out.color = Image(s.w, s.h);
   out.depth.assign(static_cast<std::size_t>(s.w) * s.h, Frame::kSky);
   out.cls = "reference";
+  out.camera = cam;
   const auto start = std::chrono::steady_clock::now();
   const VoxelTerrain::Data& d = s.terrain.data();
   const RefRay ray{d, d.grid_u(cam.position.x), d.grid_v(cam.position.y), cam.position.z,

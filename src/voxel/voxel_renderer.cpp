@@ -106,6 +106,7 @@ Frame VoxelRenderer::render(const Camera& camera) {
   out.color = Image(s_->w, s_->h);
   out.depth.assign(static_cast<std::size_t>(s_->w) * s_->h, Frame::kSky);
   out.cls = "voxel";
+  out.camera = camera;
   const auto start = std::chrono::steady_clock::now();
   s_->arena.execute([&] {
     if (s_->options.variant == VoxelVariant::kNaive)

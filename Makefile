@@ -9,7 +9,9 @@ JOBS ?= $(shell nproc)
 PACKAGES := build-essential cmake pkg-config git \
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev libglm-dev \
   libgdal-dev libstb-dev libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev \
-  libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox ffmpeg python3 python3-skimage
+  libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox ffmpeg python3 python3-skimage \
+  libmeshoptimizer-dev libtinyobjloader-dev libtinygltf-dev libglfw3-dev libimgui-dev \
+  xvfb xauth clang-14 libclang-rt-14-dev
 
 .PHONY: all deps build build-all demo test test-asan consumer clean
 

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "terrasprite/error.h"
+#include "terrasprite/mesh_renderer.h"
 #include "terrasprite/sprite_renderer.h"
 
 namespace terrasprite::cli {
@@ -23,9 +24,9 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
       throw InputError(fmt::format("--lod-quads {}: must be at least 1", lod_quads));
     s.gl = std::make_unique<GlContext>();
     s.device = s.gl->renderer();
-    s.scene = std::make_unique<GlTerrain>(terrain);
+    s.scene = std::make_unique<Scene>(terrain);
     s.renderer = std::make_unique<MeshRenderer>(
-        *s.scene, width, height, mode == "full" ? 0 : lod_quads, RasterOptions{lighting, true});
+        *s.scene, width, height, mode == "full" ? 0 : lod_quads, RasterOptions{lighting});
     return s;
   }
   if (mode == "voxel") {
@@ -40,10 +41,9 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
   if (mode == "sprite") {
     SpriteOptions o;
     o.lod_quads = lod_quads;
-    o.read_depth = true;
     s.gl = std::make_unique<GlContext>();
     s.device = s.gl->renderer();
-    s.scene = std::make_unique<GlTerrain>(terrain);
+    s.scene = std::make_unique<Scene>(terrain);
     s.renderer = std::make_unique<SpriteRenderer>(*s.scene, width, height, o);
     return s;
   }

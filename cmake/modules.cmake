@@ -4,6 +4,7 @@
 # src/<dir>/*.cpp, appended to TS_MODULES. Compile flags live in this file,
 # nowhere else (SIMD clone macros and vector types: src/common/simd.h).
 set(TS_MODULES "")
+set(TS_MODULE_DIRS "")
 function(ts_module name)
   cmake_parse_arguments(M "" "" "DIRS;PUBLIC;PRIVATE" ${ARGN})
   set(srcs "")
@@ -21,6 +22,7 @@ function(ts_module name)
   target_compile_options(${t} PRIVATE ${TS_WARNINGS})
   target_link_libraries(${t} PUBLIC ${M_PUBLIC} PRIVATE ${M_PRIVATE})
   set(TS_MODULES ${TS_MODULES} ${t} PARENT_SCOPE)
+  set(TS_MODULE_DIRS ${TS_MODULE_DIRS} ${M_DIRS} PARENT_SCOPE)
 endfunction()
 
 # A per-pixel loop whose sqrt should compile to the exact vector instruction:
@@ -30,4 +32,18 @@ function(ts_fast_sqrt source)
   if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     set_source_files_properties(${PROJECT_SOURCE_DIR}/${source} PROPERTIES COMPILE_OPTIONS -fno-math-errno)
   endif()
+endfunction()
+
+# Every src/<dir> with sources must belong to a module: a new directory that
+# no ts_module() line names fails the configure step instead of silently
+# leaving its code out of the library.
+function(ts_check_modules_cover_src)
+  file(GLOB dirs LIST_DIRECTORIES true ${PROJECT_SOURCE_DIR}/src/*)
+  foreach(d ${dirs})
+    get_filename_component(name ${d} NAME)
+    file(GLOB cpp ${d}/*.cpp)
+    if(IS_DIRECTORY ${d} AND cpp AND NOT name IN_LIST TS_MODULE_DIRS)
+      message(FATAL_ERROR "src/${name} has sources but no ts_module() line in CMakeLists.txt names it")
+    endif()
+  endforeach()
 endfunction()

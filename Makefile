@@ -43,13 +43,21 @@ test: build-all
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	$(MAKE) consumer
 
-# The installed package must stay usable from another project.
+# The installed package must stay usable from another project: the whole
+# library, and the quality module alone with no GL, EGL, epoxy or GDAL in its
+# binary's NEEDED entries.
 consumer: build-all
-	rm -rf $(BUILD)/_install $(BUILD)/_consumer
+	rm -rf $(BUILD)/_install $(BUILD)/_consumer $(BUILD)/_consumer_quality
 	cmake --install $(BUILD) --prefix $(BUILD)/_install >/dev/null
 	cmake -S tests/consumer -B $(BUILD)/_consumer -DCMAKE_PREFIX_PATH=$(CURDIR)/$(BUILD)/_install >/dev/null
 	cmake --build $(BUILD)/_consumer -j $(JOBS) >/dev/null
 	$(BUILD)/_consumer/consumer
+	cmake -S tests/consumer_quality -B $(BUILD)/_consumer_quality -DCMAKE_PREFIX_PATH=$(CURDIR)/$(BUILD)/_install >/dev/null
+	cmake --build $(BUILD)/_consumer_quality -j $(JOBS) >/dev/null
+	$(BUILD)/_consumer_quality/quality_consumer
+	@if readelf -d $(BUILD)/_consumer_quality/quality_consumer | grep -E 'NEEDED.*(libEGL|libGL|libepoxy|libgdal)'; then \
+	  echo "consumer: the quality-only binary depends on GL/EGL/GDAL"; exit 1; \
+	else echo "consumer: quality-only binary has no GL/EGL/epoxy/GDAL dependency"; fi
 
 test-asan: deps
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTERRASPRITE_SANITIZE=ON -DTERRASPRITE_BUILD_BENCH=OFF

@@ -15,6 +15,8 @@
 
 #include "bench_commands.h"
 #include "cli_common.h"
+#include "plot.h"
+#include "terrasprite/stats.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/error.h"
 #include "terrasprite/flythrough.h"
@@ -41,20 +43,6 @@ struct BenchVoxelOpts {
   std::string json;
   std::string out;
 };
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  double k = p * (v.size() - 1);
-  std::size_t a = std::size_t(std::floor(k)), b = std::min(a + 1, v.size() - 1);
-  return v[a] + (v[b] - v[a]) * (k - a);
-}
-
-double mean(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x;
-  return v.empty() ? 0 : s / v.size();
-}
 
 nlohmann::json num_or_null(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
@@ -95,10 +83,8 @@ void write_plot(const OutputDir& out, const std::vector<std::string>& names,
        << names[k] << "'";
   gp << '\n';
   gp.close();
-  const std::string cmd =
-      fmt::format("cd '{}' && gnuplot frame_times.gp 2>/dev/null", out.partial().string());
-  if (std::system(cmd.c_str()) != 0)
-    fmt::print(stderr, "warning: gnuplot failed; frame_times.dat kept without a plot\n");
+  const std::string error = run_gnuplot(out.partial().string(), "frame_times.gp");
+  if (!error.empty()) fmt::print(stderr, "warning: {}; frame_times.dat kept without a plot\n", error);
 }
 
 void run(const BenchVoxelOpts& o) {
@@ -230,7 +216,7 @@ void run(const BenchVoxelOpts& o) {
          {"threads", tmax},
          {"frames_timed", ms[v][ti_max].size()},
          {"median_ms", med},
-         {"p95_ms", percentile(ms[v][ti_max], 0.95)},
+         {"p95_ms", percentile(ms[v][ti_max], 95)},
          {"ns_per_pixel", med * 1e6 / (double(w) * h)},
          {"speedup_vs_naive", naive_scored / std::max(median(scored_ms[v]), 1e-9)},
          {"scaling_2v1", num_or_null(scaling(v))},
@@ -300,7 +286,7 @@ void run(const BenchVoxelOpts& o) {
       sweep.push_back({{"samples", e.samples},
                        {"frames", e.path.size()},
                        {"median_ms", median(e.ms)},
-                       {"p95_ms", percentile(e.ms, 0.95)}});
+                       {"p95_ms", percentile(e.ms, 95)}});
   }
 
   std::vector<std::string> names;

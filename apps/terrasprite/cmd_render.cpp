@@ -56,7 +56,7 @@ void run(const RenderOpts& o) {
   OutputDir out(o.out, output_policy());
   Progress progress("render");
   auto stats = fly(
-      *stack.renderer, path,
+      *stack.renderer, path, o.depth ? ReadBack::kColorDepth : ReadBack::kColor,
       [&](int i, const Frame& f) {
         save_png(f.color, out.file(fmt::format("frame_{:04d}.png", i)));
         if (o.depth) save_depth(f, m_per_unit, out.file(fmt::format("depth_{:04d}.png", i)));

@@ -8,6 +8,7 @@
 
 #include "cli_common.h"
 #include "terrasprite/error.h"
+#include "terrasprite/mesh_renderer.h"
 #include "terrasprite/sprite_renderer.h"
 
 namespace terrasprite::cli {
@@ -23,9 +24,9 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
     if (mode == "lod") check_lod_quads(lod_quads, terrain.heights);
     s.gl = std::make_unique<GlContext>();
     s.device = s.gl->renderer();
-    s.scene = std::make_unique<GlTerrain>(terrain);
+    s.scene = std::make_unique<Scene>(terrain);
     s.renderer = std::make_unique<MeshRenderer>(
-        *s.scene, width, height, mode == "full" ? 0 : lod_quads, RasterOptions{lighting, true});
+        *s.scene, width, height, mode == "full" ? 0 : lod_quads, RasterOptions{lighting});
     return s;
   }
   if (mode == "voxel") {
@@ -41,10 +42,9 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
     check_lod_quads(lod_quads, terrain.heights);
     SpriteOptions o;
     o.lod_quads = lod_quads;
-    o.read_depth = true;
     s.gl = std::make_unique<GlContext>();
     s.device = s.gl->renderer();
-    s.scene = std::make_unique<GlTerrain>(terrain);
+    s.scene = std::make_unique<Scene>(terrain);
     s.renderer = std::make_unique<SpriteRenderer>(*s.scene, width, height, o);
     return s;
   }

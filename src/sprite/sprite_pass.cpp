@@ -6,6 +6,8 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <string>
 
+#include "terrasprite/frame.h"
+
 namespace terrasprite {
 namespace {
 
@@ -71,6 +73,29 @@ void main() {
 }
 )";
 
+// A keyframe copied into another target (a window): premultiplied colour
+// over the sky, and its depth, so later passes depth-test against it.
+const char* kCompositeVertex = R"(#version 450 core
+out vec2 v_uv;
+void main() {
+  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);  // one triangle covering the target
+  v_uv = p;
+  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+const char* kCompositeFragment = R"(#version 450 core
+in vec2 v_uv;
+uniform sampler2D u_key;
+uniform sampler2D u_key_depth;
+uniform vec3 u_sky;
+out vec4 o_color;
+void main() {
+  vec4 k = texture(u_key, v_uv);
+  o_color = vec4(k.rgb + (1.0 - k.a) * u_sky, 1.0);
+  gl_FragDepth = texture(u_key_depth, v_uv).r;
+}
+)";
+
 }  // namespace
 
 SpritePass::SpritePass()
@@ -90,9 +115,25 @@ SpritePass::SpritePass()
   glProgramUniform1i(p, glGetUniformLocation(p, "u_key"), 0);
   glProgramUniform1i(p, glGetUniformLocation(p, "u_drape"), 1);
   glProgramUniform1i(p, glGetUniformLocation(p, "u_flags"), 2);
+  composite_ = gl::link_program(kCompositeVertex, kCompositeFragment);
+  const GLuint c = composite_.id();
+  glProgramUniform1i(c, glGetUniformLocation(c, "u_key"), 0);
+  glProgramUniform1i(c, glGetUniformLocation(c, "u_key_depth"), 1);
+  glProgramUniform3f(c, glGetUniformLocation(c, "u_sky"), kSkyColor[0] / 255.f,
+                     kSkyColor[1] / 255.f, kSkyColor[2] / 255.f);
 }
 
-void SpritePass::draw(GlTerrain::Impl& scene, const GpuMesh& coarse, int quads_x,
+void SpritePass::composite_keyframe(const Keyframe& key) {
+  glUseProgram(composite_.id());
+  glBindTextureUnit(0, key.target.color_texture());
+  glBindTextureUnit(1, key.target.depth_texture());
+  glDepthFunc(GL_ALWAYS);
+  glBindVertexArray(empty_vao_.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDepthFunc(GL_GREATER);
+}
+
+void SpritePass::draw(TerrainGpu& scene, const GpuMesh& coarse, int quads_x,
                       const Keyframe& key, const glm::mat4& vp, bool lighting) {
   const GLuint p = program_.id();
   glUseProgram(p);
@@ -102,7 +143,7 @@ void SpritePass::draw(GlTerrain::Impl& scene, const GpuMesh& coarse, int quads_x
   glUniform1i(u_qx_, quads_x);
   glUniform1i(u_lighting_, lighting ? 1 : 0);
   glBindTextureUnit(0, key.target.color_texture());
-  glBindTextureUnit(1, scene.drape.id());
+  glBindTextureUnit(1, scene.drape());
   glBindSampler(1, drape_sampler_);
   glBindTextureUnit(2, key.flags.id());
   glBindVertexArray(coarse.vao.id());

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
-// GlTerrain's insides, shared by the raster and sprite renderers.
+// The terrain's GPU side: drape texture, grid meshes per level and the plain
+// terrain shader, shared by the raster and sprite renderers through Scene.
 #pragma once
 #include <glm/glm.hpp>
 #include <map>
 #include <vector>
 
 #include "gl/gl_objects.h"
-#include "terrasprite/mesh_renderer.h"
+#include "terrasprite/terrain.h"
 #include "terrasprite/terrain_mesh.h"
 
 namespace terrasprite {
@@ -25,12 +26,12 @@ struct GpuMesh {
   int columns = 0, rows = 0;
 };
 
-struct GlTerrain::Impl {
-  const Terrain* terrain = nullptr;
-  gl::Texture drape{GL_TEXTURE_2D};
-  gl::Program program;            // the plain textured terrain shader
-  std::map<int, GpuMesh> meshes;  // by quads per side; 0 = full resolution
-
+/// Owned by a Scene; needs its GL context current. Keeps a reference to `terrain`.
+class TerrainGpu {
+ public:
+  /// Uploads the drape texture. Throws InputError when it exceeds GL_MAX_TEXTURE_SIZE.
+  explicit TerrainGpu(const Terrain& terrain);
+  const Terrain& terrain() const { return terrain_; }
   /// The mesh of `quads` quads per side (0 = full), uploaded on first use.
   /// Throws InputError when it would need more than 4 GiB of buffers.
   const GpuMesh& mesh(int quads);
@@ -39,6 +40,13 @@ struct GlTerrain::Impl {
   void draw(const GpuMesh& m, const glm::mat4& view_projection, bool lighting);
   /// Uniforms mapping world (x, y) to drape texture coordinates: uv = xy * scale + offset.
   glm::vec4 uv_transform() const;
+  GLuint drape() const { return drape_.id(); }
+
+ private:
+  const Terrain& terrain_;
+  gl::Texture drape_{GL_TEXTURE_2D};
+  gl::Program program_;           // the plain textured terrain shader
+  std::map<int, GpuMesh> meshes_;  // by quads per side; 0 = full resolution
 };
 
 /// GLSL helper text: `vec2 drape_uv(vec2 world_xy)` using uniform vec4 u_uv (scale.xy, offset.xy).

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "raster/gl_terrain.h"
+#include "scene/terrain_gpu.h"
 
 #include <fmt/format.h>
 
@@ -72,15 +72,14 @@ void upload(GpuMesh& g, const GridMesh& cpu) {
 
 }  // namespace
 
-GlTerrain::GlTerrain(const Terrain& terrain) : impl_(std::make_unique<Impl>()) {
-  impl_->terrain = &terrain;
+TerrainGpu::TerrainGpu(const Terrain& terrain) : terrain_(terrain) {
   const Image& tex = terrain.texture;
   GLint max_size = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
   if (tex.width > max_size || tex.height > max_size)
     throw InputError(fmt::format("{}: texture {}x{} exceeds the GL limit of {} pixels per side",
                                  terrain.texture_name, tex.width, tex.height, max_size));
-  const GLuint t = impl_->drape.id();
+  const GLuint t = drape_.id();
   const int levels = 1 + int(std::floor(std::log2(std::max(tex.width, tex.height))));
   glTextureStorage2D(t, levels, GL_RGBA8, tex.width, tex.height);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -98,29 +97,23 @@ GlTerrain::GlTerrain(const Terrain& terrain) : impl_(std::make_unique<Impl>()) {
     glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY_EXT, &max_aniso);
     glTextureParameterf(t, GL_TEXTURE_MAX_ANISOTROPY_EXT, std::min(16.f, max_aniso));
   }
-  impl_->program =
+  program_ =
       gl::link_program(kVertex, std::string("#version 450 core\n") + kDrapeUvGlsl + kFragment);
 }
 
-GlTerrain::~GlTerrain() = default;
-
-const Terrain& GlTerrain::terrain() const {
-  return *impl_->terrain;
-}
-
-glm::vec4 GlTerrain::Impl::uv_transform() const {
+glm::vec4 TerrainGpu::uv_transform() const {
   // s = (x + ex/2) / ex, t = (ey/2 - y) / ey; u = r0 + s r2, v = r1 + t r3.
-  const Heightfield& h = terrain->heights;
-  const auto& r = terrain->tex_rect;
+  const Heightfield& h = terrain_.heights;
+  const auto& r = terrain_.tex_rect;
   const double ex = std::max(h.extent_x(), 1e-9), ey = std::max(h.extent_y(), 1e-9);
   return glm::vec4(float(r[2] / ex), float(-r[3] / ey), float(r[0] + 0.5 * r[2]),
                    float(r[1] + 0.5 * r[3]));
 }
 
-const GpuMesh& GlTerrain::Impl::mesh(int quads) {
-  auto it = meshes.find(quads);
-  if (it != meshes.end()) return it->second;
-  const Heightfield& h = terrain->heights;
+const GpuMesh& TerrainGpu::mesh(int quads) {
+  auto it = meshes_.find(quads);
+  if (it != meshes_.end()) return it->second;
+  const Heightfield& h = terrain_.heights;
   std::vector<int> xs, ys;
   if (quads <= 0) {
     xs = level_indices(h.width, 0);
@@ -136,7 +129,7 @@ const GpuMesh& GlTerrain::Impl::mesh(int quads) {
         fmt::format("{}: a {}x{}-vertex mesh needs {:.1f} GiB of buffers, more than the 4 GiB "
                     "allowed (use --resample)",
                     h.name, xs.size(), ys.size(), bytes / (1024.0 * 1024 * 1024)));
-  GpuMesh& g = meshes[quads];
+  GpuMesh& g = meshes_[quads];
   if (static_cast<long long>(xs.size()) * ys.size() <= kMaxSinglePartSamples) {
     upload(g, build_grid_mesh(h, xs, ys));
     return g;
@@ -156,14 +149,14 @@ const GpuMesh& GlTerrain::Impl::mesh(int quads) {
   return g;
 }
 
-void GlTerrain::Impl::draw(const GpuMesh& m, const glm::mat4& vp, bool lighting) {
-  const GLuint p = program.id();
+void TerrainGpu::draw(const GpuMesh& m, const glm::mat4& vp, bool lighting) {
+  const GLuint p = program_.id();
   glUseProgram(p);
   glUniformMatrix4fv(glGetUniformLocation(p, "u_vp"), 1, GL_FALSE, glm::value_ptr(vp));
   glUniform4fv(glGetUniformLocation(p, "u_uv"), 1, glm::value_ptr(uv_transform()));
   glUniform1i(glGetUniformLocation(p, "u_lighting"), lighting ? 1 : 0);
   glUniform1i(glGetUniformLocation(p, "u_drape"), 0);
-  glBindTextureUnit(0, drape.id());
+  glBindTextureUnit(0, drape_.id());
   if (m.parts.empty()) {
     glBindVertexArray(m.vao.id());
     glDrawElements(GL_TRIANGLES, m.index_count, GL_UNSIGNED_INT, nullptr);

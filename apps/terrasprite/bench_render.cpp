@@ -32,7 +32,9 @@ void add_bench_render(CLI::App& bench) {
   cmd->add_option("--json", o->json, "also write the JSON here");
   cmd->callback([o] {
     auto [w, h] = parse_size(o->size, "--size");
+    check_outputs("", {o->json});
     Terrain terrain = load_terrain_verbose(o->terrain);
+    check_lod_quads(o->lod_quads, terrain.heights);
     std::vector<Camera> path = make_path(o->path, terrain.heights, o->frames, double(w) / h);
     GlContext gl;
     Scene scene(terrain);

@@ -95,8 +95,13 @@ void run(const BenchVoxelOpts& o) {
     throw InputError(fmt::format("--score-every {}: must be at least 1", o.score_every));
   std::vector<int> threads;
   for (double t : parse_list(o.threads, "--threads")) {
-    if (t < 1 || t > 1024 || t != std::floor(t))
-      throw InputError(fmt::format("--threads {}: counts must be whole, 1..1024", o.threads));
+    // TBB runs at most one thread per hardware thread: a larger count would be
+    // reported while fewer ran.
+    const int most = int(std::max(1u, std::thread::hardware_concurrency()));
+    if (t < 1 || t > most || t != std::floor(t))
+      throw InputError(fmt::format(
+          "--threads {}: counts must be whole, 1..{} (the hardware threads of this machine)",
+          o.threads, most));
     threads.push_back(int(t));
   }
   std::vector<double> pitches = parse_list(o.pitches, "--pitches");
@@ -106,15 +111,17 @@ void run(const BenchVoxelOpts& o) {
   std::vector<int> sizes;
   if (!o.terrain_sizes.empty() && o.terrain_sizes != "none")
     for (double s : parse_list(o.terrain_sizes, "--terrain-sizes")) {
-      if (s < 2 || s > 32769 || s != std::floor(s))
+      if (s < 2 || s > 16385 || s != std::floor(s))
         throw InputError(
-            fmt::format("--terrain-sizes {}: sizes must be whole, 2..32769", o.terrain_sizes));
+            fmt::format("--terrain-sizes {}: sizes must be whole, 2..16385", o.terrain_sizes));
       sizes.push_back(int(s));
     }
   const int tmax = *std::max_element(threads.begin(), threads.end());
+  const std::string out_dir = o.out.empty() ? std::string("out/bench_voxel") : o.out;
+  check_outputs(out_dir, {o.json});
   Terrain terrain = load_terrain_verbose(o.terrain);
   std::vector<Camera> path = make_path(o.path, terrain.heights, o.frames, double(w) / h);
-  OutputDir out(o.out.empty() ? std::string("out/bench_voxel") : o.out);
+  OutputDir out(out_dir, output_policy());
 
   VoxelTerrain vt(terrain);
   const std::vector<VoxelVariant> variants = {VoxelVariant::kNaive, VoxelVariant::kCoherent,

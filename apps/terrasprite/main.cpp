@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
     error = e.what();
     rc = 2;
   } catch (const terrasprite::InputError& e) {
-    error = e.what();
+    error = terrasprite::cli::with_option_names(e.what());
     rc = 2;
   } catch (const terrasprite::DeviceError& e) {
     error = e.what();

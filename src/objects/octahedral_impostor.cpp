@@ -3,8 +3,9 @@
 // Engine's ImpostorBaker): views x views orthographic views of the object
 // from directions on the upper hemi-octahedron, one atlas of albedo + alpha
 // and normal + depth; drawn as a camera-facing quad that blends the three
-// views nearest the view direction, each shifted by its depth (parallax),
-// and writes the blended surface's depth.
+// views nearest the view direction, each shifted by its depth (parallax:
+// the ray is marched against each view's depth image), and writes the
+// blended surface's depth.
 //
 //   hemi-octahedral map: d (d.z >= 0) -> a = d.xy / (|x|+|y|+z),
 //   grid (u, v) = (a.x + a.y, a.x - a.y) in [-1, 1]^2; frame (i, j) at
@@ -80,27 +81,47 @@ flat in vec4 v_ph;
 flat in float v_scale;
 out vec4 o_color;
 
-// One view: the ray (o + t d, model metres) meets the view's relief; returns
-// albedo.a = coverage, and the surface point and normal.
+// One view: the first point of the ray (o + t d, model metres) inside the
+// bounding sphere that lies behind the view's recorded surface (a short
+// linear search, then bisection: depth parallax that also holds close up,
+// where the view plane's own intersection would miss thin parts). Returns
+// the view's albedo (a = coverage; 0 on a miss), the surface point and normal.
 vec4 view_sample(ivec2 f, vec3 o, vec3 d, out vec3 point, out vec3 normal) {
+  point = u_center;
+  normal = vec3(0.0, 0.0, 1.0);
   vec3 v = oct_decode(vec2(f) / float(u_views - 1) * 2.0 - 1.0);
   vec3 right, up;
   view_basis(v, right, up);
-  float dv = dot(d, v);
-  float t = abs(dv) > 1e-6 ? dot(u_center - o, v) / dv : 0.0;  // the view's plane
-  vec2 tile_uv;
-  vec4 g;
+  vec3 oc = o - u_center;
+  float b = dot(oc, d), disc = b * b - (dot(oc, oc) - u_radius * u_radius);
+  if (disc <= 0.0) return vec4(0.0);
+  float t0 = max(-b - sqrt(disc), 0.0), t1 = -b + sqrt(disc);
   float half_texel = 0.5 / float(u_res);
-  for (int k = 0; k < 3; ++k) {  // depth parallax: move along the ray to the recorded surface
+  vec2 uv;
+  const int kSteps = 16;
+  float lo = t0, hi = -1.0;
+  for (int k = 0; k <= kSteps && hi < 0.0; ++k) {
+    float t = mix(t0, t1, float(k) / float(kSteps));
     vec3 p = o + t * d - u_center;
-    tile_uv = clamp(vec2(dot(p, right), dot(p, up)) / u_radius * 0.5 + 0.5, half_texel, 1.0 - half_texel);
-    g = texture(u_geometry, (vec2(f) + tile_uv) / float(u_views));
-    float h_surface = u_radius * (1.0 - 2.0 * g.a);
-    if (abs(dv) > 1e-6 && g.a < 0.999) t += (h_surface - dot(p, v)) / dv;
+    uv = clamp(vec2(dot(p, right), dot(p, up)) / u_radius * 0.5 + 0.5, half_texel, 1.0 - half_texel);
+    float depth = texture(u_geometry, (vec2(f) + uv) / float(u_views)).a;
+    if (depth < 0.999 && dot(p, v) <= u_radius * (1.0 - 2.0 * depth)) hi = t; else lo = t;
   }
-  vec4 a = texture(u_albedo, (vec2(f) + tile_uv) / float(u_views));
-  float h = u_radius * (1.0 - 2.0 * g.a);
-  point = u_center + ((tile_uv.x - 0.5) * 2.0 * right + (tile_uv.y - 0.5) * 2.0 * up) * u_radius + h * v;
+  if (hi < 0.0) return vec4(0.0);
+  for (int k = 0; k < 5; ++k) {
+    float t = 0.5 * (lo + hi);
+    vec3 p = o + t * d - u_center;
+    vec2 m = clamp(vec2(dot(p, right), dot(p, up)) / u_radius * 0.5 + 0.5, half_texel, 1.0 - half_texel);
+    float depth = texture(u_geometry, (vec2(f) + m) / float(u_views)).a;
+    if (depth < 0.999 && dot(p, v) <= u_radius * (1.0 - 2.0 * depth)) hi = t; else lo = t;
+  }
+  vec3 p = o + hi * d - u_center;
+  uv = clamp(vec2(dot(p, right), dot(p, up)) / u_radius * 0.5 + 0.5, half_texel, 1.0 - half_texel);
+  vec4 g = texture(u_geometry, (vec2(f) + uv) / float(u_views));
+  vec4 a = texture(u_albedo, (vec2(f) + uv) / float(u_views));
+  if (g.a >= 0.999) return vec4(0.0);
+  point = u_center + ((uv.x - 0.5) * 2.0 * right + (uv.y - 0.5) * 2.0 * up) * u_radius +
+          u_radius * (1.0 - 2.0 * g.a) * v;
   normal = g.rgb * 2.0 - 1.0;
   return a;
 }
@@ -166,9 +187,12 @@ objects::OctahedralImpostor& GlModel::Impl::octahedral_impostor(int res, int vie
   o.views = views;
   const int size = res * views;
   for (GLuint t : {o.albedo.id(), o.geometry.id()}) {
+    // Depth is never interpolated across a silhouette (it would bend the
+    // parallax off thin parts); colour and coverage are.
+    const GLint filter = t == o.albedo.id() ? GL_LINEAR : GL_NEAREST;
     glTextureStorage2D(t, 1, GL_RGBA8, size, size);
-    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, filter);
     glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   }

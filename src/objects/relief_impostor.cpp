@@ -11,7 +11,8 @@
 // six depth maps are tested, not only the face the ray entered. The hit is
 // the nearest solid point; its colour and normal come from the visible face
 // whose recorded surface passes closest to it (ties: the face most facing
-// the viewer), which resolves faces that disagree.
+// the viewer; faces with no surface on that line are skipped), which
+// resolves faces that disagree.
 #include <algorithm>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -107,7 +108,7 @@ void main() {
   for (int face = 0; face < 6; ++face) {
     int a = face >> 1;
     float facing = (face & 1) == 0 ? -dir[a] : dir[a];
-    if (facing <= 0.0) continue;
+    if (facing <= 0.0 || fetch_geometry(q, face).a > 0.9999) continue;  // not seen, or no surface there
     float err = abs(q[a] - surface(q, face)) * ext[a];
     float tie = 0.5 * ext[a] / float(u_res);
     if (err < best_err - tie || (err < best_err + tie && facing > best_facing)) {

@@ -196,11 +196,14 @@ void add_objects_table(CLI::App& objects) {
 
 }  // namespace
 
+void add_objects_scene(CLI::App& objects);  // objects_scene.cpp
+
 void add_objects(CLI::App& app) {
   auto* objects = app.add_subcommand("objects", "object models: info, representations, quality tables");
   objects->require_subcommand(1);
   add_objects_info(*objects);
   add_objects_table(*objects);
+  add_objects_scene(*objects);
 }
 
 }  // namespace terrasprite::cli

@@ -17,10 +17,12 @@ struct TableOptions {
   std::vector<ObjectKind> kinds{ObjectKind::kMesh, ObjectKind::kRelief, ObjectKind::kOctahedral};
   std::vector<int> resolutions{16, 32, 64, 128, 256, 512};  ///< impostor texels per face / view
   std::vector<int> sizes_px{400, 200, 100, 50, 25};  ///< on-screen bounding-sphere diameter
-  double angle_step_deg = 30.0;  ///< phi in [0, 360), theta in [0, 90] (or [0, 180])
+  /// phi in [0, 360), theta in [0, 90] (or [0, 180]); straight above (theta 0)
+  /// and below (180) are sampled once, at phi 0.
+  double angle_step_deg = 30.0;
   bool full_sphere = false;      ///< theta up to 180 (from below too)
   int views = 12;                ///< octahedral views per side
-  int timing_instances = 8;      ///< instances drawn to time one representation
+  int timing_instances = 1;      ///< instances drawn (3 times, median) to time a representation
   std::vector<double> ssim_targets{0.90, 0.95, 0.98, 0.99};
   std::vector<double> psnr_targets{20, 25, 30, 35};
 };

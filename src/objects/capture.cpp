@@ -90,9 +90,9 @@ glm::mat4 from_rows(glm::vec4 r0, glm::vec4 r1, glm::vec4 r2) {
   return m;
 }
 
-void capture_view(GlModel::Impl& m, const glm::mat4& local_to_clip, bool pack_normal) {
+void capture_view(GlModel::Impl& m, const glm::mat4& local_to_clip, bool pack_normal, int level) {
   const ObjectInstance identity;
-  m.upload_instances(std::span(&identity, 1), m.levels[0].vao.id());
+  m.upload_instances(std::span(&identity, 1), m.levels[level].vao.id());
   const GLuint p = m.capture_program.id();
   glUseProgram(p);
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
@@ -104,7 +104,7 @@ void capture_view(GlModel::Impl& m, const glm::mat4& local_to_clip, bool pack_no
   // determinant (as GL's own projections do).
   glUniform1i(glGetUniformLocation(p, "u_mirrored"), glm::determinant(glm::mat3(local_to_clip)) > 0 ? 1 : 0);
   glUniform1i(glGetUniformLocation(p, "u_pack_normal"), pack_normal ? 1 : 0);
-  m.draw_level_parts(0, p, 1);
+  m.draw_level_parts(level, p, 1);
 }
 
 }  // namespace terrasprite::objects

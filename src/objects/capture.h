@@ -25,11 +25,11 @@ class GlStateGuard {
   GLboolean depth_test_ = GL_FALSE, depth_mask_ = GL_TRUE;
 };
 
-/// Draws level 0 of `m` with `local_to_clip` (an orthographic map whose clip
+/// Draws LOD level `level` of `m` with `local_to_clip` (an orthographic map whose clip
 /// z is the depth in [0, 1], w = 1) into the bound framebuffer's attachments
 /// 0 (albedo) and 1 (normal, depth), depth-tested nearest-first. The caller
 /// sets the viewport and clears. `pack_normal` writes n * 0.5 + 0.5.
-void capture_view(GlModel::Impl& m, const glm::mat4& local_to_clip, bool pack_normal);
+void capture_view(GlModel::Impl& m, const glm::mat4& local_to_clip, bool pack_normal, int level = 0);
 
 /// Rows of an affine map: clip = (dot(r0, p) + r0.w, ...).
 glm::mat4 from_rows(glm::vec4 r0, glm::vec4 r1, glm::vec4 r2);

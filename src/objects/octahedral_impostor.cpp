@@ -213,10 +213,14 @@ objects::OctahedralImpostor& GlModel::Impl::octahedral_impostor(int res, int vie
   glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &far);
   const glm::vec3 c = model.center();
   const float r = float(model.bounding_radius());
+  // views^2 captures of the full mesh dominate the build; a LOD level whose
+  // error stays under a quarter texel draws the same image for less.
+  int level = 0;
+  while (level + 1 < int(chain.size()) && chain[level + 1].error_m <= 0.25 * 2.0 * r / res) ++level;
   for (int j = 0; j < views; ++j)
     for (int i = 0; i < views; ++i) {
       glViewport(i * res, j * res, res, res);
-      objects::capture_view(*this, objects::view_capture(i, j, views, c, r), true);
+      objects::capture_view(*this, objects::view_capture(i, j, views, c, r), true, level);
     }
   return o;
 }

@@ -102,8 +102,11 @@ std::vector<Representation> representations(const GlModel& model, const TableOpt
 std::vector<std::pair<double, double>> view_angles(const TableOptions& o) {
   std::vector<std::pair<double, double>> v;
   const double theta_max = o.full_sphere ? 180.0 : 90.0;
-  for (double theta = 0; theta <= theta_max + 1e-9; theta += o.angle_step_deg)
-    for (double phi = 0; phi < 360.0 - 1e-9; phi += o.angle_step_deg) v.emplace_back(phi, theta);
+  for (double theta = 0; theta <= theta_max + 1e-9; theta += o.angle_step_deg) {
+    // Straight above (or below) every azimuth is the same view turned: one sample.
+    const bool pole = theta < 1e-9 || theta > 180.0 - 1e-9;
+    for (double phi = 0; phi < (pole ? 1e-9 : 360.0 - 1e-9); phi += o.angle_step_deg) v.emplace_back(phi, theta);
+  }
   return v;
 }
 

@@ -201,7 +201,9 @@ void GlModel::Impl::draw_relief(const objects::ReliefImpostor& r, GLsizei count,
   glUniform3f(glGetUniformLocation(p, "u_eye"), float(camera.position.x), float(camera.position.y),
               float(camera.position.z));
   glUniform1i(glGetUniformLocation(p, "u_res"), r.resolution);
-  glUniform1i(glGetUniformLocation(p, "u_steps"), std::clamp(r.resolution, 16, 96));
+  // Linear steps across the box: half a step per texel, at most 48 (binary
+  // refinement recovers the depth; features thinner than a step may be missed).
+  glUniform1i(glGetUniformLocation(p, "u_steps"), std::clamp(r.resolution / 2, 16, 48));
   glUniform1i(glGetUniformLocation(p, "u_albedo"), 0);
   glUniform1i(glGetUniformLocation(p, "u_geometry"), 1);
   glBindTextureUnit(0, r.albedo.id());

@@ -9,10 +9,10 @@
 // A ray point counts as solid when it lies, along each of the three axes,
 // between the surfaces the two opposite faces see (front and back) -- so all
 // six depth maps are tested, not only the face the ray entered. The hit is
-// the nearest solid point; its colour and normal come from the visible face
-// whose recorded surface passes closest to it (ties: the face most facing
-// the viewer; faces with no surface on that line are skipped), which
-// resolves faces that disagree.
+// the nearest solid point. Faces that disagree are resolved at the hit: its
+// colour and normal come from a visible face whose recorded surface passes
+// within 1.5 texels of it, the one that saw the surface most head-on; when no
+// face is that close, from the face whose surface is nearest.
 #include <algorithm>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -101,20 +101,25 @@ void main() {
     if (solid(o + mid * d)) hi = mid; else lo = mid;
   }
   vec3 q = o + hi * d;
-  // Colour from the visible face whose surface lies closest to the hit.
+  // Colour from a visible face that recorded a surface at the hit (within
+  // 1.5 texels); among those, the one that saw it most head-on (its stored
+  // normal facing it: grazing texels at a capture's silhouette carry poor
+  // normals and colours). No face within the tolerance: the nearest surface.
   vec3 dir = normalize(d * ext);
-  int best = 0;
-  float best_err = 1e9, best_facing = -1.0;
+  int best = -1, nearest = 0;
+  float best_facing = -2.0, nearest_err = 1e9;
   for (int face = 0; face < 6; ++face) {
     int a = face >> 1;
-    float facing = (face & 1) == 0 ? -dir[a] : dir[a];
-    if (facing <= 0.0 || fetch_geometry(q, face).a > 0.9999) continue;  // not seen, or no surface there
-    float err = abs(q[a] - surface(q, face)) * ext[a];
-    float tie = 0.5 * ext[a] / float(u_res);
-    if (err < best_err - tie || (err < best_err + tie && facing > best_facing)) {
-      best = face; best_err = min(err, best_err); best_facing = facing;
-    }
+    float sign = (face & 1) == 0 ? 1.0 : -1.0;
+    if (sign * dir[a] >= 0.0) continue;  // the ray cannot see this face
+    vec4 g = fetch_geometry(q, face);
+    if (g.a > 0.9999) continue;  // no surface on this line
+    float err = abs(q[a] - ((face & 1) == 0 ? 1.0 - g.a : g.a)) * ext[a];
+    if (err < nearest_err) { nearest = face; nearest_err = err; }
+    float facing = sign * g[a];  // stored normal towards this face's viewer
+    if (err <= 1.5 * ext[a] / float(u_res) && facing > best_facing) { best = face; best_facing = facing; }
   }
+  if (best < 0) best = nearest;
   int a = best >> 1;
   ivec2 t = clamp(ivec2(vec2(q[(a + 1) % 3], q[(a + 2) % 3]) * float(u_res)), ivec2(0), ivec2(u_res - 1));
   vec3 albedo = texelFetch(u_albedo, ivec3(t, best), 0).rgb;

@@ -54,6 +54,7 @@ void add_objects_info(CLI::App& objects) {
   add_model_options(*cmd, *m);
   cmd->add_option("--json", *json, "write the description as JSON");
   cmd->callback([m, json] {
+    check_outputs("", {*json});
     const Model model = load(*m);
     nlohmann::json textures = nlohmann::json::array();
     for (std::size_t i = 0; i < model.textures.size(); ++i)
@@ -171,9 +172,11 @@ void add_objects_table(CLI::App& objects) {
   cmd->callback([a] {
     const TableOptions o = table_options(*a);
     const ModelOptions mo = model_options(a->model);
-    const Model model = load_model(a->model.file, mo);
     const std::string stem = std::filesystem::path(a->model.file).stem().string();
-    OutputDir out(a->out.empty() ? "out/objects_" + stem : a->out);
+    const std::string out_dir = a->out.empty() ? "out/objects_" + stem : a->out;
+    check_outputs(out_dir, {a->json});
+    const Model model = load_model(a->model.file, mo);
+    OutputDir out(out_dir, output_policy());
     const std::filesystem::path cache_file = std::filesystem::path(a->cache.empty() ? default_cache_dir() : a->cache) /
                                              (stem + "-" + table_cache_key(a->model.file, mo, o) + ".json");
     std::optional<QualityTable> t = a->no_cache ? std::nullopt : read_cache(cache_file);

@@ -6,13 +6,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
 
 #include "objects_table.h"
+#include "plot.h"
 #include "terrasprite/error.h"
 
 namespace terrasprite::cli {
@@ -148,10 +148,8 @@ void write_objects_report(const QualityTable& t, const TableOptions& o, OutputDi
                    "set terminal pngcairo size 900,600 font 'sans,10'\n" + figure2(t, o, out) + figure3(t, o, out);
   write_file(out.file("plots.gp"), gp);
   write_file(out.file("table1.md"), table1_markdown(t, o));
-  const std::string dir = out.partial().string();
-  const bool have = std::system("command -v gnuplot >/dev/null 2>&1") == 0;
-  if (!have || std::system(fmt::format("cd '{}' && gnuplot plots.gp > gnuplot.log 2>&1", dir).c_str()) != 0)
-    fmt::print(stderr, "warning: gnuplot missing or failed (see gnuplot.log); .dat files kept without plots\n");
+  const std::string failed = run_gnuplot(out.partial().string(), "plots.gp");
+  if (!failed.empty()) fmt::print(stderr, "warning: {}; .dat files kept without plots\n", failed);
 }
 
 }  // namespace terrasprite::cli

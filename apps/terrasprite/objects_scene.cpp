@@ -9,10 +9,11 @@
 
 #include "cli_common.h"
 #include "gl/render_target.h"
-#include "raster/gl_terrain.h"
+#include "scene/terrain_gpu.h"
 #include "terrasprite/gl_context.h"
 #include "terrasprite/object_set.h"
 #include "terrasprite/output_dir.h"
+#include "terrasprite/scene.h"
 
 namespace terrasprite::cli {
 namespace {
@@ -60,24 +61,25 @@ void add_objects_scene(CLI::App& objects) {
   cmd->add_option("--out", o->out, "output directory (frame.png, scene.json)")->capture_default_str();
   cmd->callback([o] {
     auto [w, h] = parse_size(o->size, "--size");
+    check_outputs(o->out, {o->json});
     const Terrain terrain = load_terrain_verbose(o->terrain);
     const ObjectScene scene = o->scene.empty() ? default_object_scene(o->models_dir, terrain.heights)
                                                : load_object_scene(o->scene, terrain.heights);
-    OutputDir out(o->out);
+    OutputDir out(o->out, output_policy());
     GlContext gl;
-    GlTerrain ground(terrain);
+    Scene ground(terrain);
     ObjectSet objects(scene);
     gl::RenderTarget target(w, h);
     const Camera cam = overview_camera(objects, terrain.heights, double(w) / h);
     const glm::mat4 vp(gl::view_projection_reversed_z(cam));
-    const GpuMesh& mesh = ground.impl().mesh(0);
+    const GpuMesh& mesh = ground.terrain_gpu().mesh(0);
     std::vector<double> total_ms, objects_ms, terrain_ms;
     for (int f = 0; f <= o->frames; ++f) {  // frame 0 warms up (shaders, uploads)
       for (int part = 0; part < 3; ++part) {  // interleaved: terrain + objects, objects, terrain
         target.bind_and_clear();
         glFinish();
         const auto t0 = Clock::now();
-        if (part != 1) ground.impl().draw(mesh, vp, false);  // as MeshRenderer draws it
+        if (part != 1) ground.terrain_gpu().draw(mesh, vp, false);  // as MeshRenderer draws it
         if (part != 2) objects.draw(cam);
         glFinish();
         const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();

@@ -6,17 +6,19 @@
 #include <span>
 #include <vector>
 
-#include "terrasprite/object_scene.h"
 #include "terrasprite/object_renderer.h"
+#include "terrasprite/object_scene.h"
+#include "terrasprite/scene.h"
 
 namespace terrasprite {
 
 /// Needs a current GlContext for its whole life. Throws InputError (from the
-/// loaders) naming a model that cannot be loaded.
-class ObjectSet {
+/// loaders) naming a model that cannot be loaded. As SceneObjects
+/// (Scene::set_objects) it draws every instance at full geometry.
+class ObjectSet : public SceneObjects {
  public:
   explicit ObjectSet(const ObjectScene& scene, const LodOptions& lod = {});
-  ~ObjectSet();
+  ~ObjectSet() override;
   ObjectSet(const ObjectSet&) = delete;
   ObjectSet& operator=(const ObjectSet&) = delete;
 
@@ -29,9 +31,11 @@ class ObjectSet {
   long long full_triangles() const;
 
   /// Draws every instance into the bound target (RenderTarget conventions):
-  /// model i with `per_model[i]`, or its full mesh when `per_model` is empty.
-  /// One instanced draw per model part (or impostor).
-  void draw(const Camera& camera, std::span<const Representation> per_model = {});
+  /// model i with `per_model[i]` (one per model), or its full mesh when
+  /// `per_model` is empty. One instanced draw per model part (or impostor).
+  /// Returns the triangles submitted.
+  long long draw_with(const Camera& camera, std::span<const Representation> per_model);
+  long long draw(const Camera& camera) override { return draw_with(camera, {}); }
 
  private:
   struct Impl;

@@ -43,10 +43,15 @@ long long ObjectSet::full_triangles() const {
   return n;
 }
 
-void ObjectSet::draw(const Camera& camera, std::span<const Representation> per_model) {
+long long ObjectSet::draw_with(const Camera& camera, std::span<const Representation> per_model) {
   assert(per_model.empty() || per_model.size() == impl_->models.size());
-  for (std::size_t i = 0; i < impl_->models.size(); ++i)
-    impl_->models[i]->draw(per_model.empty() ? Representation{} : per_model[i], impl_->instances[i], camera);
+  long long triangles = 0;
+  for (std::size_t i = 0; i < impl_->models.size(); ++i) {
+    const Representation rep = per_model.empty() ? Representation{} : per_model[i];
+    impl_->models[i]->draw(rep, impl_->instances[i], camera);
+    triangles += impl_->models[i]->triangles(rep) * (long long)impl_->instances[i].size();
+  }
+  return triangles;
 }
 
 }  // namespace terrasprite

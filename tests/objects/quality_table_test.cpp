@@ -65,7 +65,9 @@ TEST(QualityTable, IdenticalScoresOneAndQualityHoldsAsSizeShrinks) {
   EXPECT_GT(t.representations[1].mean("ssim", 100), t.representations[4].mean("ssim", 100));
   // Table 1: level 0 always reaches SSIM 0.99, so pm always has an answer.
   for (const ts::TableEntry& e : t.table)
-    if (e.kind == ts::ObjectKind::kMesh) EXPECT_TRUE(e.choice.has_value());
+    if (e.kind == ts::ObjectKind::kMesh) {
+      EXPECT_TRUE(e.choice.has_value());
+    }
 }
 
 TEST(QualityTable, CliJsonContractAndCache) {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// terrasprite bench lodsprite: the LOD-sprite paper's reproduction benchmark
-// (issue 4): JSON, plots of its Figs. 8-12, images of its Figs. 13-14, index.html.
+// terrasprite bench lodsprite: the LOD-sprite paper's reproduction benchmark:
+// JSON, plots of its Figs. 8-12, images of its Figs. 13-14, index.html.
 #include <fmt/format.h>
 
 #include "bench_commands.h"

@@ -52,6 +52,9 @@ struct QualityScore {
   double psnr = kPsnrCapDb;  ///< dB over R, G, B, capped at kPsnrCapDb
   double ssim = 1.0;         ///< Wang SSIM on luma
   double flip = -1.0;        ///< mean LDR-FLIP; -1 when not computed
+  /// A scorer's further figures (e.g. "ssim_terrain": SSIM masked to the
+  /// reference's terrain pixels); RendererRun::quality summarises them by key.
+  std::map<std::string, double> figures;
 };
 
 /// One renderer's figures for one frame.
@@ -77,7 +80,8 @@ struct RendererRun {
   Summary ms(const std::string& cls = "") const;
   /// GL timer times, "no result" (-1) skipped.
   Summary gpu_ms(const std::string& cls = "") const;
-  /// A quality figure ("psnr", "ssim", "flip") over the scored frames (of class `cls`).
+  /// A quality figure ("psnr", "ssim", "flip", or a key of QualityScore::figures)
+  /// over the scored frames (of class `cls`); non-finite values are skipped.
   Summary quality(const std::string& metric, const std::string& cls = "") const;
   /// A counter over the frames that have it.
   Summary counter(const std::string& key, const std::string& cls = "") const;
@@ -104,6 +108,7 @@ struct Participant {
   std::string name;              ///< defaults to renderer->name()
   bool score = false;            ///< score against the reference on scored frames
   int every = 1;                 ///< draw only every n-th frame (a slow baseline)
+  int warmup_draws = -1;         ///< untimed draws before the run; -1: the options' count
   ReadBack read = ReadBack::kNone;  ///< read back even when not scoring (e.g. to save frames)
   /// Called once the warm-up draws are done (e.g. to forget a warm-up keyframe).
   std::function<void()> after_warmup;
@@ -133,6 +138,8 @@ class Experiment {
   /// `read` (colour at least). Optional: without it nothing is scored.
   void set_reference(Renderer& renderer, std::string name = "",
                      ReadBack read = ReadBack::kColor);
+  /// The same with every participant setting (score and every are ignored).
+  void set_reference(Participant participant);
   void add(Participant participant);
   ExperimentResult run(CameraSource& cameras, const ExperimentOptions& options);
 

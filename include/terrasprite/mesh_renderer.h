@@ -10,9 +10,22 @@
 
 namespace terrasprite {
 
+/// How the drape texture is filtered at grazing angles.
+enum class DrapeFilter {
+  kAuto,      ///< hardware for full resolution (the quality reference), by hand for LOD
+  kHardware,  ///< the GL's 16x anisotropic filtering
+  kHand,      ///< up to 8 trilinear taps along the footprint, as LOD-sprite's drape fallback
+};
+
 struct RasterOptions {
   /// Simple diffuse sun; off by default (the derived texture carries hillshade).
   bool lighting = false;
+  /// kAuto: plain LOD filters its drape as the LOD-sprite fallback does, so
+  /// the two compare on equal terms and neither pays llvmpipe's anisotropic
+  /// path (seconds on single grazing frames of the paper path). Full
+  /// resolution keeps hardware 16x: it is the quality reference, and its small
+  /// triangles never hit that path's stalls.
+  DrapeFilter drape_filter = DrapeFilter::kAuto;
 };
 
 /// Draws one grid mesh of `scene` with one indexed draw call into a

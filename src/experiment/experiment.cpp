@@ -42,14 +42,17 @@ Summary RendererRun::gpu_ms(const std::string& cls) const {
 }
 
 Summary RendererRun::quality(const std::string& metric, const std::string& cls) const {
-  if (metric != "psnr" && metric != "ssim" && metric != "flip")
-    throw std::invalid_argument("RendererRun::quality: unknown metric " + metric);
   return summarize_frames(frames, cls, [&](const FrameResult& f) -> std::optional<double> {
     if (!f.quality) return std::nullopt;
     if (metric == "psnr") return f.quality->psnr;
     if (metric == "ssim") return f.quality->ssim;
-    if (f.quality->flip < 0) return std::nullopt;
-    return f.quality->flip;
+    if (metric == "flip") {
+      if (f.quality->flip < 0) return std::nullopt;
+      return f.quality->flip;
+    }
+    auto it = f.quality->figures.find(metric);
+    if (it == f.quality->figures.end()) return std::nullopt;
+    return it->second;
   });
 }
 
@@ -91,8 +94,14 @@ Scorer default_scorer(bool with_flip) {
 void Experiment::set_reference(Renderer& renderer, std::string name, ReadBack read) {
   Participant p;
   p.renderer = &renderer;
-  p.name = name.empty() ? renderer.name() : std::move(name);
-  p.read = read | ReadBack::kColor;
+  p.name = std::move(name);
+  p.read = read;
+  set_reference(std::move(p));
+}
+
+void Experiment::set_reference(Participant p) {
+  if (p.name.empty()) p.name = p.renderer->name();
+  p.read = p.read | ReadBack::kColor;
   reference_ = std::move(p);
 }
 
@@ -112,7 +121,8 @@ ExperimentResult Experiment::run(CameraSource& cameras, const ExperimentOptions&
   for (Participant* p : all) result.runs.push_back({p->name, {}});
   if (std::optional<Camera> first = cameras.camera(0))
     for (Participant* p : all) {
-      for (int k = 0; k < o.warmup_draws; ++k) p->renderer->draw(*first);
+      const int draws = p->warmup_draws >= 0 ? p->warmup_draws : o.warmup_draws;
+      for (int k = 0; k < draws; ++k) p->renderer->draw(*first);
       if (p->after_warmup) p->after_warmup();
     }
 

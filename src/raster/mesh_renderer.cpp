@@ -34,7 +34,9 @@ Frame MeshRenderer::draw(const Camera& camera) {
   const glm::mat4 vp(gl::view_projection_reversed_z(camera));
   timer().begin();
   begin_output();
-  terrain.draw(mesh, vp, s_->options.lighting);
+  const DrapeFilter filter = s_->options.drape_filter;
+  terrain.draw(mesh, vp, s_->options.lighting,
+               filter == DrapeFilter::kHand || (filter == DrapeFilter::kAuto && s_->quads > 0));
   return make_frame(camera, timer().end(), s_->quads <= 0 ? "full" : "lod", mesh.triangles);
 }
 

@@ -16,6 +16,22 @@ uniform vec4 u_uv;  // world xy -> drape uv: xy * u_uv.xy + u_uv.zw
 vec2 drape_uv(vec2 world_xy) { return world_xy * u_uv.xy + u_uv.zw; }
 )";
 
+const char* const kHandFilterGlsl = R"(
+// Anisotropic filtering by hand: up to 8 trilinear taps along the footprint's
+// major axis (derivatives taken by the caller in uniform control flow; the
+// sampler must be trilinear only). llvmpipe's own anisotropic path (any max
+// anisotropy > 1) spent 5-12 s on single frames of the paper path.
+vec4 drape_hand_filtered(sampler2D s, vec2 uv, vec2 gx, vec2 gy) {
+  bool x_major = dot(gx, gx) >= dot(gy, gy);
+  vec2 major = x_major ? gx : gy, minor = x_major ? gy : gx;
+  float n = clamp(ceil(length(major) / max(length(minor), 1e-20)), 1.0, 8.0);
+  vec4 c = vec4(0.0);
+  for (float i = 0.0; i < n; i += 1.0)
+    c += textureGrad(s, uv + major * ((i + 0.5) / n - 0.5), major / n, minor);
+  return c / n;
+}
+)";
+
 namespace {
 
 const char* kVertex = R"(#version 450 core
@@ -36,9 +52,12 @@ in vec3 v_world;
 in vec3 v_normal;
 uniform sampler2D u_drape;
 uniform int u_lighting;
+uniform int u_hand_filter;
 out vec4 o_color;
 void main() {
-  vec4 c = texture(u_drape, drape_uv(v_world.xy));
+  vec2 uv = drape_uv(v_world.xy);
+  vec2 gx = dFdx(uv), gy = dFdy(uv);  // in uniform control flow
+  vec4 c = u_hand_filter != 0 ? drape_hand_filtered(u_drape, uv, gx, gy) : texture(u_drape, uv);
   if (u_lighting != 0) {
     const vec3 sun = normalize(vec3(-0.5, 0.5, 0.7071));
     c.rgb *= 0.45 + 0.75 * max(dot(normalize(v_normal), sun), 0.0);
@@ -98,7 +117,16 @@ TerrainGpu::TerrainGpu(const Terrain& terrain) : terrain_(terrain) {
     glTextureParameterf(t, GL_TEXTURE_MAX_ANISOTROPY_EXT, std::min(16.f, max_aniso));
   }
   program_ =
-      gl::link_program(kVertex, std::string("#version 450 core\n") + kDrapeUvGlsl + kFragment);
+      gl::link_program(kVertex, std::string("#version 450 core\n") + kDrapeUvGlsl + kHandFilterGlsl + kFragment);
+  glCreateSamplers(1, &trilinear_);
+  glSamplerParameteri(trilinear_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glSamplerParameteri(trilinear_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glSamplerParameteri(trilinear_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glSamplerParameteri(trilinear_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+TerrainGpu::~TerrainGpu() {
+  glDeleteSamplers(1, &trilinear_);
 }
 
 glm::vec4 TerrainGpu::uv_transform() const {
@@ -149,14 +177,16 @@ const GpuMesh& TerrainGpu::mesh(int quads) {
   return g;
 }
 
-void TerrainGpu::draw(const GpuMesh& m, const glm::mat4& vp, bool lighting) {
+void TerrainGpu::draw(const GpuMesh& m, const glm::mat4& vp, bool lighting, bool hand_filter) {
   const GLuint p = program_.id();
   glUseProgram(p);
   glUniformMatrix4fv(glGetUniformLocation(p, "u_vp"), 1, GL_FALSE, glm::value_ptr(vp));
   glUniform4fv(glGetUniformLocation(p, "u_uv"), 1, glm::value_ptr(uv_transform()));
   glUniform1i(glGetUniformLocation(p, "u_lighting"), lighting ? 1 : 0);
   glUniform1i(glGetUniformLocation(p, "u_drape"), 0);
+  glUniform1i(glGetUniformLocation(p, "u_hand_filter"), hand_filter ? 1 : 0);
   glBindTextureUnit(0, drape_.id());
+  glBindSampler(0, hand_filter ? trilinear_ : 0);
   if (m.parts.empty()) {
     glBindVertexArray(m.vao.id());
     glDrawElements(GL_TRIANGLES, m.index_count, GL_UNSIGNED_INT, nullptr);
@@ -165,6 +195,7 @@ void TerrainGpu::draw(const GpuMesh& m, const glm::mat4& vp, bool lighting) {
     glBindVertexArray(part.vao.id());
     glDrawElements(GL_TRIANGLES, part.index_count, GL_UNSIGNED_INT, nullptr);
   }
+  glBindSampler(0, 0);
 }
 
 }  // namespace terrasprite

@@ -54,17 +54,7 @@ void main() {
       return;
     }
   }
-  // Anisotropic filtering by hand: up to 8 trilinear taps along the
-  // footprint's major axis. llvmpipe's own anisotropic path (any max
-  // anisotropy > 1) spent 5-12 s on one frame of the paper path; the sampler
-  // on this unit is trilinear only.
-  bool x_major = dot(gx, gx) >= dot(gy, gy);
-  vec2 major = x_major ? gx : gy, minor = x_major ? gy : gx;
-  float n = clamp(ceil(length(major) / max(length(minor), 1e-20)), 1.0, 8.0);
-  vec4 c = vec4(0.0);
-  for (float i = 0.0; i < n; i += 1.0)
-    c += textureGrad(u_drape, uv_drape + major * ((i + 0.5) / n - 0.5), major / n, minor);
-  c /= n;
+  vec4 c = drape_hand_filtered(u_drape, uv_drape, gx, gy);
   if (u_lighting != 0) {
     const vec3 sun = normalize(vec3(-0.5, 0.5, 0.7071));
     c.rgb *= 0.45 + 0.75 * max(dot(normalize(v_normal), sun), 0.0);
@@ -100,12 +90,7 @@ void main() {
 
 SpritePass::SpritePass()
     : program_(gl::link_program(kVertex,
-                                std::string("#version 450 core\n") + kDrapeUvGlsl + kFragment)) {
-  glCreateSamplers(1, &drape_sampler_);
-  glSamplerParameteri(drape_sampler_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glSamplerParameteri(drape_sampler_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glSamplerParameteri(drape_sampler_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glSamplerParameteri(drape_sampler_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+                                std::string("#version 450 core\n") + kDrapeUvGlsl + kHandFilterGlsl + kFragment)) {
   const GLuint p = program_.id();
   u_vp_ = glGetUniformLocation(p, "u_vp");
   u_key_vp_ = glGetUniformLocation(p, "u_key_vp");
@@ -144,15 +129,13 @@ void SpritePass::draw(TerrainGpu& scene, const GpuMesh& coarse, int quads_x,
   glUniform1i(u_lighting_, lighting ? 1 : 0);
   glBindTextureUnit(0, key.target.color_texture());
   glBindTextureUnit(1, scene.drape());
-  glBindSampler(1, drape_sampler_);
+  glBindSampler(1, scene.trilinear_sampler());
   glBindTextureUnit(2, key.flags.id());
   glBindVertexArray(coarse.vao.id());
   glDrawElements(GL_TRIANGLES, coarse.index_count, GL_UNSIGNED_INT, nullptr);
   glBindSampler(1, 0);
 }
 
-SpritePass::~SpritePass() {
-  glDeleteSamplers(1, &drape_sampler_);
-}
+SpritePass::~SpritePass() = default;
 
 }  // namespace terrasprite

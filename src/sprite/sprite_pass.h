@@ -25,7 +25,6 @@ class SpritePass {
   gl::Program program_;
   gl::Program composite_;
   gl::VertexArray empty_vao_;  // attribute-less draws still need a bound VAO in core profile
-  GLuint drape_sampler_ = 0;  // trilinear, no hardware anisotropy (see the fragment shader)
   GLint u_vp_, u_key_vp_, u_uv_, u_qx_, u_lighting_;
 };
 

@@ -35,6 +35,14 @@ struct VoxelTerrain::Data {
   float hmin = 0, hmax = 0;  // height range, metres
   std::vector<PyramidLevel> levels;
   std::vector<MaxLevel> maxes;
+  // The same pyramids seen as tiles (TerrainTiles): one table per bound level,
+  // tiles row-major, viewing `levels` and `maxes` in place.
+  TerrainGrid grid;
+  struct LevelTiles {
+    int nx = 0, ny = 0;
+    std::vector<TileBlock> tiles;
+  };
+  std::vector<LevelTiles> tiles;
 
   bool has_area() const { return w >= 2 && h >= 2; }
   // World metres <-> level-0 grid index (fractional).

@@ -107,12 +107,12 @@ void ColumnMarcher::march(double dx, double dy, std::span<const double> slopes,
     const int j0 = std::clamp(int(floor_i64(qL)), 0, nmin - 2);
     const int j1 = j0 + 1;
     const int ca = std::min(mL, nmaj - 2);
-    const TileBlock* tb = mu ? tiles.cell(L, ca, j0) : tiles.cell(L, j0, ca);
+    const TileReader::Slot* tb = mu ? tiles.cell(L, ca, j0) : tiles.cell(L, j0, ca);
     float h;
-    if (tb && tb->height) {
+    if (tb) [[likely]] {  // levels <= coarsest_level carry samples
       const float f = float(std::clamp(qL - j0, 0.0, 1.0));
-      const float h0 = mu ? TileReader::height_at(*tb, mL, j0) : TileReader::height_at(*tb, j0, mL);
-      const float h1 = mu ? TileReader::height_at(*tb, mL, j1) : TileReader::height_at(*tb, j1, mL);
+      const float h0 = mu ? tb->height_at(mL, j0) : tb->height_at(j0, mL);
+      const float h1 = mu ? tb->height_at(mL, j1) : tb->height_at(j1, mL);
       h = h0 + (h1 - h0) * f;
     } else {
       h = mu ? tiles.bilinear_height(L + 1, mL * 0.5, qL * 0.5)
@@ -195,8 +195,14 @@ void ColumnMarcher::march(double dx, double dy, std::span<const double> slopes,
         const int b0 = std::clamp(int(floor_i64(std::min(qa, qb) / double(size))), 0, nmin - 1);
         const int b1 = std::clamp(int(floor_i64(std::max(qa, qb) / double(size))), 0, nmin - 1);
         float bound = -std::numeric_limits<float>::infinity();
-        for (int b = b0; b <= b1; ++b)
-          bound = std::max(bound, mu ? tiles.bound(k, ca, b) : tiles.bound(k, b, ca));
+        const TileReader::Slot* sl = mu ? tiles.cell(k, ca, b0) : tiles.cell(k, b0, ca);
+        if (sl && unsigned(b1 - (mu ? sl->y0 : sl->x0)) < (mu ? sl->ch : sl->cw)) [[likely]] {
+          for (int b = b0; b <= b1; ++b)  // the whole run in one tile
+            bound = std::max(bound, mu ? sl->bound_at(ca, b) : sl->bound_at(b, ca));
+        } else {
+          for (int b = b0; b <= b1; ++b)
+            bound = std::max(bound, mu ? tiles.bound(k, ca, b) : tiles.bound(k, b, ca));
+        }
         if (zmin > bound) {
           m = me;
           t_cur = tb;

@@ -8,18 +8,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <thread>
 
 #include "bench_commands.h"
 #include "cli_common.h"
+#include "plot.h"
 #include "render_modes.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/error.h"
 #include "terrasprite/flythrough.h"
 #include "terrasprite/output_dir.h"
 #include "terrasprite/quality.h"
+#include "terrasprite/stats.h"
 #include "terrasprite/warp.h"
 
 namespace terrasprite::cli {
@@ -56,17 +57,8 @@ struct PathRun {
   std::vector<MethodRun> methods;
 };
 
-double nearest_rank(std::vector<double> v, double p) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  const std::size_t r = std::size_t(std::ceil(p * double(v.size())));
-  return v[std::clamp<std::size_t>(r, 1, v.size()) - 1];
-}
-
 double mean_of(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x;
-  return v.empty() ? NAN : s / double(v.size());
+  return v.empty() ? NAN : mean(v);
 }
 
 nlohmann::json num(double v) {
@@ -91,9 +83,9 @@ PathRun run_path(const BenchWarpOpts& o, const std::string& spec, const Terrain&
   const std::vector<Camera> path = make_path(spec, terrain.heights, o.frames, double(w) / h);
   const int stride = o.k_max + 1;
   std::unique_ptr<Frame> real, previous;
-  renderer.render(with_margin(path[0], w, h, mx, my));  // warm-up: threads, first touch
+  renderer.render(with_margin(path[0], w, h, mx, my), ReadBack::kColorDepth);  // warm-up
   for (int i = 0; i < int(path.size()); ++i) {
-    Frame f = renderer.render(with_margin(path[i], w, h, mx, my));
+    Frame f = renderer.render(with_margin(path[i], w, h, mx, my), ReadBack::kColorDepth);
     run.real_ms.push_back(f.ms);
     const int k = i % stride;
     if (k == 0) {
@@ -152,7 +144,7 @@ nlohmann::json flythrough_json(const PathRun& p, std::size_t m, int K) {
           {"method", to_string(kMethods[m])},
           {"real_every", K},
           {"real_ms_mean", num(real)},
-          {"real_ms_p99", num(nearest_rank(p.real_ms, 0.99))},
+          {"real_ms_p99", num(percentile(p.real_ms, 99))},
           {"warp_ms_mean", num(warp)},
           {"mean_ms_per_output_frame", num((real + (K - 1) * warp) / K)},
           {"meets_60hz", (real + (K - 1) * warp) / K <= 1000.0 / 60.0}};
@@ -189,10 +181,9 @@ void write_plot(const OutputDir& out, const std::vector<PathRun>& runs, int k_ma
        << titles[c] << "'";
   gp << '\n';
   gp.close();
-  const std::string cmd =
-      fmt::format("cd '{}' && gnuplot quality_vs_k.gp 2>/dev/null", out.partial().string());
-  if (std::system(cmd.c_str()) != 0)
-    fmt::print(stderr, "warning: gnuplot failed; quality_vs_k.dat kept without a plot\n");
+  const std::string error = run_gnuplot(out.partial().string(), "quality_vs_k.gp");
+  if (!error.empty())
+    fmt::print(stderr, "warning: {}; quality_vs_k.dat kept without a plot\n", error);
 }
 
 void run(const BenchWarpOpts& o) {
@@ -209,11 +200,13 @@ void run(const BenchWarpOpts& o) {
     throw InputError(fmt::format("--renderer {}: expected voxel or full", o.renderer));
   const std::vector<std::string> specs =
       o.path.empty() ? std::vector<std::string>{"paper", "low-fast"} : std::vector{o.path};
+  const std::string out_dir = o.out.empty() ? std::string("out/bench_warp") : o.out;
+  check_outputs(out_dir, {o.json});
   Terrain terrain = load_terrain_verbose(o.terrain);
   for (const auto& s : specs) make_path(s, terrain.heights, 1, double(w) / h);  // validate early
   const int mx = int(std::lround(o.margin * w)), my = int(std::lround(o.margin * h));
   RenderStack stack = make_render_stack(o.renderer, terrain, w + 2 * mx, h + 2 * my, 16);
-  OutputDir out(o.out.empty() ? std::string("out/bench_warp") : o.out);
+  OutputDir out(out_dir, output_policy());
 
   std::vector<PathRun> runs;
   Progress progress("bench warp");

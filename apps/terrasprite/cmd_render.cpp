@@ -51,6 +51,7 @@ void run(const RenderOpts& o) {
   auto [w, h] = parse_size(o.size, "--size");
   if (o.frames < 1 || o.frames > 1000000)
     throw InputError(fmt::format("--frames {}: must be between 1 and 1000000", o.frames));
+  check_outputs(o.out, {o.json});
   Terrain terrain = load_terrain_verbose(o.terrain);
   std::vector<Camera> path = make_path(o.path, terrain.heights, o.frames, double(w) / h);
   std::optional<WarpMethod> warp;
@@ -79,10 +80,10 @@ void run(const RenderOpts& o) {
   for (const Camera& c : path) far_max = std::max(far_max, c.far_m);
   const double m_per_unit = far_max / 65534.0;
 
-  OutputDir out(o.out);
+  OutputDir out(o.out, output_policy());
   Progress progress("render");
   auto stats = fly(
-      renderer, path,
+      renderer, path, o.depth ? ReadBack::kColorDepth : ReadBack::kColor,
       [&](int i, const Frame& f) {
         save_png(f.color, out.file(fmt::format("frame_{:04d}.png", i)));
         if (o.depth) save_depth(f, m_per_unit, out.file(fmt::format("depth_{:04d}.png", i)));

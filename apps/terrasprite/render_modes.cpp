@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <thread>
 
+#include "cli_common.h"
 #include "terrasprite/error.h"
+#include "terrasprite/mesh_renderer.h"
 #include "terrasprite/sprite_renderer.h"
 
 namespace terrasprite::cli {
@@ -19,13 +21,12 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
                               int height, int lod_quads, bool lighting) {
   RenderStack s;
   if (mode == "full" || mode == "lod") {
-    if (mode == "lod" && lod_quads < 1)
-      throw InputError(fmt::format("--lod-quads {}: must be at least 1", lod_quads));
+    if (mode == "lod") check_lod_quads(lod_quads, terrain.heights);
     s.gl = std::make_unique<GlContext>();
     s.device = s.gl->renderer();
-    s.scene = std::make_unique<GlTerrain>(terrain);
+    s.scene = std::make_unique<Scene>(terrain);
     s.renderer = std::make_unique<MeshRenderer>(
-        *s.scene, width, height, mode == "full" ? 0 : lod_quads, RasterOptions{lighting, true});
+        *s.scene, width, height, mode == "full" ? 0 : lod_quads, RasterOptions{lighting});
     return s;
   }
   if (mode == "voxel") {
@@ -38,12 +39,12 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
     return s;
   }
   if (mode == "sprite") {
+    check_lod_quads(lod_quads, terrain.heights);
     SpriteOptions o;
     o.lod_quads = lod_quads;
-    o.read_depth = true;
     s.gl = std::make_unique<GlContext>();
     s.device = s.gl->renderer();
-    s.scene = std::make_unique<GlTerrain>(terrain);
+    s.scene = std::make_unique<Scene>(terrain);
     s.renderer = std::make_unique<SpriteRenderer>(*s.scene, width, height, o);
     return s;
   }

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "terrasprite/gl_context.h"
-#include "terrasprite/mesh_renderer.h"
+#include "terrasprite/scene.h"
 #include "terrasprite/renderer.h"
 #include "terrasprite/voxel_renderer.h"
 
@@ -14,7 +14,7 @@ namespace terrasprite::cli {
 
 struct RenderStack {
   std::unique_ptr<GlContext> gl;        // null for CPU renderers
-  std::unique_ptr<GlTerrain> scene;     // null for CPU renderers
+  std::unique_ptr<Scene> scene;         // null for CPU renderers
   std::unique_ptr<VoxelTerrain> voxel;  // the voxel renderer's pyramids, else null
   std::unique_ptr<Renderer> renderer;   // destroyed first
   std::string device;                   // GL_RENDERER, or the CPU renderer's description

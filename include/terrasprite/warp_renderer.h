@@ -19,17 +19,19 @@ struct WarpScheduleOptions {
 };
 
 /// Wraps `real`, which must render (width + 2 margin_x) x (height + 2
-/// margin_y) frames with depth and outlive this. Frame i of the calls to
-/// render() (counted from 0) is real when i % real_every == 0: drawn with the
+/// margin_y) frames and outlive this (its colour and depth are read back for
+/// every real frame). Frame i of the calls to draw() (counted from 0) is real when i % real_every == 0: drawn with the
 /// margin camera, returned cropped (class of the real renderer, ms = render +
 /// crop); the others are warped from the last real frame (class "warp",
-/// ms = warp). Deterministic. Throws InputError for real_every < 1, negative
+/// ms = warp). draw() returns colour and depth on the CPU already (read_back
+/// does nothing). Deterministic. Throws InputError for real_every < 1, negative
 /// margins, or a real renderer of the wrong size or without depth.
 class WarpScheduler : public Renderer {
  public:
   WarpScheduler(Renderer& real, int width, int height, WarpScheduleOptions options);
   ~WarpScheduler() override;
-  Frame render(const Camera& camera) override;
+  Frame draw(const Camera& camera) override;
+  void read_back(Frame&, ReadBack) override {}
   std::string name() const override;
   /// Hole fraction of the last frame returned (0 for real frames).
   double last_hole_fraction() const { return last_holes_; }

@@ -24,10 +24,11 @@ std::string WarpScheduler::name() const {
   return fmt::format("{}+warp-{}-every-{}", real_.name(), to_string(o_.warp.method), o_.real_every);
 }
 
-Frame WarpScheduler::render(const Camera& camera) {
+Frame WarpScheduler::draw(const Camera& camera) {
   const bool real = count_++ % o_.real_every == 0;
   if (real) {
-    Frame f = real_.render(with_margin(camera, w_, h_, o_.margin_x, o_.margin_y));
+    Frame f = real_.render(with_margin(camera, w_, h_, o_.margin_x, o_.margin_y),
+                           ReadBack::kColorDepth);
     if (f.width() != w_ + 2 * o_.margin_x || f.height() != h_ + 2 * o_.margin_y)
       throw InputError(fmt::format("warp: real renderer gave {}x{}, expected {}x{}", f.width(),
                                    f.height(), w_ + 2 * o_.margin_x, h_ + 2 * o_.margin_y));

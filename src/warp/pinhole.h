@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <glm/glm.hpp>
 
+#include "common/packed_rgba.h"
 #include "terrasprite/camera.h"
 #include "terrasprite/frame.h"
 
@@ -80,19 +82,28 @@ struct Reference {
     bilinear_rgba(frame.color, x, y, out);
   }
 
+  /// Bilinear RGBA of `img` at (x, y), clamped; 8-bit weights (exact at
+  /// pixel centres).
   static void bilinear_rgba(const Image& img, double x, double y, std::uint8_t out[4]) {
-    const double sx = std::clamp(x - 0.5, 0.0, double(img.width - 1));
-    const double sy = std::clamp(y - 0.5, 0.0, double(img.height - 1));
+    const std::uint32_t c = bilinear_packed(img, float(x), float(y));
+    std::memcpy(out, &c, 4);
+  }
+  static std::uint32_t bilinear_packed(const Image& img, float x, float y) {
+    const float sx = std::clamp(x - 0.5f, 0.f, float(img.width - 1));
+    const float sy = std::clamp(y - 0.5f, 0.f, float(img.height - 1));
     const int i0 = std::min(int(sx), std::max(img.width - 2, 0));
     const int j0 = std::min(int(sy), std::max(img.height - 2, 0));
-    const int i1 = std::min(i0 + 1, img.width - 1), j1 = std::min(j0 + 1, img.height - 1);
-    const float fi = float(sx - i0), fj = float(sy - j0);
-    const std::uint8_t *a = img.px(i0, j0), *b = img.px(i1, j0), *c = img.px(i0, j1),
-                       *e = img.px(i1, j1);
-    for (int ch = 0; ch < 4; ++ch) {
-      const float top = a[ch] + (b[ch] - a[ch]) * fi, bot = c[ch] + (e[ch] - c[ch]) * fi;
-      out[ch] = std::uint8_t(std::clamp(top + (bot - top) * fj + 0.5f, 0.f, 255.f));
-    }
+    const int di = i0 + 1 < img.width ? 1 : 0;
+    const std::size_t row = j0 + 1 < img.height ? std::size_t(img.width) : 0;
+    const std::uint32_t fi = std::uint32_t((sx - float(i0)) * 256.f + 0.5f);
+    const std::uint32_t fj = std::uint32_t((sy - float(j0)) * 256.f + 0.5f);
+    const std::uint8_t* p = img.rgba.data() + (std::size_t(j0) * img.width + i0) * 4;
+    std::uint32_t a, b, c, d;
+    std::memcpy(&a, p, 4);
+    std::memcpy(&b, p + 4 * di, 4);
+    std::memcpy(&c, p + 4 * row, 4);
+    std::memcpy(&d, p + 4 * (row + di), 4);
+    return lerp_packed(lerp_packed(a, b, fi), lerp_packed(c, d, fi), fj);
   }
 };
 

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "warp/warp_internal.h"
@@ -128,7 +129,8 @@ void warp_poly2(const Reference& ref, const Pinhole& out, const WarpOptions& opt
       for (int x = 0; x < out.w; ++x, px += 4) {
         const double nx = (x + 0.5) * sx - 1.0;
         const double rx = ax + (bx + qx * nx) * nx, ry = ay + (by + qy * nx) * nx;
-        Reference::bilinear_rgba(ref.frame.color, rx, ry, px);
+        const std::uint32_t c = Reference::bilinear_packed(ref.frame.color, float(rx), float(ry));
+        std::memcpy(px, &c, 4);
         depth[x] = ref.depth_nearest(rx, ry);
         hole[x] = !ref.inside(rx, ry);
         if (options.keep_sources) {

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <optional>
 
 #include "cli_common.h"
 #include "commands.h"
@@ -12,6 +14,7 @@
 #include "terrasprite/error.h"
 #include "terrasprite/flythrough.h"
 #include "terrasprite/output_dir.h"
+#include "terrasprite/warp_renderer.h"
 
 namespace terrasprite::cli {
 namespace {
@@ -27,6 +30,9 @@ struct RenderOpts {
   bool depth = false;
   bool lighting = false;
   std::string json;
+  std::string warp;  // empty: every frame real
+  int real_every = 4;
+  double warp_margin = 0.05;
 };
 
 // Linear depth as 16-bit PNG: value = metres / m_per_unit, sky = 65535.
@@ -48,7 +54,28 @@ void run(const RenderOpts& o) {
   check_outputs(o.out, {o.json});
   Terrain terrain = load_terrain_verbose(o.terrain);
   std::vector<Camera> path = make_path(o.path, terrain.heights, o.frames, double(w) / h);
-  RenderStack stack = make_render_stack(o.mode, terrain, w, h, o.lod_quads, o.lighting);
+  std::optional<WarpMethod> warp;
+  if (!o.warp.empty()) warp = parse_warp_method(o.warp);
+  if (o.real_every < 1)
+    throw InputError(fmt::format("--real-every {}: must be at least 1", o.real_every));
+  if (!(o.warp_margin >= 0 && o.warp_margin <= 1))
+    throw InputError(fmt::format("--warp-margin {}: must be within 0..1", o.warp_margin));
+  // With --warp the real renderer draws a margin around the image (a wider
+  // field of view at the same pixel density) that the warp can read.
+  const int mx = warp ? int(std::lround(o.warp_margin * w)) : 0;
+  const int my = warp ? int(std::lround(o.warp_margin * h)) : 0;
+  RenderStack stack =
+      make_render_stack(o.mode, terrain, w + 2 * mx, h + 2 * my, o.lod_quads, o.lighting);
+  std::unique_ptr<WarpScheduler> scheduler;
+  if (warp) {
+    WarpScheduleOptions so;
+    so.real_every = o.real_every;
+    so.margin_x = mx;
+    so.margin_y = my;
+    so.warp.method = *warp;
+    scheduler = std::make_unique<WarpScheduler>(*stack.renderer, w, h, so);
+  }
+  Renderer& renderer = scheduler ? *scheduler : *stack.renderer;
   double far_max = 1.0;
   for (const Camera& c : path) far_max = std::max(far_max, c.far_m);
   const double m_per_unit = far_max / 65534.0;
@@ -56,7 +83,7 @@ void run(const RenderOpts& o) {
   OutputDir out(o.out, output_policy());
   Progress progress("render");
   auto stats = fly(
-      *stack.renderer, path, o.depth ? ReadBack::kColorDepth : ReadBack::kColor,
+      renderer, path, o.depth ? ReadBack::kColorDepth : ReadBack::kColor,
       [&](int i, const Frame& f) {
         save_png(f.color, out.file(fmt::format("frame_{:04d}.png", i)));
         if (o.depth) save_depth(f, m_per_unit, out.file(fmt::format("depth_{:04d}.png", i)));
@@ -74,6 +101,9 @@ void run(const RenderOpts& o) {
   }
   nlohmann::json j = {{"gl_renderer", stack.device},
                       {"mode", o.mode},
+                      {"warp", warp ? nlohmann::json(to_string(*warp)) : nlohmann::json(nullptr)},
+                      {"real_every", warp ? o.real_every : 1},
+                      {"warp_margin_px", {mx, my}},
                       {"size", {w, h}},
                       {"terrain", terrain_json(terrain)},
                       {"path", o.path},
@@ -97,7 +127,7 @@ void add_render(CLI::App& app) {
   cmd->add_option("--mode", o->mode, "renderer")->check(CLI::IsMember(render_modes()));
   cmd->add_option("--lod-quads", o->lod_quads,
                   "coarse grid quads per side for lod modes (default 16)");
-  cmd->add_option("--path", o->path, "'paper' or a JSON path file");
+  cmd->add_option("--path", o->path, "'paper', 'low-fast' or a JSON path file");
   cmd->add_option("--frames", o->frames, "frames along the path (default 460)");
   cmd->add_option("--size", o->size, "image size WxH (default 512x512)");
   // Checked in run(), so a parse error (e.g. an unknown option) is reported first.
@@ -108,6 +138,13 @@ void add_render(CLI::App& app) {
       "--lighting", o->lighting,
       "simple sun lighting on top of the texture (off: the derived texture is hillshaded)");
   cmd->add_option("--json", o->json, "also write the stats JSON here");
+  cmd->add_option("--warp", o->warp,
+                  "warp frames between real ones: poly2 (2D polynomial) or depth (3D reprojection)")
+      ->check(CLI::IsMember({"poly2", "depth"}));
+  cmd->add_option("--real-every", o->real_every,
+                  "with --warp: render every K-th frame for real, warp the rest (default 4)");
+  cmd->add_option("--warp-margin", o->warp_margin,
+                  "with --warp: real frames drawn this fraction wider on each side (default 0.05)");
   cmd->callback([o] { run(*o); });
 }
 

@@ -49,6 +49,7 @@ std::vector<Camera> paper_path(const Heightfield& h, int frames, double aspect, 
 std::vector<Camera> make_path(const std::string& spec, const Heightfield& h, int frames,
                               double aspect) {
   if (spec.empty() || spec == "paper") return paper_path(h, frames, aspect);
+  if (spec == "low-fast") return low_fast_path(h, frames, aspect);
   return load_path_file(spec, h, frames, aspect);
 }
 

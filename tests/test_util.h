@@ -32,9 +32,9 @@ struct CliResult {
   std::string output;  ///< stdout and stderr together
 };
 
-/// Runs the built CLI (TS_CLI) with `args` (shell syntax) and captures its output.
-inline CliResult run_cli(const std::string& args) {
-  std::string cmd = std::string(TS_CLI) + " " + args + " 2>&1";
+/// Runs a shell command line and captures its output (stdout and stderr).
+inline CliResult run_cli_command(const std::string& command) {
+  std::string cmd = command + " 2>&1";
   CliResult r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
@@ -44,6 +44,16 @@ inline CliResult run_cli(const std::string& args) {
   int st = pclose(p);
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   return r;
+}
+
+/// Runs the built CLI (TS_CLI) with `args` (shell syntax) and captures its output.
+inline CliResult run_cli(const std::string& args) {
+  return run_cli_command(std::string(TS_CLI) + " " + args);
+}
+
+/// Runs the built CLI under a wrapper command (e.g. "xvfb-run -a").
+inline CliResult run_cli_prefixed(const std::string& prefix, const std::string& args) {
+  return run_cli_command(prefix + " " + std::string(TS_CLI) + " " + args);
 }
 
 /// ../shared/data beside the repository, or "" when it is absent.

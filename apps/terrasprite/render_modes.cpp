@@ -16,7 +16,8 @@ std::vector<std::string> render_modes() {
 }
 
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
-                              int height, int lod_quads, bool lighting) {
+                              int height, int lod_quads, bool lighting, bool read_depth,
+                              double sprite_threshold_px) {
   RenderStack s;
   if (mode == "full" || mode == "lod") {
     if (mode == "lod" && lod_quads < 1)
@@ -25,7 +26,7 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
     s.device = s.gl->renderer();
     s.scene = std::make_unique<GlTerrain>(terrain);
     s.renderer = std::make_unique<MeshRenderer>(
-        *s.scene, width, height, mode == "full" ? 0 : lod_quads, RasterOptions{lighting, true});
+        *s.scene, width, height, mode == "full" ? 0 : lod_quads, RasterOptions{lighting, read_depth});
     return s;
   }
   if (mode == "voxel") {
@@ -40,7 +41,8 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
   if (mode == "sprite") {
     SpriteOptions o;
     o.lod_quads = lod_quads;
-    o.read_depth = true;
+    o.read_depth = read_depth;
+    o.threshold_px = sprite_threshold_px;
     s.gl = std::make_unique<GlContext>();
     s.device = s.gl->renderer();
     s.scene = std::make_unique<GlTerrain>(terrain);

@@ -22,9 +22,11 @@ struct RenderStack {
 
 /// Modes: full, lod, sprite (LOD-sprite with default SpriteOptions and `lod_quads`), voxel
 /// (CPU, all cores). Throws InputError for an unknown mode, DeviceError when a GL mode finds no
-/// GL device. `terrain` must outlive the stack.
+/// GL device. `terrain` must outlive the stack. `read_depth` off: colour only
+/// (the viewer); `sprite_threshold_px`: the LOD-sprite keyframe threshold.
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
-                              int height, int lod_quads, bool lighting = false);
+                              int height, int lod_quads, bool lighting = false,
+                              bool read_depth = true, double sprite_threshold_px = 1.0);
 
 /// The modes make_render_stack accepts, for CLI11's check.
 std::vector<std::string> render_modes();

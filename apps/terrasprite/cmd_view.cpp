@@ -42,9 +42,14 @@ class StackRenderer : public viewer::ViewRenderer {
   SpriteRenderer* sprite_;
 };
 
-/// A pleasant first view: the paper path where its orbit begins (20 degrees up).
+/// The first view: from half the extent south, a tenth of the extent above the
+/// highest point, looking north at the terrain centre's lowest level.
 Camera start_camera(const Heightfield& h, double aspect) {
-  return paper_path(h, 460, aspect)[60];
+  const double e = h.extent();
+  Camera c = Camera::look_at({0, -0.5 * e, h.max_height() + 0.1 * e}, {0, 0, h.min_height()},
+                             60.0, aspect);
+  fit_clip_planes(c, h);
+  return c;
 }
 
 void run(ViewOpts& o) {

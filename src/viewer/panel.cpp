@@ -18,7 +18,8 @@ void frame_graph(const std::deque<GraphSample>& history) {
   const ImVec2 p = ImGui::GetCursorScreenPos();
   ImDrawList* dl = ImGui::GetWindowDrawList();
   dl->AddRectFilled(p, ImVec2(p.x + size.x, p.y + size.y), IM_COL32(20, 20, 20, 200));
-  const float top_ms = 150.f;
+  float top_ms = 150.f;  // grows to the slowest frame shown, up to 2 s
+  for (const GraphSample& s : history) top_ms = std::max(top_ms, std::min(s.ms * 1.1f, 2000.f));
   auto y_of = [&](float ms) { return p.y + size.y * (1.f - std::min(ms, top_ms) / top_ms); };
   const float bar = size.x / 240.f;
   float x = p.x + size.x - bar * float(history.size());
@@ -30,7 +31,7 @@ void frame_graph(const std::deque<GraphSample>& history) {
   for (float ms : {33.3f, 100.f})
     dl->AddLine(ImVec2(p.x, y_of(ms)), ImVec2(p.x + size.x, y_of(ms)), IM_COL32(200, 200, 200, 120));
   ImGui::Dummy(size);
-  ImGui::TextDisabled("frame ms (lines: 33, 100; orange: keyframe / real frame)");
+  ImGui::TextDisabled("frame ms, top %.0f (lines: 33, 100; orange: keyframe)", top_ms);
 }
 
 }  // namespace

@@ -33,8 +33,8 @@ struct CliResult {
 };
 
 /// Runs a shell command line and captures its output (stdout and stderr).
-inline CliResult run_cli_command(const std::string& command) {
-  std::string cmd = command + " 2>&1";
+inline CliResult run_shell(const std::string& command) {
+  std::string cmd = "{ " + command + "\n} 2>&1";
   CliResult r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
@@ -48,12 +48,17 @@ inline CliResult run_cli_command(const std::string& command) {
 
 /// Runs the built CLI (TS_CLI) with `args` (shell syntax) and captures its output.
 inline CliResult run_cli(const std::string& args) {
-  return run_cli_command(std::string(TS_CLI) + " " + args);
+  return run_shell(std::string(TS_CLI) + " " + args);
 }
 
 /// Runs the built CLI under a wrapper command (e.g. "xvfb-run -a").
 inline CliResult run_cli_prefixed(const std::string& prefix, const std::string& args) {
-  return run_cli_command(prefix + " " + std::string(TS_CLI) + " " + args);
+  return run_shell(prefix + " " + std::string(TS_CLI) + " " + args);
+}
+
+/// run_cli with `dir` as the working directory.
+inline CliResult run_cli_in(const std::string& dir, const std::string& args) {
+  return run_shell("cd '" + dir + "' && " + std::string(TS_CLI) + " " + args);
 }
 
 /// ../shared/data beside the repository, or "" when it is absent.

@@ -9,7 +9,7 @@ namespace terrasprite::cli {
 void add_bench_render(CLI::App& bench);
 /// bench voxel: the CPU ray caster per variant, thread scaling, quality vs reference.
 void add_bench_voxel(CLI::App& bench);
-/// bench lodsprite: the LOD-sprite paper's reproduction (issue 4).
+/// bench lodsprite: the LOD-sprite paper's reproduction.
 void add_bench_lodsprite(CLI::App& bench);
 
 }  // namespace terrasprite::cli

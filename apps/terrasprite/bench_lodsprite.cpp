@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// terrasprite bench lodsprite: the LOD-sprite paper's reproduction benchmark
-// (issue 4): JSON, plots of its Figs. 8-12, images of its Figs. 13-14, index.html.
+// terrasprite bench lodsprite: the LOD-sprite paper's reproduction benchmark:
+// JSON, plots of its Figs. 8-12, images of its Figs. 13-14, index.html.
 #include <fmt/format.h>
 
 #include "bench_commands.h"
@@ -80,8 +80,11 @@ void add_bench_lodsprite(CLI::App& bench) {
     c.thresholds = list_of<double>(o->thresholds, "--thresholds");
     c.frame_counts = list_of<int>(o->frame_counts, "--frame-counts");
     c.lod_sweep = list_of<int>(o->lod_sweep, "--lod-sweep");
+    check_outputs(o->out, {o->json});
     Terrain terrain = load_terrain_verbose(o->terrain);
-    OutputDir out(o->out);
+    check_lod_quads(c.lod_quads, terrain.heights);
+    for (int q : c.lod_sweep) check_lod_quads(q, terrain.heights, "--lod-sweep");
+    OutputDir out(o->out, output_policy());
     nlohmann::json j = run_lodsprite(c, terrain, out, "bench lodsprite");
     write_json(j, out.file("lodsprite.json"));  // JSON last: the directory is complete
     out.commit();

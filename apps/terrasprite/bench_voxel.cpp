@@ -15,9 +15,11 @@
 
 #include "bench_commands.h"
 #include "cli_common.h"
+#include "plot.h"
+#include "terrasprite/stats.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/error.h"
-#include "terrasprite/flythrough.h"
+#include "terrasprite/experiment.h"
 #include "terrasprite/output_dir.h"
 #include "terrasprite/quality.h"
 #include "terrasprite/terrain_gen.h"
@@ -41,20 +43,6 @@ struct BenchVoxelOpts {
   std::string json;
   std::string out;
 };
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  double k = p * (v.size() - 1);
-  std::size_t a = std::size_t(std::floor(k)), b = std::min(a + 1, v.size() - 1);
-  return v[a] + (v[b] - v[a]) * (k - a);
-}
-
-double mean(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x;
-  return v.empty() ? 0 : s / v.size();
-}
 
 nlohmann::json num_or_null(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
@@ -95,10 +83,8 @@ void write_plot(const OutputDir& out, const std::vector<std::string>& names,
        << names[k] << "'";
   gp << '\n';
   gp.close();
-  const std::string cmd =
-      fmt::format("cd '{}' && gnuplot frame_times.gp 2>/dev/null", out.partial().string());
-  if (std::system(cmd.c_str()) != 0)
-    fmt::print(stderr, "warning: gnuplot failed; frame_times.dat kept without a plot\n");
+  const std::string error = run_gnuplot(out.partial().string(), "frame_times.gp");
+  if (!error.empty()) fmt::print(stderr, "warning: {}; frame_times.dat kept without a plot\n", error);
 }
 
 void run(const BenchVoxelOpts& o) {
@@ -109,8 +95,13 @@ void run(const BenchVoxelOpts& o) {
     throw InputError(fmt::format("--score-every {}: must be at least 1", o.score_every));
   std::vector<int> threads;
   for (double t : parse_list(o.threads, "--threads")) {
-    if (t < 1 || t > 1024 || t != std::floor(t))
-      throw InputError(fmt::format("--threads {}: counts must be whole, 1..1024", o.threads));
+    // TBB runs at most one thread per hardware thread: a larger count would be
+    // reported while fewer ran.
+    const int most = int(std::max(1u, std::thread::hardware_concurrency()));
+    if (t < 1 || t > most || t != std::floor(t))
+      throw InputError(fmt::format(
+          "--threads {}: counts must be whole, 1..{} (the hardware threads of this machine)",
+          o.threads, most));
     threads.push_back(int(t));
   }
   std::vector<double> pitches = parse_list(o.pitches, "--pitches");
@@ -120,15 +111,17 @@ void run(const BenchVoxelOpts& o) {
   std::vector<int> sizes;
   if (!o.terrain_sizes.empty() && o.terrain_sizes != "none")
     for (double s : parse_list(o.terrain_sizes, "--terrain-sizes")) {
-      if (s < 2 || s > 32769 || s != std::floor(s))
+      if (s < 2 || s > 16385 || s != std::floor(s))
         throw InputError(
-            fmt::format("--terrain-sizes {}: sizes must be whole, 2..32769", o.terrain_sizes));
+            fmt::format("--terrain-sizes {}: sizes must be whole, 2..16385", o.terrain_sizes));
       sizes.push_back(int(s));
     }
   const int tmax = *std::max_element(threads.begin(), threads.end());
+  const std::string out_dir = o.out.empty() ? std::string("out/bench_voxel") : o.out;
+  check_outputs(out_dir, {o.json});
   Terrain terrain = load_terrain_verbose(o.terrain);
   std::vector<Camera> path = make_path(o.path, terrain.heights, o.frames, double(w) / h);
-  OutputDir out(o.out.empty() ? std::string("out/bench_voxel") : o.out);
+  OutputDir out(out_dir, output_policy());
 
   VoxelTerrain vt(terrain);
   const std::vector<VoxelVariant> variants = {VoxelVariant::kNaive, VoxelVariant::kCoherent,
@@ -147,65 +140,79 @@ void run(const BenchVoxelOpts& o) {
   ro.supersample = o.supersample;
   ro.threads = tmax;
   VoxelReference reference(vt, w, h, ro);
-  for (std::size_t v = 1; v < renderers.size();
-       ++v)  // warm-up: thread pools, first touch (naive needs none)
-    for (auto& r : renderers[v]) r->render(path[0]);
+  const std::size_t ti_max =
+      std::size_t(std::find(threads.begin(), threads.end(), tmax) - threads.begin());
+  auto run_name = [&](std::size_t v, std::size_t t) {
+    return fmt::format("{}@{}", to_string(variants[v]), threads[t]);
+  };
 
-  // ms[v][t] over all frames (naive: scored frames only); sub[v] at tmax over scored frames.
+  // Interleaved: every variant at every thread count on each frame (naive,
+  // seconds a frame at 1080p, on scored frames only); the reference and the
+  // scores on scored frames, at the largest thread count.
+  Experiment experiment;
+  experiment.set_reference({.renderer = &reference,
+                            .name = "reference",
+                            .warmup_draws = 0,
+                            .read = ReadBack::kColorDepth});
+  for (std::size_t v = 0; v < variants.size(); ++v)
+    for (std::size_t t = 0; t < threads.size(); ++t)
+      experiment.add({.renderer = renderers[v][t].get(),
+                      .name = run_name(v, t),
+                      .score = t == ti_max,
+                      .every = variants[v] == VoxelVariant::kNaive ? o.score_every : 1,
+                      // warm-up: thread pools, first touch (naive needs none)
+                      .warmup_draws = variants[v] == VoxelVariant::kNaive ? 0 : 1});
+  ExperimentOptions eo;
+  eo.score_every = o.score_every;
+  eo.scorer = [](const Frame& ref, const Frame& f) {
+    QualityScore q;
+    q.ssim = quality::ssim(ref.color.view(), f.color.view()).ssim;
+    // The paper path's frames are mostly sky: also score the terrain alone.
+    std::vector<std::uint8_t> terrain_mask(ref.depth.size());
+    for (std::size_t k = 0; k < terrain_mask.size(); ++k)
+      terrain_mask[k] = std::isfinite(ref.depth[k]);
+    q.figures["ssim_terrain"] =
+        quality::ssim(ref.color.view(), f.color.view(), {}, terrain_mask).ssim;
+    q.psnr = std::min(quality::psnr(ref.color.view(), f.color.view()).rgb, kPsnrCapDb);
+    q.flip = quality::flip(ref.color.view(), f.color.view()).mean;
+    return q;
+  };
+  const std::string saved = run_name(2, ti_max);
+  eo.on_frame = [&](int i, const std::string& name, const Frame& f) {
+    if (name == "reference") save_png(f.color, out.file(fmt::format("reference_{:04d}.png", i)));
+    if (name == saved && i % o.score_every == 0)
+      save_png(f.color, out.file(fmt::format("multires_{:04d}.png", i)));
+  };
+  Progress progress("bench voxel");
+  eo.progress = std::ref(progress);
+  PathSource cameras(path);
+  const ExperimentResult result = experiment.run(cameras, eo);
+
+  // ms[v][t] over all frames drawn (naive: scored frames only); scored_ms[v]
+  // at tmax over the scored frames.
   std::vector<std::vector<std::vector<double>>> ms(
       variants.size(), std::vector<std::vector<double>>(threads.size()));
   std::vector<std::vector<double>> scored_ms(variants.size());
-  std::vector<std::vector<double>> ssim(variants.size()), psnr(variants.size()),
-      flip(variants.size());
-  std::vector<std::vector<double>> ssim_terrain(variants.size());
-  nlohmann::json per_frame = nlohmann::json::array();
-  std::vector<double> ref_ms;
-  const std::size_t ti_max =
-      std::size_t(std::find(threads.begin(), threads.end(), tmax) - threads.begin());
-  Progress progress("bench voxel");
-  for (std::size_t i = 0; i < path.size(); ++i) {
-    const bool scored = i % std::size_t(o.score_every) == 0;
-    std::vector<Frame> at_max(variants.size());
-    nlohmann::json pf = {{"frame", i}};
-    for (std::size_t v = 0; v < variants.size(); ++v) {
-      if (variants[v] == VoxelVariant::kNaive && !scored) continue;
-      for (std::size_t t = 0; t < threads.size(); ++t) {
-        Frame f = renderers[v][t]->render(path[i]);
+  for (std::size_t v = 0; v < variants.size(); ++v)
+    for (std::size_t t = 0; t < threads.size(); ++t)
+      for (const FrameResult& f : result.run(run_name(v, t)).frames) {
         ms[v][t].push_back(f.ms);
-        if (t == ti_max) {
-          if (scored) scored_ms[v].push_back(f.ms);
-          pf[std::string(to_string(variants[v])) + "_ms"] = f.ms;
-          at_max[v] = std::move(f);
-        }
+        if (t == ti_max && f.quality) scored_ms[v].push_back(f.ms);
       }
+  const RendererRun& ref_run = result.run("reference");
+  std::vector<double> ref_ms;
+  for (const FrameResult& f : ref_run.frames) ref_ms.push_back(f.ms);
+  nlohmann::json per_frame = nlohmann::json::array();
+  for (int i = 0; i < result.frames; ++i) per_frame.push_back({{"frame", i}});
+  for (std::size_t v = 0; v < variants.size(); ++v)
+    for (const FrameResult& f : result.run(run_name(v, ti_max)).frames) {
+      per_frame[f.frame][std::string(to_string(variants[v])) + "_ms"] = f.ms;
+      if (f.quality) per_frame[f.frame][std::string(to_string(variants[v])) + "_ssim"] = f.quality->ssim;
     }
-    if (scored) {
-      Frame ref = reference.render(path[i]);
-      ref_ms.push_back(ref.ms);
-      pf["reference_ms"] = ref.ms;
-      // The paper path's frames are mostly sky: also score the terrain alone.
-      std::vector<std::uint8_t> terrain_mask(ref.depth.size());
-      for (std::size_t k = 0; k < terrain_mask.size(); ++k)
-        terrain_mask[k] = std::isfinite(ref.depth[k]);
-      for (std::size_t v = 0; v < variants.size(); ++v) {
-        const double s = quality::ssim(ref.color.view(), at_max[v].color.view()).ssim;
-        const double st =
-            quality::ssim(ref.color.view(), at_max[v].color.view(), {}, terrain_mask).ssim;
-        if (std::isfinite(st)) ssim_terrain[v].push_back(st);
-        const double p =
-            std::min(quality::psnr(ref.color.view(), at_max[v].color.view()).rgb, 100.0);
-        const double fl = quality::flip(ref.color.view(), at_max[v].color.view()).mean;
-        ssim[v].push_back(s);
-        psnr[v].push_back(p);
-        flip[v].push_back(fl);
-        pf[std::string(to_string(variants[v])) + "_ssim"] = s;
-      }
-      save_png(ref.color, out.file(fmt::format("reference_{:04d}.png", i)));
-      save_png(at_max[2].color, out.file(fmt::format("multires_{:04d}.png", i)));
-    }
-    per_frame.push_back(pf);
-    progress(int(i) + 1, int(path.size()));
-  }
+  for (const FrameResult& f : ref_run.frames) per_frame[f.frame]["reference_ms"] = f.ms;
+  auto quality_of = [&](std::size_t v, const std::string& metric) {
+    return result.run(run_name(v, ti_max)).quality(metric);
+  };
 
   auto scaling = [&](std::size_t v) -> double {
     auto one = std::find(threads.begin(), threads.end(), 1),
@@ -223,7 +230,7 @@ void run(const BenchVoxelOpts& o) {
          {"threads", tmax},
          {"frames_timed", ms[v][ti_max].size()},
          {"median_ms", med},
-         {"p95_ms", percentile(ms[v][ti_max], 0.95)},
+         {"p95_ms", percentile(ms[v][ti_max], 95)},
          {"ns_per_pixel", med * 1e6 / (double(w) * h)},
          {"speedup_vs_naive", naive_scored / std::max(median(scored_ms[v]), 1e-9)},
          {"scaling_2v1", num_or_null(scaling(v))},
@@ -234,11 +241,11 @@ void run(const BenchVoxelOpts& o) {
               m[std::to_string(threads[t])] = median(ms[v][t]);
             return m;
           }()},
-         {"mean_ssim", mean(ssim[v])},
-         {"min_ssim", ssim[v].empty() ? 0 : *std::min_element(ssim[v].begin(), ssim[v].end())},
-         {"mean_ssim_terrain", mean(ssim_terrain[v])},
-         {"mean_psnr", mean(psnr[v])},
-         {"mean_flip", mean(flip[v])}});
+         {"mean_ssim", quality_of(v, "ssim").mean},
+         {"min_ssim", quality_of(v, "ssim").min},
+         {"mean_ssim_terrain", quality_of(v, "ssim_terrain").mean},
+         {"mean_psnr", quality_of(v, "psnr").mean},
+         {"mean_flip", quality_of(v, "flip").mean}});
   }
 
   // Static pitch sweep (paper Table 1): the default variant at each thread count.
@@ -293,7 +300,7 @@ void run(const BenchVoxelOpts& o) {
       sweep.push_back({{"samples", e.samples},
                        {"frames", e.path.size()},
                        {"median_ms", median(e.ms)},
-                       {"p95_ms", percentile(e.ms, 0.95)}});
+                       {"p95_ms", percentile(e.ms, 95)}});
   }
 
   std::vector<std::string> names;

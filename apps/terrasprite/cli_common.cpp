@@ -4,18 +4,28 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <limits>
+#include <string_view>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 
 #include "terrasprite/error.h"
+#include "terrasprite/output_dir.h"
 
 namespace terrasprite::cli {
 
 void add_terrain_options(CLI::App& cmd, TerrainOptions& o) {
-  cmd.add_option("--dem", o.dem,
-                 "height raster (GeoTIFF, .hgt, 16-bit PNG, terrain-RGB, ...); default: synthetic");
+  cmd.add_option_function<std::string>(
+      "--dem",
+      [&o](const std::string& f) {
+        o.dem = f;
+        o.dem_given = true;
+      },
+      "height raster (GeoTIFF, .hgt, 16-bit PNG, terrain-RGB, ...); default: synthetic");
   cmd.add_option("--texture", o.texture, "drape texture file, 'checker' or 'derived' (default)");
   cmd.add_option("--z-scale", o.z_scale, "multiply raw height samples (e.g. 0.1 for decimetres)");
   cmd.add_option("--spacing", o.spacing, "sample spacing in metres (overrides the file's)");
@@ -34,8 +44,9 @@ void add_terrain_options(CLI::App& cmd, TerrainOptions& o) {
                  "resample heights to N x N samples (e.g. 513 for the paper setup)");
   cmd.add_option("--seed", o.seed, "synthetic terrain seed");
   cmd.add_option("--synthetic-size", o.synthetic_size,
-                 "synthetic terrain samples per side (default 513)");
-  cmd.add_option("--erosion", o.erosion_passes, "synthetic terrain erosion passes (default 2)");
+                 "synthetic terrain samples per side, 2..8193 (default 513)");
+  cmd.add_option("--erosion", o.erosion_passes,
+                 "synthetic terrain erosion passes, 0..100 (default 2)");
 }
 
 Terrain load_terrain_verbose(const TerrainOptions& o) {
@@ -46,14 +57,33 @@ Terrain load_terrain_verbose(const TerrainOptions& o) {
 }
 
 std::pair<int, int> parse_size(const std::string& text, const char* option) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X'))
+  // Whole digits parsed into 64 bits and range-checked: "4294967360x64" must not wrap to 64x64.
+  auto number = [&](std::string_view part) -> long long {
+    long long v = 0;
+    const bool sign = !part.empty() && part[0] == '-';
+    const auto digits = part.substr(sign ? 1 : 0);
+    auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+    if (digits.empty() || end != digits.data() + digits.size())
+      throw InputError(fmt::format("{} {}: expected WIDTHxHEIGHT, e.g. 512x512", option, text));
+    if (ec == std::errc::result_out_of_range) v = std::numeric_limits<long long>::max();
+    return sign ? -v : v;
+  };
+  const std::size_t x = text.find_first_of("xX");
+  if (x == std::string::npos)
     throw InputError(fmt::format("{} {}: expected WIDTHxHEIGHT, e.g. 512x512", option, text));
+  const long long w = number(std::string_view(text).substr(0, x)),
+                  h = number(std::string_view(text).substr(x + 1));
   if (w <= 0 || h <= 0 || w > 16384 || h > 16384)
     throw InputError(
         fmt::format("{} {}: width and height must be between 1 and 16384", option, text));
-  return {w, h};
+  return {int(w), int(h)};
+}
+
+void check_lod_quads(int quads, const Heightfield& h, const char* option) {
+  const int most = std::min(h.width, h.height) - 1;
+  if (quads < 1 || quads > most)
+    throw InputError(fmt::format("{} {}: must be between 1 and {} for the {}x{}-sample terrain",
+                                 option, quads, most, h.width, h.height));
 }
 
 std::vector<double> parse_list(const std::string& text, const char* option) {
@@ -71,10 +101,20 @@ std::vector<double> parse_list(const std::string& text, const char* option) {
   return out;
 }
 
-void write_json(const nlohmann::json& j, const std::string& path) {
-  std::ofstream out(path);
-  out << j.dump(2) << "\n";
-  if (!out) throw InputError(fmt::format("{}: cannot write JSON", path));
+OutputPolicy& output_policy() {
+  static OutputPolicy policy;
+  return policy;
+}
+
+void check_outputs(const std::string& out_dir, std::initializer_list<std::string> files) {
+  if (!out_dir.empty()) OutputDir::check(out_dir, output_policy());
+  for (const std::string& f : files)
+    if (!f.empty()) check_output_file(f, output_policy());
+}
+
+void write_json(nlohmann::json j, const std::string& path) {
+  if (j.is_object()) j["generator"] = generator_name();
+  write_output_file(path, output_policy(), j.dump(2) + "\n");
 }
 
 nlohmann::json terrain_json(const Terrain& t) {

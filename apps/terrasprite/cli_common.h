@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "terrasprite/output_file.h"
 #include "terrasprite/terrain.h"
 
 namespace terrasprite::cli {
@@ -21,11 +22,27 @@ Terrain load_terrain_verbose(const TerrainOptions& o);
 /// absurd (> 16384) or malformed size.
 std::pair<int, int> parse_size(const std::string& text, const char* option);
 
+/// Throws InputError naming `option` unless 1 <= quads <= the terrain's
+/// quads along its shorter side (a coarser grid than that is not a LOD; a
+/// finer one would be clamped silently).
+void check_lod_quads(int quads, const Heightfield& h, const char* option = "--lod-quads");
+
 /// Comma-separated list of numbers; throws InputError naming `option`.
 std::vector<double> parse_list(const std::string& text, const char* option);
 
-/// Writes pretty JSON; throws InputError naming the file on failure.
-void write_json(const nlohmann::json& j, const std::string& path);
+/// The run's policy for existing outputs (`--overwrite`, an option of every command).
+OutputPolicy& output_policy();
+
+/// Checks, before any work, that every output can be written: the output
+/// directory `out_dir` (skipped when empty) and each non-empty file name.
+/// Throws InputError naming the first that cannot.
+void check_outputs(const std::string& out_dir, std::initializer_list<std::string> files);
+
+/// Writes pretty JSON with a "generator" key (terrasprite and its version) to a
+/// temporary name beside `path`, renamed into place when complete; an existing
+/// file is replaced only if terrasprite wrote it or with --overwrite.
+/// Throws InputError naming the file on failure.
+void write_json(nlohmann::json j, const std::string& path);
 
 /// JSON description of a terrain: name, samples, quads, spacing_m, extent_m, heights.
 nlohmann::json terrain_json(const Terrain& t);

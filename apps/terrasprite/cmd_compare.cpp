@@ -51,6 +51,11 @@ Wanted parse_metrics(const std::string& text) {
   return w;
 }
 
+// A single-file PNG output: written beside the target, renamed into place.
+void save_png_output(const Image& image, const std::string& path) {
+  write_output_file(path, output_policy(), [&](const std::string& tmp) { save_png(image, tmp); });
+}
+
 // Infinite PSNR (identical images) is written as the string "inf": JSON has no infinity.
 nlohmann::json db(double v) {
   return std::isinf(v) ? nlohmann::json("inf") : nlohmann::json(v);
@@ -61,6 +66,7 @@ std::string db_text(double v) {
 
 void run(const Opts& o) {
   const Wanted want = parse_metrics(o.metrics);
+  check_outputs("", {o.json, o.diff, o.flip_map});
   if ((want.flip || !o.flip_map.empty()) && !(std::isfinite(o.ppd) && o.ppd > 0 && o.ppd <= 1000))
     throw InputError(fmt::format("--ppd {}: pixels per degree must be in (0, 1000]", o.ppd));
   const Image ref = load_image(o.reference);
@@ -116,9 +122,9 @@ void run(const Opts& o) {
     j["ppd"] = o.ppd;
     table += fmt::format("{:<12} {:.6f}  (median {:.6f}, {} pixels per degree)\n", "flip_mean",
                          f.mean, f.median, o.ppd);
-    if (fo.want_map) save_png(quality::flip_image(f.map, ref.width, ref.height), o.flip_map);
+    if (fo.want_map) save_png_output(quality::flip_image(f.map, ref.width, ref.height), o.flip_map);
   }
-  if (!o.diff.empty()) save_png(quality::difference_image(a, b, o.diff_scale), o.diff);
+  if (!o.diff.empty()) save_png_output(quality::difference_image(a, b, o.diff_scale), o.diff);
   if (!o.json.empty()) {
     write_json(j, o.json);
   } else {

@@ -27,8 +27,9 @@ void add_demo(CLI::App& app) {
   cmd->add_option("--size", o->size, "image size WxH (default 512x512)");
   cmd->callback([o] {
     auto [w, h] = parse_size(o->size, "--size");
+    check_outputs(o->out, {});
     Terrain terrain = load_terrain_verbose(o->terrain);
-    OutputDir out(o->out);
+    OutputDir out(o->out, output_policy());
     // The bench's run, lighter sweeps: frames, stats and the report in minutes.
     LodspriteConfig c;
     c.frames = o->frames;

@@ -18,6 +18,7 @@ void add_info(CLI::App& app) {
   add_terrain_options(*cmd, o->terrain);
   cmd->add_option("--json", o->json, "write the description as JSON");
   cmd->callback([o] {
+    check_outputs("", {o->json});
     Terrain t = load_terrain_verbose(o->terrain);
     const Heightfield& h = t.heights;
     nlohmann::json j = {{"name", h.name},

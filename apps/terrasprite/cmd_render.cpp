@@ -16,6 +16,7 @@
 #include "terrasprite/error.h"
 #include "terrasprite/flythrough.h"
 #include "terrasprite/output_dir.h"
+#include "terrasprite/output_file.h"
 #include "terrasprite/video_writer.h"
 
 namespace terrasprite::cli {
@@ -37,7 +38,6 @@ struct RenderOpts {
   VideoOptions video_opts;
   bool frames_png = false;
   bool no_images = false;
-  bool overwrite = false;
   std::string frame_range;
 };
 
@@ -54,13 +54,15 @@ std::pair<int, int> parse_frame_range(const std::string& text, int frames) {
   return {a, b};
 }
 
-/// Refuses to replace a file the user did not ask us to replace.
+/// Refuses to replace a file the user did not ask us to replace (a video is
+/// never recognisably ours, so an existing one needs --overwrite).
 void check_video_target(const RenderOpts& o) {
   if (o.video.empty()) return;
   validate_video_options(o.video_opts);
-  if (std::filesystem::exists(o.video) && !o.overwrite)
+  if (std::filesystem::exists(o.video) && !output_policy().overwrite)
     throw InputError(fmt::format("--video {}: file exists (pass --overwrite to replace it)",
                                  o.video));
+  check_output_file(o.video, output_policy());
 }
 
 // Linear depth as 16-bit PNG: value = metres / m_per_unit, sky = 65535.
@@ -83,6 +85,7 @@ void run(const RenderOpts& o) {
   if (o.frames < 1 || o.frames > 1000000)
     throw InputError(fmt::format("--frames {}: must be between 1 and 1000000", o.frames));
   const auto [first, last] = parse_frame_range(o.frame_range, o.frames);
+  check_outputs(o.out, {o.json});
   check_video_target(o);
   Terrain terrain = load_terrain_verbose(o.terrain);
   std::vector<Camera> path = make_path(o.path, terrain.heights, o.frames, double(w) / h);
@@ -95,7 +98,7 @@ void run(const RenderOpts& o) {
                o.frame_range);
 
   std::optional<OutputDir> out;
-  if (!o.out.empty()) out.emplace(o.out);
+  if (!o.out.empty()) out.emplace(o.out, output_policy());
   const bool png = !o.no_images && (o.video.empty() || o.frames_png);
   std::optional<VideoWriter> video;
   if (!o.video.empty()) {
@@ -108,6 +111,7 @@ void run(const RenderOpts& o) {
   const auto t0 = std::chrono::steady_clock::now();
   auto stats = fly(
       *stack.renderer, std::span(path).subspan(first, last - first),
+      o.depth ? ReadBack::kColorDepth : ReadBack::kColor,
       [&](int local, const Frame& f) {
         const int i = first + local;
         if (png) save_png(f.color, out->file(fmt::format("frame_{:04d}.png", i)));
@@ -185,7 +189,6 @@ void add_render(CLI::App& app) {
   cmd->add_option("--preset", o->video_opts.preset, "x264 preset (default veryfast)");
   cmd->add_flag("--frames-png", o->frames_png, "with --video, keep writing PNG frames too");
   cmd->add_flag("--no-images", o->no_images, "write no PNG frames (stats only; for timing)");
-  cmd->add_flag("--overwrite", o->overwrite, "replace an existing --video file");
   cmd->add_option("--frame-range", o->frame_range,
                   "render only frames A to B-1 of the --frames run (A:B), for splitting a long "
                   "run across machines");

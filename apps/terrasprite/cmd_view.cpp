@@ -27,11 +27,11 @@ struct ViewOpts {
 /// One --mode's renderer stack, built on the viewer's render thread.
 class StackRenderer : public viewer::ViewRenderer {
  public:
-  StackRenderer(const Terrain& t, const viewer::LiveSettings& s, int w, int h, bool lighting)
-      : stack_(make_render_stack(s.mode, t, w, h, s.lod_quads, lighting, /*read_depth=*/false,
-                                 s.threshold_px)),
+  StackRenderer(const Terrain& t, const viewer::LiveSettings& s, int w, int h, bool lighting,
+                GlContext* context)
+      : stack_(make_render_stack(s.mode, t, w, h, s.lod_quads, lighting, s.threshold_px, context)),
         sprite_(dynamic_cast<SpriteRenderer*>(stack_.renderer.get())) {}
-  Frame render(const Camera& camera) override { return stack_.renderer->render(camera); }
+  Renderer& renderer() override { return *stack_.renderer; }
   std::string device() const override { return stack_.device; }
   double error_px() const override {
     return sprite_ ? sprite_->last_error().value(sprite_->options().metric) : -1;
@@ -75,8 +75,8 @@ void run(ViewOpts& o) {
   const bool lighting = o.lighting;
   viewer::RunStats stats = viewer::run_viewer(
       terrain.heights, start_camera(terrain.heights, double(w) / h), v,
-      [&terrain, w, h, lighting](const viewer::LiveSettings& s) {
-        return std::make_unique<StackRenderer>(terrain, s, w, h, lighting);
+      [&terrain, w, h, lighting](const viewer::LiveSettings& s, GlContext* context) {
+        return std::make_unique<StackRenderer>(terrain, s, w, h, lighting, context);
       });
   nlohmann::json j = viewer::stats_json(stats);
   if (!o.stats.empty()) write_json(j, o.stats);
@@ -112,6 +112,9 @@ void add_view(CLI::App& app) {
   cmd->add_option("--clearance", o->viewer.fly.clearance_m,
                   "minimum height above ground, metres (default 0.5% of the extent)");
   cmd->add_flag("--free", o->free, "allow flying far outside the terrain");
+  cmd->add_flag("--shared-context", o->viewer.share_context,
+                "GL renderers draw in a context shared with the window, nothing read back "
+                "(default off: on llvmpipe the window then waits for the renderer)");
   cmd->add_option("--screenshot-dir", o->viewer.screenshot_dir,
                   "where F2 screenshots and F5 recordings go (default .)");
   cmd->callback([o] { run(*o); });

@@ -17,7 +17,7 @@
 #include "lodsprite_report.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/error.h"
-#include "terrasprite/flythrough.h"
+#include "terrasprite/experiment.h"
 #include "terrasprite/gl_context.h"
 #include "terrasprite/mesh_renderer.h"
 #include "terrasprite/quality.h"
@@ -26,23 +26,6 @@
 
 namespace terrasprite::cli {
 namespace {
-
-constexpr double kPsnrCapDb = 100.0;  // identical images (keyframes) score this instead of +inf
-
-struct Score {
-  double psnr = kPsnrCapDb, ssim = 1.0, flip = 0.0;
-};
-
-Score score(const Image& reference, const Image& test, bool with_flip) {
-  if (reference.rgba == test.rgba) return {};  // a keyframe is the full-resolution frame itself
-  Score s;
-  s.psnr = std::min(quality::psnr(reference.view(), test.view()).rgb, kPsnrCapDb);
-  quality::SsimOptions so;
-  so.channels = false;
-  s.ssim = quality::ssim(reference.view(), test.view(), so).ssim;
-  s.flip = with_flip ? quality::flip(reference.view(), test.view()).mean : -1.0;
-  return s;
-}
 
 double ssim_only(const Image& reference, const Image& test) {
   if (reference.rgba == test.rgba) return 1.0;
@@ -53,9 +36,6 @@ double ssim_only(const Image& reference, const Image& test) {
 
 double sum(const std::vector<double>& v) {
   return std::accumulate(v.begin(), v.end(), 0.0);
-}
-double mean(const std::vector<double>& v) {
-  return v.empty() ? 0.0 : sum(v) / double(v.size());
 }
 
 struct PassResult {
@@ -68,9 +48,8 @@ struct PassResult {
 // One timed LOD-sprite pass over `path`; the kept frames are SSIM-scored
 // against the references after the whole pass, so scoring threads never
 // overlap a timed frame.
-PassResult sprite_pass(GlTerrain& scene, std::span<const Camera> path, int w, int h,
+PassResult sprite_pass(Scene& scene, std::span<const Camera> path, int w, int h,
                        SpriteOptions o, const std::vector<Image>& refs, int every) {
-  o.read_color = true;
   SpriteRenderer r(scene, w, h, o);
   r.render_keyframe(path[0]);  // warm-up, then start afresh
   r.render_sprite(path[0]);
@@ -103,9 +82,8 @@ double median_speedup(int n, int keys, double full_median, double key_median,
 
 // Keyframe count only: the metric decides, keyframes are rendered (their depth
 // buffer feeds the visibility), sprite frames are not drawn.
-int simulate_keyframes(GlTerrain& scene, std::span<const Camera> path, int w, int h,
+int simulate_keyframes(Scene& scene, std::span<const Camera> path, int w, int h,
                        SpriteOptions o) {
-  o.read_color = false;
   SpriteRenderer r(scene, w, h, o);
   int keys = 0;
   for (const Camera& c : path) {
@@ -158,10 +136,8 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
   const int n = int(path.size());
 
   GlContext gl;
-  GlTerrain scene(terrain);
-  RasterOptions ro;
-  ro.read_depth = false;
-  MeshRenderer full(scene, w, h, 0, ro), lod(scene, w, h, cfg.lod_quads, ro);
+  Scene scene(terrain);
+  MeshRenderer full(scene, w, h, 0), lod(scene, w, h, cfg.lod_quads);
   SpriteOptions so;
   so.lod_quads = cfg.lod_quads;
   so.threshold_px = cfg.threshold_px;
@@ -170,27 +146,46 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
   so.max_resample_scale = cfg.max_resample_scale;
   so.sharp_px = cfg.sharp_px;
   SpriteRenderer sprite(scene, w, h, so);
-  // Warm-up: shader compilation and first-use costs stay out of the timings.
-  full.render(path[0]);
-  lod.render(path[0]);
-  sprite.render_keyframe(path[0]);
-  sprite.render_sprite(path[0]);
-  sprite.reset();
-
   // ---- main run: interleaved, timed, then scored outside the timed spans ----
+  Experiment experiment;
+  experiment.set_reference(full, "full");
+  experiment.add({.renderer = &lod, .name = "lod", .score = true});
+  experiment.add({.renderer = &sprite,
+                  .name = "sprite",
+                  .score = true,
+                  .after_warmup = [&] { sprite.reset(); },
+                  .annotate = [&](const Frame&, FrameResult& r) {
+                    const SpriteError& e = sprite.last_error();
+                    r.counters = {{"error_px", e.paper_px},
+                                  {"error_px_exact", e.exact_px},
+                                  {"error_samples", double(e.samples)},
+                                  {"fallback_fraction", e.fallback_fraction()},
+                                  {"resample_scale", e.resample_scale}};
+                    if (sprite.last_trigger()) r.tags["trigger"] = to_string(*sprite.last_trigger());
+                  }});
+  std::vector<Image> refs;
+  ExperimentOptions eo;
+  eo.warmup_draws = 2;  // the sprite's first draw is a keyframe, its second a sprite frame
+  eo.scorer = default_scorer(cfg.flip);
+  eo.on_frame = [&](int i, const std::string& name, const Frame& f) {
+    if (name == "full" && i % every == 0) refs.push_back(f.color);
+    if (name == "sprite" && cfg.on_sprite_frame) cfg.on_sprite_frame(i, f);
+  };
+  Progress progress(label + " main");
+  eo.progress = std::ref(progress);
+  PathSource cameras(path);
+  const ExperimentResult run = experiment.run(cameras, eo);
+  const RendererRun &full_run = run.run("full"), &lod_run = run.run("lod"),
+                    &sprite_run = run.run("sprite");
+
   std::vector<double> full_ms(n), lod_ms(n), sprite_ms(n), key_ms, spr_ms;
   std::vector<double> lod_psnr, lod_ssim, lod_flip, sp_psnr, sp_ssim, sp_flip, sp_psnr_sprite_only,
       lod_psnr_sprite_only;
   std::vector<int> key_of(n, 0);
-  std::vector<Image> refs;
   nlohmann::json per_frame = nlohmann::json::array();
   int keyframes = 0, current_key = 0, ssim_above = 0, ssim_above_sprite_frames = 0;
-  Progress progress(label + " main");
   for (int i = 0; i < n; ++i) {
-    Frame a = full.render(path[i]);
-    Frame b = lod.render(path[i]);
-    Frame c = sprite.render(path[i]);
-    const SpriteError e = sprite.last_error();
+    const FrameResult &a = full_run.frames[i], &b = lod_run.frames[i], &c = sprite_run.frames[i];
     full_ms[i] = a.ms;
     lod_ms[i] = b.ms;
     sprite_ms[i] = c.ms;
@@ -203,7 +198,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
       spr_ms.push_back(c.ms);
     }
     key_of[i] = current_key;
-    const Score ls = score(a.color, b.color, cfg.flip), ss = score(a.color, c.color, cfg.flip);
+    const QualityScore ls = *b.quality, ss = *c.quality;
     lod_psnr.push_back(ls.psnr);
     lod_ssim.push_back(ls.ssim);
     lod_flip.push_back(ls.flip);
@@ -216,18 +211,19 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
     }
     ssim_above += ss.ssim > ls.ssim;
     ssim_above_sprite_frames += !key && ss.ssim > ls.ssim;
+    auto trigger = c.tags.find("trigger");
     per_frame.push_back({{"frame", i},
                          {"class", c.cls},
                          {"ms", c.ms},
                          {"gpu_ms", c.gpu_ms},
                          {"full_ms", a.ms},
                          {"lod_ms", b.ms},
-                         {"error_px", e.paper_px},
-                         {"error_px_exact", e.exact_px},
-                         {"error_samples", e.samples},
-                         {"fallback_fraction", e.fallback_fraction()},
-                         {"resample_scale", e.resample_scale},
-                         {"trigger", sprite.last_trigger()},
+                         {"error_px", c.counters.at("error_px")},
+                         {"error_px_exact", c.counters.at("error_px_exact")},
+                         {"error_samples", int(c.counters.at("error_samples"))},
+                         {"fallback_fraction", c.counters.at("fallback_fraction")},
+                         {"resample_scale", c.counters.at("resample_scale")},
+                         {"trigger", trigger == c.tags.end() ? "" : trigger->second},
                          {"keyframe", current_key},
                          {"psnr", ss.psnr},
                          {"ssim", ss.ssim},
@@ -235,9 +231,6 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
                          {"lod_psnr", ls.psnr},
                          {"lod_ssim", ls.ssim},
                          {"lod_flip", ls.flip}});
-    if (cfg.on_sprite_frame) cfg.on_sprite_frame(i, c);
-    if (i % every == 0) refs.push_back(std::move(a.color));
-    progress(i + 1, n);
   }
 
   const double full_total = sum(full_ms), sprite_total = sum(sprite_ms);
@@ -323,13 +316,13 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
   nlohmann::json figures = nlohmann::json::object();
   for (auto [name, t] :
        {std::pair<const char*, const Terrain*>{"fig13", &checker}, {"fig14", &terrain}}) {
-    std::unique_ptr<GlTerrain> own;
-    GlTerrain* s = &scene;
+    std::unique_ptr<Scene> own;
+    Scene* s = &scene;
     if (t != &terrain) {
-      own = std::make_unique<GlTerrain>(*t);
+      own = std::make_unique<Scene>(*t);
       s = own.get();
     }
-    MeshRenderer fr(*s, w, h, 0, ro), lr(*s, w, h, cfg.lod_quads, ro);
+    MeshRenderer fr(*s, w, h, 0), lr(*s, w, h, cfg.lod_quads);
     SpriteRenderer sr(*s, w, h, so);
     sr.render_keyframe(path[key_of[fig_frame]]);
     Frame sf = sr.render_sprite(path[fig_frame]);
@@ -342,7 +335,8 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
              out.file(base + "_diff_lod.png"));
     save_png(quality::difference_image(ff.color.view(), sf.color.view()),
              out.file(base + "_diff_sprite.png"));
-    const Score ls = score(ff.color, lf.color, cfg.flip), ss = score(ff.color, sf.color, cfg.flip);
+    const Scorer score = default_scorer(cfg.flip);
+    const QualityScore ls = score(ff, lf), ss = score(ff, sf);
     figures[name] = {{"texture", t->texture_name},
                      {"frame", fig_frame},
                      {"keyframe", key_of[fig_frame]},
@@ -384,7 +378,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
        {{"total_ms", sprite_total},
         {"median_ms", median(sprite_ms)},
         {"keyframes", keyframes},
-        {"sprite_frames", n - keyframes},
+        {"sprite_frames", sprite_run.count("sprite")},
         {"key_median_ms", key_median},
         {"sprite_median_ms", spr_median},
         {"mean_psnr", mean(sp_psnr)},

@@ -8,8 +8,10 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 
+#include "cli_common.h"
 #include "commands.h"
 #include "terrasprite/error.h"
+#include "terrasprite/interrupt_cleanup.h"
 
 namespace {
 
@@ -22,8 +24,14 @@ std::string one_line(std::string s) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  terrasprite::install_interrupt_cleanup();  // before any thread starts
   CLI::App app{"terrasprite: fast terrain flythroughs measured against full-quality images"};
   app.require_subcommand(1);
+  // Accepted after any sub-command too (fallthrough): it governs every output it writes.
+  app.fallthrough();
+  app.add_flag("--overwrite", terrasprite::cli::output_policy().overwrite,
+               "replace existing outputs that terrasprite did not write (never a directory "
+               "holding the working directory, a device or a link)");
   terrasprite::cli::add_info(app);
   terrasprite::cli::add_render(app);
   terrasprite::cli::add_compare(app);
@@ -33,6 +41,7 @@ int main(int argc, char** argv) {
   terrasprite::cli::add_view(app);
 #endif
   int rc = 0;
+  std::string error;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -40,17 +49,24 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    fmt::print(stderr, "terrasprite: {}\n", one_line(e.what()));
+    error = e.what();
     rc = 2;
   } catch (const terrasprite::InputError& e) {
-    fmt::print(stderr, "terrasprite: {}\n", one_line(e.what()));
+    error = e.what();
     rc = 2;
   } catch (const terrasprite::DeviceError& e) {
-    fmt::print(stderr, "terrasprite: {}\n", one_line(e.what()));
+    error = e.what();
     rc = 3;
   } catch (const std::bad_alloc&) {
-    fmt::print(stderr, "terrasprite: out of memory\n");
+    error = "out of memory";
     rc = 2;
+  } catch (const std::exception& e) {
+    // A bug, not a user error: still one line, never an abort.
+    error = std::string("internal error: ") + e.what();
+    rc = 1;
   }
+  // A failure caused by an interrupt's clean-up is not the story: the interrupt is.
+  terrasprite::hold_if_interrupted();
+  if (rc != 0) fmt::print(stderr, "terrasprite: {}\n", one_line(error));
   return rc;
 }

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <thread>
 
+#include "cli_common.h"
 #include "terrasprite/error.h"
+#include "terrasprite/mesh_renderer.h"
 #include "terrasprite/sprite_renderer.h"
 
 namespace terrasprite::cli {
@@ -16,17 +18,20 @@ std::vector<std::string> render_modes() {
 }
 
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
-                              int height, int lod_quads, bool lighting, bool read_depth,
-                              double sprite_threshold_px) {
+                              int height, int lod_quads, bool lighting,
+                              double sprite_threshold_px, GlContext* context) {
   RenderStack s;
+  // GL modes: the caller's current context, else one of our own.
+  auto use_gl = [&] {
+    if (!context) s.gl = std::make_unique<GlContext>();
+    s.device = (context ? context : s.gl.get())->renderer();
+  };
   if (mode == "full" || mode == "lod") {
-    if (mode == "lod" && lod_quads < 1)
-      throw InputError(fmt::format("--lod-quads {}: must be at least 1", lod_quads));
-    s.gl = std::make_unique<GlContext>();
-    s.device = s.gl->renderer();
-    s.scene = std::make_unique<GlTerrain>(terrain);
+    if (mode == "lod") check_lod_quads(lod_quads, terrain.heights);
+    use_gl();
+    s.scene = std::make_unique<Scene>(terrain);
     s.renderer = std::make_unique<MeshRenderer>(
-        *s.scene, width, height, mode == "full" ? 0 : lod_quads, RasterOptions{lighting, read_depth});
+        *s.scene, width, height, mode == "full" ? 0 : lod_quads, RasterOptions{lighting});
     return s;
   }
   if (mode == "voxel") {
@@ -39,13 +44,12 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
     return s;
   }
   if (mode == "sprite") {
+    check_lod_quads(lod_quads, terrain.heights);
     SpriteOptions o;
     o.lod_quads = lod_quads;
-    o.read_depth = read_depth;
     o.threshold_px = sprite_threshold_px;
-    s.gl = std::make_unique<GlContext>();
-    s.device = s.gl->renderer();
-    s.scene = std::make_unique<GlTerrain>(terrain);
+    use_gl();
+    s.scene = std::make_unique<Scene>(terrain);
     s.renderer = std::make_unique<SpriteRenderer>(*s.scene, width, height, o);
     return s;
   }

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "terrasprite/gl_context.h"
-#include "terrasprite/mesh_renderer.h"
+#include "terrasprite/scene.h"
 #include "terrasprite/renderer.h"
 #include "terrasprite/voxel_renderer.h"
 
@@ -14,7 +14,7 @@ namespace terrasprite::cli {
 
 struct RenderStack {
   std::unique_ptr<GlContext> gl;        // null for CPU renderers
-  std::unique_ptr<GlTerrain> scene;     // null for CPU renderers
+  std::unique_ptr<Scene> scene;         // null for CPU renderers
   std::unique_ptr<VoxelTerrain> voxel;  // the voxel renderer's pyramids, else null
   std::unique_ptr<Renderer> renderer;   // destroyed first
   std::string device;                   // GL_RENDERER, or the CPU renderer's description
@@ -22,11 +22,14 @@ struct RenderStack {
 
 /// Modes: full, lod, sprite (LOD-sprite with default SpriteOptions and `lod_quads`), voxel
 /// (CPU, all cores). Throws InputError for an unknown mode, DeviceError when a GL mode finds no
-/// GL device. `terrain` must outlive the stack. `read_depth` off: colour only
-/// (the viewer); `sprite_threshold_px`: the LOD-sprite keyframe threshold.
+/// GL device. `terrain` must outlive the stack. `sprite_threshold_px`: the
+/// LOD-sprite keyframe threshold. `context` (may be null): a GL context current
+/// on the calling thread that the stack draws with instead of creating its
+/// own (e.g. the viewer's context sharing objects with its window); it must
+/// outlive the stack.
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
                               int height, int lod_quads, bool lighting = false,
-                              bool read_depth = true, double sprite_threshold_px = 1.0);
+                              double sprite_threshold_px = 1.0, GlContext* context = nullptr);
 
 /// The modes make_render_stack accepts, for CLI11's check.
 std::vector<std::string> render_modes();

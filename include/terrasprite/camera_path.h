@@ -3,6 +3,7 @@
 // JSON keyframe files.
 #pragma once
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "terrasprite/camera.h"
@@ -28,6 +29,12 @@ std::vector<Camera> paper_path(const Heightfield& h, int frames, double aspect,
 /// Throws InputError naming the file for a missing or malformed file.
 std::vector<Camera> load_path_file(const std::string& path, const Heightfield& h, int frames,
                                    double aspect);
+
+/// load_path_file on JSON text already in memory; `name` names it in errors.
+/// Every number is checked: positions and targets finite and within 1e7 m,
+/// t finite (within 1e9 s) and increasing, angles in range.
+std::vector<Camera> path_from_json(std::string_view text, const std::string& name,
+                                   const Heightfield& h, int frames, double aspect);
 
 /// "paper" or a JSON file name: dispatches to the two above.
 std::vector<Camera> make_path(const std::string& spec, const Heightfield& h, int frames,

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The driver loop: a camera path through one renderer, each frame handed on.
+// One renderer along a path, each frame handed on: the experiment driver with
+// a single participant, for `render` and the demo.
 #pragma once
 #include <functional>
 #include <span>
@@ -8,6 +9,7 @@
 
 #include "terrasprite/camera.h"
 #include "terrasprite/renderer.h"
+#include "terrasprite/stats.h"
 
 namespace terrasprite {
 
@@ -20,14 +22,12 @@ struct FrameStats {
   long long triangles = 0;
 };
 
-/// Renders every camera in order. `on_frame` (may be empty) receives each
-/// frame after its timed span ends, so writing or scoring it is never timed.
-/// `progress` (may be empty) is called with (done, total).
-std::vector<FrameStats> fly(Renderer& renderer, std::span<const Camera> path,
+/// Renders every camera in order, reading back `what` of each. `on_frame`
+/// (may be empty) receives each frame after its timed span ends, so writing
+/// or scoring it is never timed. `progress` (may be empty) is called with
+/// (done, total). No warm-up draw: the first frame pays first-use costs.
+std::vector<FrameStats> fly(Renderer& renderer, std::span<const Camera> path, ReadBack what,
                             const std::function<void(int, const Frame&)>& on_frame = {},
                             const std::function<void(int, int)>& progress = {});
-
-/// Median of `values` (0 for none).
-double median(std::vector<double> values);
 
 }  // namespace terrasprite

@@ -54,7 +54,8 @@ struct Image {
 /// Loads any image GDAL or stb reads (PNG, JPEG, GeoTIFF incl. RGBA, ...).
 /// Grey is replicated to RGB, RGB gets alpha 255, 16-bit samples are scaled to
 /// 8 bits (v * 255 / 65535). A georeferenced file fills `Image::geo`.
-/// Throws InputError naming `path` when it is missing, unreadable or empty.
+/// Throws InputError naming `path` when it is missing, unreadable or empty, or
+/// larger than 16384 pixels a side (checked from the header, before decoding).
 Image load_image(const std::string& path);
 
 /// Writes an RGBA8 image as PNG (alpha kept). Throws InputError on I/O failure.

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The interface every renderer implements.
+// The interface every renderer implements: draw a camera's view, then, only
+// where a later stage needs pixels on the CPU, read the frame back.
 #pragma once
 #include <string>
 
@@ -8,17 +9,30 @@
 
 namespace terrasprite {
 
-/// Sky colour every renderer clears to (sRGB, 0..255), so images compare.
-inline constexpr unsigned char kSkyColor[3] = {150, 185, 225};
-
-/// Renders a camera view into a Frame of the renderer's fixed size.
-/// Frame::ms covers only the rendering work (DESIGN.md timing rules);
-/// read-back of colour and depth happens afterwards and is not counted.
+/// Renders camera views at the renderer's fixed size.
+///
+/// draw() does the technique's work and returns a Frame with its timings,
+/// class, triangle count, size and camera; Frame::ms covers only that work
+/// with the pipeline drained (DESIGN.md timing rules). read_back() then copies
+/// the last drawn frame's colour and/or linear depth into a Frame; it is never
+/// timed and a window (the viewer) never calls it. A GL renderer needs a
+/// current GL context for both calls and sets every GL state it relies on at
+/// the start of draw(), so another pass (a UI) before or after it cannot break it.
 class Renderer {
  public:
   virtual ~Renderer() = default;
-  virtual Frame render(const Camera& camera) = 0;
+  virtual Frame draw(const Camera& camera) = 0;
+  /// Fills `frame.color` (RGBA8, sky in kSkyColor) and/or `frame.depth`
+  /// (metres, +inf = sky) from the last draw(). Undefined before any draw().
+  virtual void read_back(Frame& frame, ReadBack what) = 0;
   virtual std::string name() const = 0;
+
+  /// draw() then read_back(what): the whole frame on the CPU.
+  Frame render(const Camera& camera, ReadBack what = ReadBack::kColor) {
+    Frame f = draw(camera);
+    if (what != ReadBack::kNone) read_back(f, what);
+    return f;
+  }
 };
 
 }  // namespace terrasprite

@@ -4,10 +4,11 @@
 // from a coarse grid projectively textured with the keyframe.
 #pragma once
 #include <memory>
+#include <optional>
 #include <string>
 
-#include "terrasprite/mesh_renderer.h"
-#include "terrasprite/renderer.h"
+#include "terrasprite/gl_renderer.h"
+#include "terrasprite/scene.h"
 #include "terrasprite/sprite_metric.h"
 
 namespace terrasprite {
@@ -34,57 +35,73 @@ struct SpriteOptions {
   /// drape texture, as plain LOD would: there the coarse geometry is already
   /// right and the drape is sharper than a resampled keyframe. 0 disables.
   double sharp_px = 0.5;
-  bool lighting = false;   ///< same sun as RasterOptions::lighting, on keyframes and fallback alike
-  bool read_color = true;  ///< read colour back into Frame::color (after the timed span)
-  bool read_depth = false;  ///< read linear depth back into Frame::depth (after the timed span)
+  bool lighting = false;  ///< same sun as RasterOptions::lighting, on keyframes and fallback alike
 };
 
+/// Why a keyframe was drawn.
+enum class Trigger {
+  kFirst,     ///< no keyframe yet
+  kError,     ///< the metric's RMS error exceeded threshold_px
+  kFallback,  ///< too many coarse-quad centres were not visible in the keyframe
+  kScale,     ///< the keyframe's pixels were stretched or shrunk past max_resample_scale
+  kForced,    ///< the caller asked for one (render_keyframe)
+};
+/// "first", "error", "fallback", "scale", "forced".
+const char* to_string(Trigger trigger);
+
 /// One width x height LOD-sprite renderer over `scene` (which must outlive it;
-/// a current GlContext for its whole life). render() measures the error of the
+/// a current GlContext for its whole life). draw() measures the error of the
 /// camera against the current keyframe and renders either a new keyframe
 /// (class "key": the full-resolution mesh) or a sprite frame (class "sprite":
 /// the coarse mesh, textured from the keyframe; coarse quads with a corner or
 /// centre vertex hidden in the keyframe's depth buffer or outside its view,
 /// and fragments outside the keyframe or on its sky, take the drape texture).
 /// Frame::ms covers the metric, the drawing, and on keyframes the depth
-/// read-back and visibility work that the technique needs.
-class SpriteRenderer : public Renderer {
+/// read-back and visibility work that the technique needs. Throws InputError
+/// naming `lod_quads` (< 1) or `threshold_px` (not > 0).
+class SpriteRenderer : public GlRenderer {
  public:
-  SpriteRenderer(GlTerrain& scene, int width, int height, SpriteOptions options = {});
+  SpriteRenderer(Scene& scene, int width, int height, SpriteOptions options = {});
   ~SpriteRenderer() override;
 
-  /// The automatic policy: keyframe on the first frame and whenever the
-  /// error exceeds the threshold (or the fallback trigger fires), else a sprite frame.
-  Frame render(const Camera& camera) override;
+  /// The automatic policy: keyframe on the first frame and whenever a
+  /// trigger fires (trigger_for), else a sprite frame.
+  Frame draw(const Camera& camera) override;
+  /// A keyframe's colour is read from the keyframe texture (sky filled in).
+  void read_back(Frame& frame, ReadBack what) override;
   std::string name() const override;
 
-  /// Forced decisions, for figures and tests. render_sprite without a
-  /// keyframe draws one (class "key") instead.
-  Frame render_keyframe(const Camera& camera);
-  Frame render_sprite(const Camera& camera);
+  /// Forced decisions (drawn, then read back), for figures and tests.
+  /// render_sprite without a keyframe draws one (class "key") instead.
+  Frame render_keyframe(const Camera& camera, ReadBack what = ReadBack::kColor);
+  Frame render_sprite(const Camera& camera, ReadBack what = ReadBack::kColor);
   /// Makes `camera` the keyframe without reading anything back (for cheap
   /// simulations of the keyframe sequence: sweeps of thresholds and frame counts).
   void make_keyframe(const Camera& camera);
 
-  /// Forgets the keyframe: the next render() is a keyframe (e.g. after a warm-up).
+  /// Forgets the keyframe: the next draw() is a keyframe (e.g. after a warm-up).
   void reset();
   bool has_keyframe() const;
   /// Error of `camera` against the current keyframe (zero without one).
   SpriteError error(const Camera& camera) const;
+  /// The trigger `e` fires under the options (error before fallback before
+  /// scale), or none: the one place a keyframe decision is made.
+  std::optional<Trigger> trigger_for(const SpriteError& e) const;
   /// Whether `e` asks for a new keyframe under the options.
-  bool keyframe_due(const SpriteError& e) const;
-  /// The error measured by the last render() (both variants; zero on the first keyframe).
+  bool keyframe_due(const SpriteError& e) const { return trigger_for(e).has_value(); }
+  /// The error measured by the last draw() (both variants; zero on the first keyframe).
   const SpriteError& last_error() const;
-  /// Why the last render() drew a keyframe: "first", "error", "fallback",
-  /// "scale", "forced"; empty for a sprite frame.
-  const std::string& last_trigger() const;
+  /// Why the last draw drew a keyframe; none for a sprite frame.
+  std::optional<Trigger> last_trigger() const;
   const SpriteOptions& options() const;
   const CoarseGrid& grid() const;
   /// Per coarse quad of the current keyframe: 1 = drawn with the drape texture.
   const std::vector<std::uint8_t>& fallback_quads() const;
 
  private:
-  Frame render_as(const Camera& camera, int decision);  // 0 auto, 1 key, 2 sprite
+  enum class Decision { kAuto, kKeyframe, kSprite };
+  Frame draw_as(const Camera& camera, Decision decision);
+  void draw_sprite_pass(const Camera& camera);
   struct State;
   std::unique_ptr<State> s_;
 };

@@ -30,6 +30,7 @@ enum class HeightEncoding { kAuto, kTerrainRgb, kTerrarium };
 /// Options of every command that loads a terrain (the CLI's common options).
 struct TerrainOptions {
   std::string dem;                ///< height file; empty = synthetic terrain
+  bool dem_given = false;         ///< `dem` came from the user: empty is then an error
   std::string texture;            ///< file, "checker", "derived" or empty (= derived)
   double z_scale = 1.0;           ///< multiplies raw samples (after the band's own scale/offset)
   std::optional<double> spacing;  ///< metres between samples; overrides the file's
@@ -38,13 +39,14 @@ struct TerrainOptions {
   double exaggeration = 1.0;  ///< display scale of heights
   int resample = 0;           ///< 0 = keep; else resample to N x N samples (N >= 2)
   unsigned seed = 1;          ///< synthetic terrain seed
-  int synthetic_size = 513;   ///< synthetic terrain samples per side
-  int erosion_passes = 2;     ///< synthetic terrain erosion passes
+  int synthetic_size = 513;   ///< synthetic terrain samples per side, 2 .. 8193
+  int erosion_passes = 2;     ///< synthetic terrain erosion passes, 0 .. 100
 };
 
 /// Loads (or synthesises) heights, applies resampling and exaggeration, and
 /// builds the drape texture. Throws InputError naming the input on bad data
-/// or options. Warnings (e.g. an untagged nodata sentinel) go to `warnings`.
+/// or options: heights that are not finite or beyond 1e7 m after every scale,
+/// spacings outside 1e-6 .. 1e6 m. Warnings (e.g. an untagged nodata sentinel) go to `warnings`.
 Terrain load_terrain(const TerrainOptions& options, std::vector<std::string>* warnings = nullptr);
 
 }  // namespace terrasprite

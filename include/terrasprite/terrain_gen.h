@@ -34,8 +34,10 @@ inline double decode_terrarium(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
   return r * 256.0 + g + b / 256.0 - 32768.0;
 }
 
-/// Fills cells whose `valid` flag is 0 with the mean of valid neighbours,
-/// growing inwards wave by wave. Returns the number of cells filled.
+/// Fills cells whose `valid` flag is 0 with the harmonic (Laplace) surface
+/// whose boundary values are the valid cells: smooth, no steps, no new peaks
+/// or pits, slopes no steeper than around the void. Sets every flag to 1.
+/// Returns the number of cells filled.
 /// `heights` and `valid` hold width*height entries. Throws InputError
 /// ("all cells are nodata") when no cell is valid.
 long long fill_nodata(std::span<float> heights, std::span<std::uint8_t> valid, int width,

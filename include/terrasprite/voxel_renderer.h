@@ -71,7 +71,10 @@ class VoxelRenderer : public Renderer {
  public:
   VoxelRenderer(const VoxelTerrain& terrain, int width, int height, VoxelOptions options = {});
   ~VoxelRenderer() override;
-  Frame render(const Camera& camera) override;
+  /// Draws colour and depth straight into the returned Frame (CPU memory).
+  Frame draw(const Camera& camera) override;
+  /// Nothing to copy: draw() already filled colour and depth.
+  void read_back(Frame&, ReadBack) override {}
   std::string name() const override;
   const VoxelOptions& options() const;
 
@@ -94,7 +97,10 @@ class VoxelReference : public Renderer {
  public:
   VoxelReference(const VoxelTerrain& terrain, int width, int height, ReferenceOptions options = {});
   ~VoxelReference() override;
-  Frame render(const Camera& camera) override;
+  /// Draws colour and depth straight into the returned Frame (CPU memory).
+  Frame draw(const Camera& camera) override;
+  /// Nothing to copy: draw() already filled colour and depth.
+  void read_back(Frame&, ReadBack) override {}
   std::string name() const override;
 
  private:

@@ -2,6 +2,7 @@
 // JSON keyframe paths: Catmull-Rom positions, slerped orientations.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,12 @@ namespace terrasprite {
 namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
+// Positions and targets farther than this from the terrain centre (metres) are
+// a mistake (degrees for metres, a stray exponent), not a flight.
+constexpr double kMaxCoordinateM = 1e7;
+// Keyframe times beyond this (seconds, about 30 years) lose the precision that
+// uniform sampling in t needs.
+constexpr double kMaxTimeS = 1e9;
 
 struct Key {
   double t;
@@ -41,7 +48,12 @@ void set_orientation(Camera& c, const glm::dquat& q) {
 glm::dvec3 vec3_of(const nlohmann::json& j, const std::string& where) {
   if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
     throw InputError(where + " must be an array of 3 numbers");
-  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+  const glm::dvec3 v(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+  for (int c = 0; c < 3; ++c)
+    if (!(std::abs(v[c]) <= kMaxCoordinateM))
+      throw InputError(fmt::format("{} [{}, {}, {}]: coordinates must be finite and within {:g} m",
+                                   where, v[0], v[1], v[2], kMaxCoordinateM));
+  return v;
 }
 
 double number_of(const nlohmann::json& k, const char* key, double fallback,
@@ -53,14 +65,17 @@ double number_of(const nlohmann::json& k, const char* key, double fallback,
   return v;
 }
 
-std::vector<Key> parse(const std::string& path, double aspect) {
-  std::ifstream in(path);
-  if (!in) throw InputError(fmt::format("{}: cannot open path file", path));
+std::vector<Key> parse(std::string_view text, const std::string& path, double aspect) {
   nlohmann::json doc;
   try {
-    doc = nlohmann::json::parse(in);
+    doc = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(fmt::format("{}: malformed JSON at byte {}", path, e.byte));
+  } catch (const nlohmann::json::exception& e) {
+    // e.g. a number too large for a double (1e999): out_of_range, not parse_error.
+    std::string why = e.what();
+    std::replace(why.begin(), why.end(), '\n', ' ');
+    throw InputError(fmt::format("{}: unreadable JSON ({})", path, why));
   }
   if (!doc.is_object() || !doc.contains("keyframes") || !doc["keyframes"].is_array() ||
       doc["keyframes"].empty())
@@ -75,6 +90,8 @@ std::vector<Key> parse(const std::string& path, double aspect) {
     if (!k.contains("position")) throw InputError(where + " has no position");
     Key key;
     key.t = k["t"].get<double>();
+    if (!(std::abs(key.t) <= kMaxTimeS))
+      throw InputError(fmt::format("{}.t {}: must be finite and within {:g} s", where, key.t, kMaxTimeS));
     key.pos = vec3_of(k["position"], where + ".position");
     key.fov = number_of(k, "fov_deg", 60.0, where);
     if (!(key.fov > 0 && key.fov < 180)) throw InputError(where + ".fov_deg must be in (0, 180)");
@@ -114,11 +131,19 @@ glm::dvec3 catmull_rom(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dv
 
 std::vector<Camera> load_path_file(const std::string& path, const Heightfield& h, int frames,
                                    double aspect) {
-  if (frames < 1) throw InputError(fmt::format("--frames {}: must be at least 1", frames));
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(fmt::format("{}: no such path file", path));
-  std::vector<Key> keys = parse(path, aspect);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot open path file", path));
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  return path_from_json(text, path, h, frames, aspect);
+}
+
+std::vector<Camera> path_from_json(std::string_view text, const std::string& path,
+                                   const Heightfield& h, int frames, double aspect) {
+  if (frames < 1) throw InputError(fmt::format("--frames {}: must be at least 1", frames));
+  std::vector<Key> keys = parse(text, path, aspect);
   std::vector<Camera> out;
   const double t0 = keys.front().t, t1 = keys.back().t;
   const int n = int(keys.size());

@@ -1,32 +1,25 @@
 // SPDX-License-Identifier: MIT
 #include "terrasprite/flythrough.h"
 
-#include <algorithm>
+#include "terrasprite/experiment.h"
 
 namespace terrasprite {
 
-std::vector<FrameStats> fly(Renderer& renderer, std::span<const Camera> path,
+std::vector<FrameStats> fly(Renderer& renderer, std::span<const Camera> path, ReadBack what,
                             const std::function<void(int, const Frame&)>& on_frame,
                             const std::function<void(int, int)>& progress) {
+  Experiment experiment;
+  experiment.add({.renderer = &renderer, .name = "renderer", .read = what});
+  ExperimentOptions o;
+  o.warmup_draws = 0;
+  if (on_frame) o.on_frame = [&](int i, const std::string&, const Frame& f) { on_frame(i, f); };
+  o.progress = progress;
+  PathSource cameras(std::vector<Camera>(path.begin(), path.end()));
+  const ExperimentResult r = experiment.run(cameras, o);
   std::vector<FrameStats> stats;
-  stats.reserve(path.size());
-  for (std::size_t i = 0; i < path.size(); ++i) {
-    Frame f = renderer.render(path[i]);
-    stats.push_back({int(i), f.cls, f.ms, f.gpu_ms, f.triangles});
-    if (on_frame) on_frame(int(i), f);
-    if (progress) progress(int(i) + 1, int(path.size()));
-  }
+  for (const FrameResult& f : r.runs.front().frames)
+    stats.push_back({f.frame, f.cls, f.ms, f.gpu_ms, f.triangles});
   return stats;
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  auto mid = v.begin() + v.size() / 2;
-  std::nth_element(v.begin(), mid, v.end());
-  if (v.size() % 2) return *mid;
-  double hi = *mid;
-  double lo = *std::max_element(v.begin(), mid);
-  return 0.5 * (lo + hi);
 }
 
 }  // namespace terrasprite

@@ -22,10 +22,12 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
 #include "terrasprite/error.h"
+#include "terrasprite/interrupt_cleanup.h"
 
 extern char** environ;
 
@@ -80,6 +82,7 @@ struct VideoWriter::Impl {
   bool closing = false;
   std::string write_error;  // set by the writer thread; empty while all is well
   std::thread writer;
+  std::optional<CleanupOnInterrupt> guard;  // the partial file goes on SIGINT / SIGTERM
 
   void spawn(const VideoOptions& o);
   void write_loop();
@@ -237,6 +240,7 @@ VideoWriter::VideoWriter(std::string file, int width, int height, const VideoOpt
   s.enc_w = width + (width & 1);
   s.enc_h = height + (height & 1);
   s.queue_cap = std::size_t(std::max(1, options.queue_frames));
+  s.guard.emplace(s.partial);
   s.spawn(options);
   s.writer = std::thread([&s] { s.write_loop(); });
 }
@@ -286,7 +290,7 @@ void VideoWriter::finish() {
     why = fmt::format("ffmpeg exited with status {}", WEXITSTATUS(status));
   if (!why.empty()) s.fail(why);
   std::error_code ec;
-  fs::rename(s.partial, s.file, ec);
+  s.guard->release_after([&] { fs::rename(s.partial, s.file, ec); });
   if (ec) s.fail(fmt::format("cannot move {} into place: {}", s.partial, ec.message()));
   s.discard();
   s.finished = true;

@@ -7,6 +7,7 @@
 #include <epoxy/gl.h>
 #include <fmt/format.h>
 
+#include <stdexcept>
 #include <vector>
 
 #include "terrasprite/error.h"
@@ -14,8 +15,12 @@
 namespace terrasprite {
 
 struct GlContext::Impl {
+  // An EGL context of ours, or an adopted one (external.make_current set).
   EGLDisplay display = EGL_NO_DISPLAY;
   EGLContext context = EGL_NO_CONTEXT;
+  EGLConfig config = nullptr;  // EGL_NO_CONFIG_KHR when the display allows it
+  bool owns_display = true;    // a shared context leaves the display to its parent
+  External external;
 };
 
 namespace {
@@ -25,7 +30,15 @@ bool has_client_ext(const char* name) {
   return exts && epoxy_extension_in_string(exts, name);
 }
 
-EGLContext try_context(EGLDisplay dpy) {
+const EGLint kContextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                  4,
+                                  EGL_CONTEXT_MINOR_VERSION,
+                                  5,
+                                  EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                  EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                  EGL_NONE};
+
+EGLContext try_context(EGLDisplay dpy, EGLConfig& chosen) {
   EGLint major = 0, minor = 0;
   if (!eglInitialize(dpy, &major, &minor)) return EGL_NO_CONTEXT;
   if (!eglBindAPI(EGL_OPENGL_API)) return EGL_NO_CONTEXT;
@@ -37,15 +50,8 @@ EGLContext try_context(EGLDisplay dpy) {
                    epoxy_has_egl_extension(dpy, "EGL_MESA_configless_context");
   if (!no_config && (!eglChooseConfig(dpy, config_attribs, &config, 1, &count) || count < 1))
     return EGL_NO_CONTEXT;
-  const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
-                                4,
-                                EGL_CONTEXT_MINOR_VERSION,
-                                5,
-                                EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                EGL_NONE};
-  EGLContext ctx =
-      eglCreateContext(dpy, no_config ? EGL_NO_CONFIG_KHR : config, EGL_NO_CONTEXT, ctx_attribs);
+  chosen = no_config ? EGL_NO_CONFIG_KHR : config;
+  EGLContext ctx = eglCreateContext(dpy, chosen, EGL_NO_CONTEXT, kContextAttribs);
   if (ctx == EGL_NO_CONTEXT) return EGL_NO_CONTEXT;
   if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {
     eglDestroyContext(dpy, ctx);
@@ -71,7 +77,7 @@ GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
   }
   for (EGLDisplay dpy : candidates) {
     if (dpy == EGL_NO_DISPLAY) continue;
-    EGLContext ctx = try_context(dpy);
+    EGLContext ctx = try_context(dpy, impl_->config);
     if (ctx != EGL_NO_CONTEXT) {
       impl_->display = dpy;
       impl_->context = ctx;
@@ -90,10 +96,56 @@ GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
       "or device platform)");
 }
 
+GlContext::GlContext(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
 GlContext::~GlContext() {
-  eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  if (impl_->external.make_current) {
+    if (impl_->external.destroy) impl_->external.destroy();
+    return;
+  }
+  if (eglGetCurrentContext() == impl_->context)
+    eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   eglDestroyContext(impl_->display, impl_->context);
-  eglTerminate(impl_->display);
+  if (impl_->owns_display) eglTerminate(impl_->display);
+}
+
+std::unique_ptr<GlContext> GlContext::adopt(External external) {
+  if (!external.make_current) throw std::logic_error("GlContext::adopt: make_current is required");
+  if (epoxy_gl_version() < 45)
+    throw DeviceError(fmt::format("no usable GL device: the window's context is OpenGL {}.{}, "
+                                  "4.5 core is needed",
+                                  epoxy_gl_version() / 10, epoxy_gl_version() % 10));
+  auto impl = std::make_unique<Impl>();
+  impl->external = std::move(external);
+  return std::unique_ptr<GlContext>(new GlContext(std::move(impl)));
+}
+
+std::unique_ptr<GlContext> GlContext::create_shared() const {
+  if (impl_->external.make_current) {
+    if (!impl_->external.create_shared)
+      throw DeviceError("no usable GL device: this window's context offers no shared context");
+    return impl_->external.create_shared();
+  }
+  EGLContext ctx =
+      eglCreateContext(impl_->display, impl_->config, impl_->context, kContextAttribs);
+  if (ctx == EGL_NO_CONTEXT)
+    throw DeviceError(fmt::format("no usable GL device: EGL could not create a shared context "
+                                  "(error 0x{:x})",
+                                  eglGetError()));
+  auto impl = std::make_unique<Impl>();
+  impl->display = impl_->display;
+  impl->context = ctx;
+  impl->config = impl_->config;
+  impl->owns_display = false;
+  return std::unique_ptr<GlContext>(new GlContext(std::move(impl)));
+}
+
+void GlContext::release_current() {
+  if (impl_->external.make_current) {
+    if (impl_->external.release_current) impl_->external.release_current();
+    return;
+  }
+  eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
 }
 
 std::string GlContext::renderer() const {
@@ -102,7 +154,13 @@ std::string GlContext::renderer() const {
 }
 
 void GlContext::make_current() {
-  eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, impl_->context);
+  if (impl_->external.make_current) {
+    impl_->external.make_current();
+    return;
+  }
+  if (!eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, impl_->context))
+    throw DeviceError(
+        fmt::format("no usable GL device: eglMakeCurrent failed (error 0x{:x})", eglGetError()));
 }
 
 }  // namespace terrasprite

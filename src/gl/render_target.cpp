@@ -7,7 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "terrasprite/renderer.h"
+#include "terrasprite/frame.h"
 
 namespace terrasprite::gl {
 
@@ -31,45 +31,78 @@ RenderTarget::RenderTarget(int width, int height) : width_(width), height_(heigh
     throw std::logic_error("render target framebuffer incomplete");
 }
 
-void RenderTarget::bind_and_clear() {
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
-  glViewport(0, 0, width_, height_);
+void bind_for_drawing(GLuint fbo, int width, int height) {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glViewport(0, 0, width, height);
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_GREATER);
   glDepthMask(GL_TRUE);
   glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_STENCIL_TEST);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+}
+
+void clear_to_sky() {
   glClearColor(kSkyColor[0] / 255.f, kSkyColor[1] / 255.f, kSkyColor[2] / 255.f, 1.f);
   glClearDepth(0.0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
-Image RenderTarget::read_color() const {
-  Image img(width_, height_);
+namespace {
+void bind_for_reading(GLuint fbo) {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+  if (fbo == 0) {
+    glReadBuffer(GL_BACK);
+  } else {
+    glNamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
+  }
+}
+}  // namespace
+
+Image read_color(GLuint fbo, int width, int height) {
+  Image img(width, height);
   std::vector<std::uint8_t> raw(img.rgba.size());
+  bind_for_reading(fbo);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glGetTextureImage(color_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(raw.size()), raw.data());
-  const std::size_t row = static_cast<std::size_t>(width_) * 4;
-  for (int y = 0; y < height_; ++y)  // GL's first row is the bottom one
-    std::memcpy(img.rgba.data() + y * row, raw.data() + (height_ - 1 - y) * row, row);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
+  const std::size_t row = static_cast<std::size_t>(width) * 4;
+  for (int y = 0; y < height; ++y)  // GL's first row is the bottom one
+    std::memcpy(img.rgba.data() + y * row, raw.data() + (height - 1 - y) * row, row);
   return img;
 }
 
-std::vector<float> RenderTarget::read_depth(double near_m, double far_m) const {
-  const std::size_t n = static_cast<std::size_t>(width_) * height_;
+std::vector<float> read_depth(GLuint fbo, int width, int height, double near_m, double far_m) {
+  const std::size_t n = static_cast<std::size_t>(width) * height;
   std::vector<float> raw(n), out(n);
+  bind_for_reading(fbo);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glGetTextureImage(depth_.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(n * sizeof(float)),
-                    raw.data());
+  glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, raw.data());
   // Reversed Z: d = near (far - z) / (z (far - near)) inverted to z = n f / (n + d (f - n)).
   const double nf = near_m * far_m, fn = far_m - near_m;
-  for (int y = 0; y < height_; ++y)
-    for (int x = 0; x < width_; ++x) {
-      double d = raw[static_cast<std::size_t>(height_ - 1 - y) * width_ + x];
-      out[static_cast<std::size_t>(y) * width_ + x] =
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      double d = raw[static_cast<std::size_t>(height - 1 - y) * width + x];
+      out[static_cast<std::size_t>(y) * width + x] =
           d <= 0.0 ? std::numeric_limits<float>::infinity() : float(nf / (near_m + d * fn));
     }
   return out;
+}
+
+void RenderTarget::bind_and_clear() {
+  bind_for_drawing(fbo_.id(), width_, height_);
+  clear_to_sky();
+}
+
+Image RenderTarget::read_color() const {
+  return gl::read_color(fbo_.id(), width_, height_);
+}
+
+std::vector<float> RenderTarget::read_depth(double near_m, double far_m) const {
+  return gl::read_depth(fbo_.id(), width_, height_, near_m, far_m);
 }
 
 }  // namespace terrasprite::gl

@@ -19,6 +19,19 @@ inline glm::dmat4 view_projection_reversed_z(const Camera& c) {
   return projection_reversed_z(c) * c.view();
 }
 
+/// Binds `fbo` (0 = the default framebuffer) for drawing at w x h and sets
+/// every state the renderers rely on: viewport, zero-to-one clip control,
+/// reversed-Z depth test (GL_GREATER) with depth writes, no blending,
+/// culling, scissor or stencil test, full colour mask, filled polygons.
+void bind_for_drawing(GLuint fbo, int width, int height);
+/// Clears the bound framebuffer to the sky colour and far (0) depth.
+void clear_to_sky();
+/// Colour of `fbo` (0 = the default back buffer), top row first.
+Image read_color(GLuint fbo, int width, int height);
+/// Linear depth of `fbo` in metres along the view axis (+inf where nothing was
+/// drawn) for the camera whose near/far planes drew it.
+std::vector<float> read_depth(GLuint fbo, int width, int height, double near_m, double far_m);
+
 class RenderTarget {
  public:
   RenderTarget(int width, int height);

@@ -18,7 +18,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "quality/clones.h"
+#include "common/simd.h"
 
 namespace terrasprite::quality::detail {
 
@@ -27,7 +27,7 @@ namespace {
 // Internal helpers, always inlined: the ABI note about passing AVX vectors
 // without AVX (the baseline clone) does not apply.
 #pragma GCC diagnostic ignored "-Wpsabi"
-typedef float v8 __attribute__((vector_size(32)));
+using v8 = simd::v8f;
 
 inline v8 load(const float* p) {
   v8 v;

@@ -21,7 +21,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "quality/clones.h"
+#include "common/simd.h"
 #include "quality/fast_math.h"
 
 namespace terrasprite::quality::detail {

@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
-#include "quality/clones.h"
+#include "common/simd.h"
 #include "terrasprite/error.h"
 
 // Built for AVX2 and the baseline (as filter.cpp): the 8-bit -> float luma

@@ -6,15 +6,15 @@
 // adds in the same order.
 #include "quality/row_sum.h"
 
-#include "quality/clones.h"
+#include "common/simd.h"
 
 namespace terrasprite::quality::detail {
 
 namespace {
 #pragma GCC diagnostic ignored "-Wpsabi"  // vectors stay inside this function
-typedef double v4d __attribute__((vector_size(32)));
-typedef float v4f __attribute__((vector_size(16)));
-typedef std::int32_t v4i __attribute__((vector_size(16)));
+using simd::v4d;
+using simd::v4f;
+using simd::v4i;
 }  // namespace
 
 TS_CLONES_AVX2 double row_sum(const float* v, const std::uint8_t* mask, int n) {

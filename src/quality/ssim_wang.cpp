@@ -15,7 +15,7 @@
 #include <algorithm>
 #include <array>
 
-#include "quality/clones.h"
+#include "common/simd.h"
 #include "quality/filter.h"
 #include "quality/ssim_core.h"
 #include "terrasprite/error.h"
@@ -49,8 +49,8 @@ TS_CLONES_AVX2 void products(const float* __restrict a, const float* __restrict 
 }
 
 #pragma GCC diagnostic ignored "-Wpsabi"  // vectors stay inside always-inlined code
-typedef double v4d __attribute__((vector_size(32)));
-typedef float v4f __attribute__((vector_size(16)));
+using simd::v4d;
+using simd::v4f;
 
 // SSIM and its contrast-structure term from the filtered moments (Eq. 13).
 TS_CLONES_AVX2 void ssim_terms(const float* __restrict m1, const float* __restrict m2,

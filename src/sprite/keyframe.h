@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "gl/render_target.h"
-#include "raster/gl_terrain.h"
+#include "scene/terrain_gpu.h"
 #include "terrasprite/sprite_metric.h"
 
 namespace terrasprite {
@@ -25,7 +25,7 @@ struct Keyframe {
   /// Renders `camera` from the full-resolution mesh into the textures, reads
   /// the depth back, and classifies the coarse vertices and quad centres
   /// (visible, hidden, outside the view). Drains the pipeline (depth read-back).
-  void capture(GlTerrain::Impl& scene, const CoarseGrid& grid, const Camera& camera, bool lighting);
+  void capture(TerrainGpu& scene, const CoarseGrid& grid, const Camera& camera, bool lighting);
 };
 
 }  // namespace terrasprite

@@ -6,6 +6,8 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <string>
 
+#include "terrasprite/frame.h"
+
 namespace terrasprite {
 namespace {
 
@@ -52,17 +54,7 @@ void main() {
       return;
     }
   }
-  // Anisotropic filtering by hand: up to 8 trilinear taps along the
-  // footprint's major axis. llvmpipe's own anisotropic path (any max
-  // anisotropy > 1) spent 5-12 s on one frame of the paper path; the sampler
-  // on this unit is trilinear only.
-  bool x_major = dot(gx, gx) >= dot(gy, gy);
-  vec2 major = x_major ? gx : gy, minor = x_major ? gy : gx;
-  float n = clamp(ceil(length(major) / max(length(minor), 1e-20)), 1.0, 8.0);
-  vec4 c = vec4(0.0);
-  for (float i = 0.0; i < n; i += 1.0)
-    c += textureGrad(u_drape, uv_drape + major * ((i + 0.5) / n - 0.5), major / n, minor);
-  c /= n;
+  vec4 c = drape_hand_filtered(u_drape, uv_drape, gx, gy);
   if (u_lighting != 0) {
     const vec3 sun = normalize(vec3(-0.5, 0.5, 0.7071));
     c.rgb *= 0.45 + 0.75 * max(dot(normalize(v_normal), sun), 0.0);
@@ -71,16 +63,34 @@ void main() {
 }
 )";
 
+// A keyframe copied into another target (a window): premultiplied colour
+// over the sky, and its depth, so later passes depth-test against it.
+const char* kCompositeVertex = R"(#version 450 core
+out vec2 v_uv;
+void main() {
+  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);  // one triangle covering the target
+  v_uv = p;
+  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+const char* kCompositeFragment = R"(#version 450 core
+in vec2 v_uv;
+uniform sampler2D u_key;
+uniform sampler2D u_key_depth;
+uniform vec3 u_sky;
+out vec4 o_color;
+void main() {
+  vec4 k = texture(u_key, v_uv);
+  o_color = vec4(k.rgb + (1.0 - k.a) * u_sky, 1.0);
+  gl_FragDepth = texture(u_key_depth, v_uv).r;
+}
+)";
+
 }  // namespace
 
 SpritePass::SpritePass()
     : program_(gl::link_program(kVertex,
-                                std::string("#version 450 core\n") + kDrapeUvGlsl + kFragment)) {
-  glCreateSamplers(1, &drape_sampler_);
-  glSamplerParameteri(drape_sampler_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glSamplerParameteri(drape_sampler_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glSamplerParameteri(drape_sampler_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glSamplerParameteri(drape_sampler_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+                                std::string("#version 450 core\n") + kDrapeUvGlsl + kHandFilterGlsl + kFragment)) {
   const GLuint p = program_.id();
   u_vp_ = glGetUniformLocation(p, "u_vp");
   u_key_vp_ = glGetUniformLocation(p, "u_key_vp");
@@ -90,9 +100,25 @@ SpritePass::SpritePass()
   glProgramUniform1i(p, glGetUniformLocation(p, "u_key"), 0);
   glProgramUniform1i(p, glGetUniformLocation(p, "u_drape"), 1);
   glProgramUniform1i(p, glGetUniformLocation(p, "u_flags"), 2);
+  composite_ = gl::link_program(kCompositeVertex, kCompositeFragment);
+  const GLuint c = composite_.id();
+  glProgramUniform1i(c, glGetUniformLocation(c, "u_key"), 0);
+  glProgramUniform1i(c, glGetUniformLocation(c, "u_key_depth"), 1);
+  glProgramUniform3f(c, glGetUniformLocation(c, "u_sky"), kSkyColor[0] / 255.f,
+                     kSkyColor[1] / 255.f, kSkyColor[2] / 255.f);
 }
 
-void SpritePass::draw(GlTerrain::Impl& scene, const GpuMesh& coarse, int quads_x,
+void SpritePass::composite_keyframe(const Keyframe& key) {
+  glUseProgram(composite_.id());
+  glBindTextureUnit(0, key.target.color_texture());
+  glBindTextureUnit(1, key.target.depth_texture());
+  glDepthFunc(GL_ALWAYS);
+  glBindVertexArray(empty_vao_.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDepthFunc(GL_GREATER);
+}
+
+void SpritePass::draw(TerrainGpu& scene, const GpuMesh& coarse, int quads_x,
                       const Keyframe& key, const glm::mat4& vp, bool lighting) {
   const GLuint p = program_.id();
   glUseProgram(p);
@@ -102,16 +128,14 @@ void SpritePass::draw(GlTerrain::Impl& scene, const GpuMesh& coarse, int quads_x
   glUniform1i(u_qx_, quads_x);
   glUniform1i(u_lighting_, lighting ? 1 : 0);
   glBindTextureUnit(0, key.target.color_texture());
-  glBindTextureUnit(1, scene.drape.id());
-  glBindSampler(1, drape_sampler_);
+  glBindTextureUnit(1, scene.drape());
+  glBindSampler(1, scene.trilinear_sampler());
   glBindTextureUnit(2, key.flags.id());
   glBindVertexArray(coarse.vao.id());
   glDrawElements(GL_TRIANGLES, coarse.index_count, GL_UNSIGNED_INT, nullptr);
   glBindSampler(1, 0);
 }
 
-SpritePass::~SpritePass() {
-  glDeleteSamplers(1, &drape_sampler_);
-}
+SpritePass::~SpritePass() = default;
 
 }  // namespace terrasprite

@@ -6,47 +6,56 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
-
+#include "gl/frame_timer.h"
 #include "sprite/keyframe.h"
 #include "sprite/sprite_pass.h"
 #include "terrasprite/error.h"
 
 namespace terrasprite {
 
+const char* to_string(Trigger t) {
+  switch (t) {
+    case Trigger::kFirst: return "first";
+    case Trigger::kError: return "error";
+    case Trigger::kFallback: return "fallback";
+    case Trigger::kScale: return "scale";
+    case Trigger::kForced: return "forced";
+  }
+  return "?";
+}
+
 struct SpriteRenderer::State {
-  GlTerrain& scene;
-  int width, height;
+  Scene& scene;
   SpriteOptions options;
   CoarseGrid grid;
   Keyframe key;
-  gl::RenderTarget out;
   SpritePass pass;
-  gl::Query timer{GL_TIME_ELAPSED};
   SpriteError last;
-  std::string trigger;
+  std::optional<Trigger> trigger;
+  bool last_was_key = false;
   std::vector<std::uint8_t> flags;  // this frame's per-quad drape flags
 
-  State(GlTerrain& s, int w, int h, const SpriteOptions& o)
-      : scene(s),
-        width(w),
-        height(h),
-        options(o),
-        grid(make_coarse_grid(s.terrain().heights, o.lod_quads)),
-        key(w, h, grid),
-        out(w, h) {}
+  State(Scene& s, int w, int h, const SpriteOptions& o)
+      : scene(s), options(o), grid(make_coarse_grid(s.terrain().heights, o.lod_quads)), key(w, h, grid) {}
 };
 
-SpriteRenderer::SpriteRenderer(GlTerrain& scene, int width, int height, SpriteOptions options) {
-  if (options.lod_quads < 1)
-    throw InputError(fmt::format("--lod-quads {}: must be at least 1", options.lod_quads));
-  if (!(options.threshold_px > 0))
+namespace {
+const SpriteOptions& validated(const SpriteOptions& o) {
+  if (o.lod_quads < 1)
+    throw InputError(fmt::format("lod_quads {}: must be at least 1", o.lod_quads));
+  if (!(o.threshold_px > 0))
     throw InputError(
-        fmt::format("--threshold {}: must be a positive number of pixels", options.threshold_px));
-  s_ = std::make_unique<State>(scene, width, height, options);
+        fmt::format("threshold_px {}: must be a positive number of pixels", o.threshold_px));
+  return o;
+}
+}  // namespace
+
+SpriteRenderer::SpriteRenderer(Scene& scene, int width, int height, SpriteOptions options)
+    : GlRenderer(width, height),
+      s_(std::make_unique<State>(scene, width, height, validated(options))) {
   // Upload both meshes now, not inside the first timed frame.
-  scene.impl().mesh(0);
-  scene.impl().mesh(options.lod_quads);
+  scene.prepare(0);
+  scene.prepare(options.lod_quads);
 }
 
 SpriteRenderer::~SpriteRenderer() = default;
@@ -60,12 +69,12 @@ bool SpriteRenderer::has_keyframe() const {
 void SpriteRenderer::reset() {
   s_->key.valid = false;
   s_->last = {};
-  s_->trigger.clear();
+  s_->trigger.reset();
 }
 const SpriteError& SpriteRenderer::last_error() const {
   return s_->last;
 }
-const std::string& SpriteRenderer::last_trigger() const {
+std::optional<Trigger> SpriteRenderer::last_trigger() const {
   return s_->trigger;
 }
 const SpriteOptions& SpriteRenderer::options() const {
@@ -83,82 +92,83 @@ SpriteError SpriteRenderer::error(const Camera& camera) const {
   return sprite_error(s_->grid, s_->key.samples, camera);
 }
 
-bool SpriteRenderer::keyframe_due(const SpriteError& e) const {
+std::optional<Trigger> SpriteRenderer::trigger_for(const SpriteError& e) const {
   // Eq. (2): mean squared error over the samples > threshold^2.
-  return e.value(s_->options.metric) > s_->options.threshold_px ||
-         e.fallback_fraction() > s_->options.max_fallback_fraction ||
-         e.resample_scale > s_->options.max_resample_scale;
+  const SpriteOptions& o = s_->options;
+  if (e.value(o.metric) > o.threshold_px) return Trigger::kError;
+  if (e.fallback_fraction() > o.max_fallback_fraction) return Trigger::kFallback;
+  if (e.resample_scale > o.max_resample_scale) return Trigger::kScale;
+  return std::nullopt;
 }
 
 void SpriteRenderer::make_keyframe(const Camera& camera) {
-  s_->key.capture(s_->scene.impl(), s_->grid, camera, s_->options.lighting);
+  s_->key.capture(s_->scene.terrain_gpu(), s_->grid, camera, s_->options.lighting);
 }
 
-namespace {
-enum Decision { kAuto = 0, kKey = 1, kSprite = 2 };
-}
-
-Frame SpriteRenderer::render_as(const Camera& camera, int d) {
+void SpriteRenderer::draw_sprite_pass(const Camera& camera) {
   State& s = *s_;
-  const SpriteRenderer& self = *this;
-  GlTerrain::Impl& scene = s.scene.impl();
-  const auto t0 = std::chrono::steady_clock::now();
-  glBeginQuery(GL_TIME_ELAPSED, s.timer.id());
-  SpriteError e = self.error(camera);
-  bool key = d == kKey || (d == kAuto && (!s.key.valid || self.keyframe_due(e)));
-  s.trigger.clear();
-  if (!s.key.valid) {
-    key = true;
-    e = {};
-    s.trigger = "first";
-  } else if (d == kKey) {
-    s.trigger = "forced";
-  } else if (key) {
-    const SpriteOptions& o = s.options;
-    s.trigger = e.value(o.metric) > o.threshold_px                ? "error"
-                : e.fallback_fraction() > o.max_fallback_fraction ? "fallback"
-                                                                  : "scale";
+  TerrainGpu& terrain = s.scene.terrain_gpu();
+  if (s.options.sharp_px > 0) {
+    // Quads whose coarse geometry is already right at this distance take the drape texture.
+    const double pixel = camera.pixel_angle(height());
+    s.flags = s.key.fallback;
+    for (std::size_t q = 0; q < s.flags.size(); ++q) {
+      const double d = glm::length(s.grid.centre[q] - camera.position);
+      if (s.grid.max_deviation[q] < s.options.sharp_px * pixel * d) s.flags[q] = 1;
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(s.key.flags.id(), 0, 0, 0, s.grid.quads_x, s.grid.quads_y, GL_RED_INTEGER,
+                        GL_UNSIGNED_BYTE, s.flags.data());
   }
-  gl::RenderTarget* result = &s.out;
+  begin_output();
+  s.pass.draw(terrain, terrain.mesh(s.options.lod_quads), s.grid.quads_x, s.key,
+              glm::mat4(gl::view_projection_reversed_z(camera)), s.options.lighting);
+}
+
+Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
+  State& s = *s_;
+  TerrainGpu& terrain = s.scene.terrain_gpu();
+  timer().begin();
+  SpriteError e = error(camera);
+  if (!s.key.valid) {
+    e = {};
+    s.trigger = Trigger::kFirst;
+  } else if (d == Decision::kKeyframe) {
+    s.trigger = Trigger::kForced;
+  } else if (d == Decision::kAuto) {
+    s.trigger = trigger_for(e);
+  } else {
+    s.trigger.reset();
+  }
+  const bool key = s.trigger.has_value();
   long long triangles = 0;
   if (key) {
-    s.key.capture(scene, s.grid, camera, s.options.lighting);
-    result = &s.key.target;
-    triangles = scene.mesh(0).triangles;
-  } else {
-    const GpuMesh& coarse = scene.mesh(s.options.lod_quads);
-    if (s.options.sharp_px > 0) {
-      // Quads whose coarse geometry is already right at this distance take the drape texture.
-      const double pixel = camera.pixel_angle(s.height);
-      s.flags = s.key.fallback;
-      for (std::size_t q = 0; q < s.flags.size(); ++q) {
-        const double d = glm::length(s.grid.centre[q] - camera.position);
-        if (s.grid.max_deviation[q] < s.options.sharp_px * pixel * d) s.flags[q] = 1;
-      }
-      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-      glTextureSubImage2D(s.key.flags.id(), 0, 0, 0, s.grid.quads_x, s.grid.quads_y, GL_RED_INTEGER,
-                          GL_UNSIGNED_BYTE, s.flags.data());
+    s.key.capture(terrain, s.grid, camera, s.options.lighting);
+    // The keyframe textures are the frame; a caller's target gets a copy.
+    if (output().framebuffer != own_target().framebuffer()) {
+      begin_output();
+      s.pass.composite_keyframe(s.key);
     }
-    s.out.bind_and_clear();
-    s.pass.draw(scene, coarse, s.grid.quads_x, s.key,
-                glm::mat4(gl::view_projection_reversed_z(camera)), s.options.lighting);
-    triangles = coarse.triangles;
+    triangles = terrain.mesh(0).triangles;
+  } else {
+    draw_sprite_pass(camera);
+    triangles = terrain.mesh(s.options.lod_quads).triangles;
   }
-  glEndQuery(GL_TIME_ELAPSED);
-  glFinish();
-  const auto t1 = std::chrono::steady_clock::now();
+  const gl::FrameTime t = timer().end();
   s.last = e;
+  s.last_was_key = key;
+  return make_frame(camera, t, key ? "key" : "sprite", triangles);
+}
 
-  Frame f;
-  f.ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
-  GLuint64 ns = 0;
-  glGetQueryObjectui64v(s.timer.id(), GL_QUERY_RESULT, &ns);
-  f.gpu_ms = ns / 1e6;
-  f.triangles = triangles;
-  f.cls = key ? "key" : "sprite";
-  f.camera = camera;
-  if (s.options.read_color) {
-    f.color = result->read_color();
+void SpriteRenderer::read_back(Frame& f, ReadBack what) {
+  State& s = *s_;
+  if (!s.last_was_key || output().framebuffer != own_target().framebuffer()) {
+    GlRenderer::read_back(f, what);
+    return;
+  }
+  const gl::RenderTarget& t = s.key.target;
+  read_framebuffer(t.framebuffer(), t.width(), t.height(), f.camera, f, what);
+  if (has(what, ReadBack::kColor))
     for (std::size_t i = 0; i < f.color.rgba.size(); i += 4)  // keyframe sky is transparent black
       if (f.color.rgba[i + 3] == 0) {
         f.color.rgba[i] = kSkyColor[0];
@@ -166,19 +176,20 @@ Frame SpriteRenderer::render_as(const Camera& camera, int d) {
         f.color.rgba[i + 2] = kSkyColor[2];
         f.color.rgba[i + 3] = 255;
       }
-  }
-  if (s.options.read_depth) f.depth = result->read_depth(camera.near_m, camera.far_m);
-  return f;
 }
 
-Frame SpriteRenderer::render(const Camera& camera) {
-  return render_as(camera, kAuto);
+Frame SpriteRenderer::draw(const Camera& camera) {
+  return draw_as(camera, Decision::kAuto);
 }
-Frame SpriteRenderer::render_keyframe(const Camera& camera) {
-  return render_as(camera, kKey);
+Frame SpriteRenderer::render_keyframe(const Camera& camera, ReadBack what) {
+  Frame f = draw_as(camera, Decision::kKeyframe);
+  if (what != ReadBack::kNone) read_back(f, what);
+  return f;
 }
-Frame SpriteRenderer::render_sprite(const Camera& camera) {
-  return render_as(camera, kSprite);
+Frame SpriteRenderer::render_sprite(const Camera& camera, ReadBack what) {
+  Frame f = draw_as(camera, Decision::kSprite);
+  if (what != ReadBack::kNone) read_back(f, what);
+  return f;
 }
 
 }  // namespace terrasprite

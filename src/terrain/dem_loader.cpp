@@ -33,10 +33,48 @@ void metres_per_degree(double lat_deg, double& m_lat, double& m_lon) {
   m_lon = 111412.84 * std::cos(p) - 93.5 * std::cos(3 * p) + 0.118 * std::cos(5 * p);
 }
 
-// Returns false when the raster carries no usable georeferencing.
-bool spacing_from_geo(GDALDatasetH ds, int w, int h, double& sx, double& sy, GeoTransform& geo) {
-  double gt[6];
+// The raster's geotransform, or false when it has none.
+bool geotransform_of(GDALDatasetH ds, double gt[6]) {
   if (GDALGetGeoTransform(ds, gt) != CE_None) return false;
+  // Some drivers report the identity for "none": pixel units, rows downwards.
+  return !(gt[0] == 0 && gt[1] == 1 && gt[2] == 0 && gt[3] == 0 && gt[4] == 0 && gt[5] == 1);
+}
+
+// Mirrors samples so that row 0 is north and column 0 west whatever the
+// geotransform's signs (a south-up raster has a positive pixel height, a
+// mirrored one a negative pixel width), and rewrites `gt` to describe the
+// result. Rotated rasters are refused: a grid at an angle is not our frame.
+void orient_north_up(const std::string& path, int w, int h, double gt[6], std::vector<double>& raw,
+                     std::vector<std::uint8_t>& valid) {
+  if (gt[2] != 0 || gt[4] != 0)
+    throw InputError(fmt::format(
+        "{}: the geotransform is rotated (terms {:g}, {:g}); warp it north-up first, e.g. "
+        "gdalwarp {} north_up.tif",
+        path, gt[2], gt[4], path));
+  auto at = [w](int i, int j) { return std::size_t(j) * w + i; };
+  if (gt[1] < 0) {
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w / 2; ++i) {
+        std::swap(raw[at(i, j)], raw[at(w - 1 - i, j)]);
+        std::swap(valid[at(i, j)], valid[at(w - 1 - i, j)]);
+      }
+    gt[0] += w * gt[1];
+    gt[1] = -gt[1];
+  }
+  if (gt[5] > 0) {
+    for (int j = 0; j < h / 2; ++j)
+      for (int i = 0; i < w; ++i) {
+        std::swap(raw[at(i, j)], raw[at(i, h - 1 - j)]);
+        std::swap(valid[at(i, j)], valid[at(i, h - 1 - j)]);
+      }
+    gt[3] += h * gt[5];
+    gt[5] = -gt[5];
+  }
+}
+
+// Returns false when the raster carries no usable georeferencing.
+bool spacing_from_geo(GDALDatasetH ds, const double gt[6], int w, int h, double& sx, double& sy,
+                      GeoTransform& geo) {
   if (gt[0] == 0 && gt[1] == 1 && gt[2] == 0 && gt[3] == 0 && gt[4] == 0 && gt[5] == 1)
     return false;
   std::copy(gt, gt + 6, geo.gt);
@@ -69,7 +107,9 @@ bool spacing_from_geo(GDALDatasetH ds, int w, int h, double& sx, double& sy, Geo
 Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings) {
   const std::string& path = o.dem;
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(fmt::format("{}: no such file", path));
+  // GDAL's virtual files (/vsimem/, /vsizip/...) are not on the filesystem.
+  const bool gdal_virtual = path.rfind("/vsi", 0) == 0;
+  if (!gdal_virtual && !std::filesystem::exists(path, ec)) throw InputError(fmt::format("{}: no such file", path));
   if (std::filesystem::is_directory(path, ec))
     throw InputError(fmt::format("{}: is a directory, not a height raster", path));
   detail::GdalErrorCapture capture;
@@ -118,12 +158,19 @@ Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings
       alpha.resize(n);
       read(GDALGetRasterBand(ds.h, 4), GDT_Byte, alpha.data());
     }
+    long long outside = 0;
     for (std::size_t p = 0; p < n; ++p) {
       raw[p] = enc == HeightEncoding::kTerrainRgb
                    ? decode_terrain_rgb(rgb[0][p], rgb[1][p], rgb[2][p])
                    : decode_terrarium(rgb[0][p], rgb[1][p], rgb[2][p]);
       if (!alpha.empty() && alpha[p] == 0) valid[p] = 0;
+      // Earth's surface lies within -11 km (the Mariana Trench) .. +8.8 km.
+      outside += valid[p] && (raw[p] < -12000 || raw[p] > 9000);
     }
+    if (outside && warnings)
+      warnings->push_back(fmt::format(
+          "{}: {} of {} decoded heights lie outside -12 km .. +9 km; is this really {}-encoded?",
+          path, outside, n, enc == HeightEncoding::kTerrainRgb ? "terrain-RGB" : "Terrarium"));
   } else {
     read(b1, GDT_Float64, raw.data());
     int has_nodata = 0;
@@ -158,6 +205,10 @@ Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings
     for (std::size_t p = 0; p < n; ++p) raw[p] = raw[p] * scale + offset;
   }
 
+  double gt[6] = {0, 1, 0, 0, 0, 1};
+  const bool has_gt = geotransform_of(ds.h, gt);
+  if (has_gt) orient_north_up(path, w, h, gt, raw, valid);
+
   Heightfield hf;
   hf.width = w;
   hf.height = h;
@@ -172,7 +223,7 @@ Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings
 
   GeoTransform geo;
   double sx = 30.0, sy = 30.0;
-  if (spacing_from_geo(ds.h, w, h, sx, sy, geo)) hf.geo = geo;
+  if (has_gt && spacing_from_geo(ds.h, gt, w, h, sx, sy, geo)) hf.geo = geo;
   if (o.spacing) {
     sx = sy = *o.spacing;
   } else if (!hf.geo && warnings) {

@@ -16,6 +16,16 @@
 namespace terrasprite {
 namespace {
 
+// Images larger than this a side exceed GL's texture limit (16384 on llvmpipe
+// and most GPUs) and several GB decoded: refused from the header, before decoding.
+constexpr int kMaxImageSide = 16384;
+
+std::string too_large(int w, int h) {
+  return fmt::format("image is {}x{}; more than {} pixels a side is not supported (downsample it, "
+                     "e.g. gdal_translate -outsize)",
+                     w, h, kMaxImageSide);
+}
+
 Image from_channels(const std::vector<std::uint16_t>& v, int w, int h, int n, bool sixteen) {
   Image img(w, h);
   const std::size_t count = static_cast<std::size_t>(w) * h;
@@ -52,6 +62,10 @@ std::optional<Image> load_with_gdal(const std::string& path, std::string& error)
     GDALClose(ds);
     error = "no raster data";
     return std::nullopt;
+  }
+  if (w > kMaxImageSide || h > kMaxImageSide) {
+    GDALClose(ds);
+    throw InputError(fmt::format("{}: {}", path, too_large(w, h)));
   }
   bool sixteen = false;
   for (int b = 1; b <= bands; ++b) {
@@ -90,13 +104,17 @@ std::optional<Image> load_with_gdal(const std::string& path, std::string& error)
 
 Image load_image(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(fmt::format("{}: no such file", path));
+  // GDAL's virtual files (/vsimem/, /vsizip/...) are not on the filesystem.
+  const bool gdal_virtual = path.rfind("/vsi", 0) == 0;
+  if (!gdal_virtual && !std::filesystem::exists(path, ec)) throw InputError(fmt::format("{}: no such file", path));
   if (std::filesystem::is_directory(path, ec))
     throw InputError(fmt::format("{}: is a directory, not an image", path));
   std::string gdal_error;
   if (auto img = load_with_gdal(path, gdal_error)) return std::move(*img);
   // stb reads a few things GDAL's build may lack (e.g. some PNG/TGA variants).
   int w = 0, h = 0, n = 0;
+  if (stbi_info(path.c_str(), &w, &h, &n) && (w > kMaxImageSide || h > kMaxImageSide))
+    throw InputError(fmt::format("{}: {}", path, too_large(w, h)));
   if (stbi_is_16_bit(path.c_str())) {
     stbi_us* p = stbi_load_16(path.c_str(), &w, &h, &n, 0);
     if (p) {

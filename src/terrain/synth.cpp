@@ -3,6 +3,7 @@
 // 2002, "Improving noise") plus ridged multifractal noise (Musgrave, "Texturing
 // and Modeling", ch. 16) and a few thermal-erosion passes (Musgrave, Kolb,
 // Mace 1989) to soften slopes steeper than the talus angle.
+#include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -94,7 +95,8 @@ void thermal_erosion(Heightfield& hf, double talus_m) {
 
 Heightfield synthesize_terrain(const SynthOptions& o) {
   if (o.size < 2 || o.size > 16385)
-    throw InputError("--synthetic-size: must be between 2 and 16385 samples");
+    throw InputError(
+        fmt::format("synthetic terrain size {}: must be between 2 and 16385 samples", o.size));
   Heightfield hf;
   hf.width = hf.height = o.size;
   hf.spacing_x = hf.spacing_y = o.spacing_m;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Shows a rendered Frame in the window: its colour uploaded into a texture and
-// drawn over the whole framebuffer. The adapter until renderers draw straight
-// into the window's framebuffer (then this upload disappears).
+// Shows a rendered frame in the window: a texture the render worker drew
+// (shared between the contexts, nothing read back), or a CPU renderer's
+// colour image uploaded into a texture; drawn over the whole framebuffer.
 #pragma once
 #include <memory>
 
@@ -17,10 +17,13 @@ class FrameView {
   FrameView(const FrameView&) = delete;
   FrameView& operator=(const FrameView&) = delete;
 
-  /// Uploads `color` (RGBA8, rows top to bottom); the texture follows its size.
+  /// Shows `texture` (a GL texture name of a sharing context, rows bottom-up
+  /// as GL draws them) from now on; it must stay valid while shown.
+  void show(unsigned texture);
+  /// Uploads `color` (RGBA8, rows top to bottom) and shows it from now on.
   void upload(const Image& color);
-  /// Draws the last upload stretched over the framebuffer `width` x `height`
-  /// (sky colour before the first upload).
+  /// Draws what is shown stretched over the framebuffer `width` x `height`
+  /// (sky colour before anything was shown).
   void draw(int width, int height) const;
 
  private:

@@ -59,7 +59,11 @@ class Loop {
   Loop(const Heightfield& h, const Camera& start, const ViewerOptions& o,
        const ViewRendererFactory& factory)
       : o_(o), heights_(h), win_(o.width, o.height, "terrasprite view"),
-        fly_(h, start, o.fly), worker_(factory), settings_(o.settings) {
+        fly_(h, start, o.fly),
+        worker_(factory, o.share_context && win_.has_shared_context()
+                             ? ContextFactory([this] { return win_.adopt_shared_context(); })
+                             : ContextFactory()),
+        settings_(o.settings) {
     stats_.mode = o.settings.mode;
     stats_.width = o.width;
     stats_.height = o.height;
@@ -197,7 +201,10 @@ void Loop::move_camera(double t, double dt) {
 
 void Loop::present(std::optional<RenderedFrame>& f, Clock::time_point now) {
   if (f) {
-    view_.upload(f->frame.color);
+    if (f->texture)
+      view_.show(f->texture);  // drawn by the worker in a shared context: no copy
+    else
+      view_.upload(f->frame.color);
     info_.render_ms = f->frame.ms;
     info_.triangles = f->frame.triangles;
     info_.cls = f->frame.cls;

@@ -52,12 +52,21 @@ Window::Window(int width, int height, const std::string& title) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  // EGL first (the renderers' own API; Mesa shares it between threads without
+  // GLX's X round trips), then the platform's native API (GLX).
+  glfwWindowHint(GLFW_CONTEXT_CREATION_API, GLFW_EGL_CONTEXT_API);
   window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+  if (!window_) {
+    glfwWindowHint(GLFW_CONTEXT_CREATION_API, GLFW_NATIVE_CONTEXT_API);
+    window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+  }
   if (!window_) {
     const std::string why = glfw_error();
     glfwTerminate();
     throw DeviceError(fmt::format("view: cannot open an OpenGL 4.5 core window ({})", why));
   }
+  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+  shared_ = glfwCreateWindow(16, 16, "terrasprite render", nullptr, window_);  // null: none
   glfwSetWindowUserPointer(window_, this);
   glfwMakeContextCurrent(window_);
   glfwSwapInterval(0);
@@ -79,8 +88,18 @@ Window::~Window() {
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
+  if (shared_) glfwDestroyWindow(shared_);
   glfwDestroyWindow(window_);
   glfwTerminate();
+}
+
+std::unique_ptr<GlContext> Window::adopt_shared_context() {
+  GLFWwindow* w = shared_;
+  glfwMakeContextCurrent(w);
+  GlContext::External e;
+  e.make_current = [w] { glfwMakeContextCurrent(w); };
+  e.release_current = [] { glfwMakeContextCurrent(nullptr); };
+  return GlContext::adopt(std::move(e));
 }
 
 bool Window::should_close() const { return glfwWindowShouldClose(window_); }

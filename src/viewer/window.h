@@ -5,8 +5,11 @@
 #pragma once
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "terrasprite/gl_context.h"
 
 #include "viewer/input_event.h"
 
@@ -35,6 +38,13 @@ class Window {
   Window& operator=(const Window&) = delete;
 
   GLFWwindow* glfw() const { return window_; }
+  /// Whether a second context sharing objects with the window's exists (a
+  /// hidden window, made with the window).
+  bool has_shared_context() const { return shared_ != nullptr; }
+  /// Makes that second context current on the calling thread (the render
+  /// worker's) and wraps it; the window must outlive it, and it must be
+  /// released (GlContext::release_current) before the window is destroyed.
+  std::unique_ptr<GlContext> adopt_shared_context();
   bool should_close() const;
   void poll();  ///< delivers pending window-system events to the callbacks
   void swap();
@@ -64,6 +74,7 @@ class Window {
   void push(InputEvent e);
 
   GLFWwindow* window_ = nullptr;
+  GLFWwindow* shared_ = nullptr;  // hidden, sharing objects with window_
   std::vector<ArrivedEvent> pending_;
   std::uint64_t next_seq_ = 1;
   bool captured_ = true, left_down_ = false, have_cursor_ = false;

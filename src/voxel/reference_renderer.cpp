@@ -129,7 +129,7 @@ struct RefRay {
 
 }  // namespace
 
-Frame VoxelReference::render(const Camera& cam) {
+Frame VoxelReference::draw(const Camera& cam) {
   State& s = *s_;
   Frame out;
   out.color = Image(s.w, s.h);

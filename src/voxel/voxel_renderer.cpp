@@ -101,7 +101,7 @@ std::string VoxelRenderer::name() const {
   return fmt::format("voxel-{}", to_string(s_->options.variant));
 }
 
-Frame VoxelRenderer::render(const Camera& camera) {
+Frame VoxelRenderer::draw(const Camera& camera) {
   Frame out;
   out.color = Image(s_->w, s_->h);
   out.depth.assign(static_cast<std::size_t>(s_->w) * s_->h, Frame::kSky);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The LOD-sprite renderer on GL: a sprite from the keyframe's own camera,
 // the visibility fallback (occlusion and the keyframe frustum), the trigger.
+#include "terrasprite/mesh_renderer.h"
 #include "terrasprite/sprite_renderer.h"
 
 #include <gtest/gtest.h>
@@ -56,7 +57,7 @@ bool is_sky(const std::uint8_t* p) {
 TEST(SpriteRenderer, SpriteFromTheKeyframeCameraMatchesTheKeyframe) {
   GlContext gl;
   Terrain t = gentle_hills(129);
-  GlTerrain scene(t);
+  Scene scene(t);
   SpriteRenderer r(scene, 256, 256,
                    SpriteOptions{.lod_quads = 16, .sharp_px = 0});  // every quad from the keyframe
   for (double pitch : {-90.0, -60.0, -35.0}) {
@@ -93,7 +94,7 @@ TEST(SpriteRenderer, ValleyHiddenByARidgeTakesTheOriginalTexture) {
       p[2] = 20;
       p[3] = 255;
     }
-  GlTerrain scene(t);
+  Scene scene(t);
   SpriteRenderer r(scene, 256, 256, SpriteOptions{.lod_quads = 8});
   Camera key = Camera::look_at({0, -700, 40}, {0, 0, 100}, 60.0, 1.0);
   fit_clip_planes(key, h);
@@ -127,7 +128,7 @@ TEST(SpriteRenderer, ValleyHiddenByARidgeTakesTheOriginalTexture) {
 TEST(SpriteRenderer, GeometryFromOutsideTheKeyframeIsTextured) {
   GlContext gl;
   Terrain t = gentle_hills(129);
-  GlTerrain scene(t);
+  Scene scene(t);
   SpriteRenderer r(scene, 128, 128, SpriteOptions{.lod_quads = 16});
   MeshRenderer lod(scene, 128, 128, 16);
   Camera west = Camera::look_at({-400, 0, 500}, {-400, 0, 0}, 60.0, 1.0);
@@ -153,19 +154,18 @@ TEST(SpriteRenderer, KeyframeTriggerFiresWhenTheThresholdIsExceededAndNotBefore)
   Terrain t;
   t.heights = synthesize_terrain(so);
   t.texture = derived_texture(t.heights, 256, 256);
-  GlTerrain scene(t);
+  Scene scene(t);
   for (ErrorMetric m : {ErrorMetric::kPaper, ErrorMetric::kExact}) {
     SpriteOptions o{.lod_quads = 16,
                     .threshold_px = 0.5,
                     .metric = m,
-                    .max_resample_scale = INFINITY,
-                    .read_color = false};
+                    .max_resample_scale = INFINITY};
     SpriteRenderer r(scene, 128, 128, o);
     auto path = paper_path(t.heights, 120, 1.0);
     int keys = 0;
     for (std::size_t i = 0; i < path.size(); ++i) {
       const SpriteError before = r.error(path[i]);
-      Frame f = r.render(path[i]);
+      Frame f = r.draw(path[i]);
       const bool expect_key = i == 0 || before.value(m) > o.threshold_px;
       EXPECT_EQ(f.cls, expect_key ? "key" : "sprite") << i << " error " << before.value(m);
       if (i > 0) {

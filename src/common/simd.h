@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
-// Internal to quality/: function multi-versioning, so default builds stay
+// The one home of SIMD machinery: function multi-versioning, so default builds stay
 // portable (no -march=native) while AVX2 machines run vector clones chosen at
 // load time. TS_CLONES_AVX2: AVX2 + baseline; TS_CLONES_V3: x86-64-v3 (AVX2 +
 // FMA) + baseline, for loops that gain from fused multiply-adds.
 #pragma once
+#include <cstdint>
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define TS_CLONES_AVX2 __attribute__((target_clones("avx2", "default")))
@@ -12,3 +13,12 @@
 #define TS_CLONES_AVX2
 #define TS_CLONES_V3
 #endif
+
+namespace terrasprite::simd {
+// GCC/Clang vector extensions: element-wise arithmetic that compiles to SSE
+// or AVX2 in the matching clone.
+typedef double v4d __attribute__((vector_size(32)));
+typedef float v4f __attribute__((vector_size(16)));
+typedef float v8f __attribute__((vector_size(32)));
+typedef std::int32_t v4i __attribute__((vector_size(16)));
+}  // namespace terrasprite::simd

@@ -1,0 +1,14 @@
+// SPDX-License-Identifier: MIT
+// The one plot runner: gnuplot on a script in an output directory.
+#pragma once
+#include <string>
+
+namespace terrasprite::cli {
+
+/// Runs `gnuplot SCRIPT` inside `dir`, its output in `dir`/gnuplot.log.
+/// Returns an empty string on success, else one line saying what failed
+/// (gnuplot missing, or its exit status and first error line), which the
+/// caller reports; a failed plot never fails the run (the .dat files stay).
+std::string run_gnuplot(const std::string& dir, const std::string& script);
+
+}  // namespace terrasprite::cli

@@ -1,0 +1,49 @@
+# SPDX-License-Identifier: MIT
+# ts_module(NAME DIRS dir... [PUBLIC deps...] [PRIVATE deps...]): the static
+# library terrasprite_NAME (alias and exported name terrasprite::NAME) from
+# src/<dir>/*.cpp, appended to TS_MODULES. Compile flags live in this file,
+# nowhere else (SIMD clone macros and vector types: src/common/simd.h).
+set(TS_MODULES "")
+set(TS_MODULE_DIRS "")
+function(ts_module name)
+  cmake_parse_arguments(M "" "" "DIRS;PUBLIC;PRIVATE" ${ARGN})
+  set(srcs "")
+  foreach(dir ${M_DIRS})
+    file(GLOB dir_srcs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/${dir}/*.cpp)
+    list(APPEND srcs ${dir_srcs})
+  endforeach()
+  set(t terrasprite_${name})
+  add_library(${t} STATIC ${srcs})
+  add_library(terrasprite::${name} ALIAS ${t})
+  set_target_properties(${t} PROPERTIES EXPORT_NAME ${name})
+  target_include_directories(${t}
+    PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>
+    PRIVATE ${PROJECT_SOURCE_DIR}/src)
+  target_compile_options(${t} PRIVATE ${TS_WARNINGS})
+  target_link_libraries(${t} PUBLIC ${M_PUBLIC} PRIVATE ${M_PRIVATE})
+  set(TS_MODULES ${TS_MODULES} ${t} PARENT_SCOPE)
+  set(TS_MODULE_DIRS ${TS_MODULE_DIRS} ${M_DIRS} PARENT_SCOPE)
+endfunction()
+
+# A per-pixel loop whose sqrt should compile to the exact vector instruction:
+# sqrt without errno (a pragma in the file is not enough for GCC to vectorise
+# it). Not -ffast-math: values stay IEEE (the ray caster relies on inf/NaN).
+function(ts_fast_sqrt source)
+  if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+    set_source_files_properties(${PROJECT_SOURCE_DIR}/${source} PROPERTIES COMPILE_OPTIONS -fno-math-errno)
+  endif()
+endfunction()
+
+# Every src/<dir> with sources must belong to a module: a new directory that
+# no ts_module() line names fails the configure step instead of silently
+# leaving its code out of the library.
+function(ts_check_modules_cover_src)
+  file(GLOB dirs LIST_DIRECTORIES true ${PROJECT_SOURCE_DIR}/src/*)
+  foreach(d ${dirs})
+    get_filename_component(name ${d} NAME)
+    file(GLOB cpp ${d}/*.cpp)
+    if(IS_DIRECTORY ${d} AND cpp AND NOT name IN_LIST TS_MODULE_DIRS)
+      message(FATAL_ERROR "src/${name} has sources but no ts_module() line in CMakeLists.txt names it")
+    endif()
+  endforeach()
+endfunction()

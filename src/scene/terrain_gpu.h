@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: MIT
+// The terrain's GPU side: drape texture, grid meshes per level and the plain
+// terrain shader, shared by the raster and sprite renderers through Scene.
+#pragma once
+#include <glm/glm.hpp>
+#include <map>
+#include <vector>
+
+#include "gl/gl_objects.h"
+#include "terrasprite/terrain.h"
+#include "terrasprite/terrain_mesh.h"
+
+namespace terrasprite {
+
+/// A grid mesh in GPU buffers: attribute 0 = position (vec3, metres),
+/// attribute 1 = normal (vec3), one uint32 index list. Grids above 4097 x 4097
+/// samples are split into `parts` (tiles sharing their border samples), each
+/// drawn with its own call; `triangles` then counts all parts.
+struct GpuMesh {
+  std::vector<GpuMesh> parts;
+  gl::VertexArray vao;
+  gl::Buffer vertices;
+  gl::Buffer indices;
+  GLsizei index_count = 0;
+  long long triangles = 0;
+  int columns = 0, rows = 0;
+};
+
+/// Owned by a Scene; needs its GL context current. Keeps a reference to `terrain`.
+class TerrainGpu {
+ public:
+  /// Uploads the drape texture. Throws InputError when it exceeds GL_MAX_TEXTURE_SIZE.
+  explicit TerrainGpu(const Terrain& terrain);
+  ~TerrainGpu();
+  TerrainGpu(const TerrainGpu&) = delete;
+  TerrainGpu& operator=(const TerrainGpu&) = delete;
+  const Terrain& terrain() const { return terrain_; }
+  /// The mesh of `quads` quads per side (0 = full), uploaded on first use.
+  /// Throws InputError when it would need more than 4 GiB of buffers.
+  const GpuMesh& mesh(int quads);
+  /// Draws `m` with the plain terrain shader: drape texture by world
+  /// position (the texture's own 16x anisotropic filtering, or by hand:
+  /// kHandFilterGlsl), optional sun lighting. The target must be bound.
+  void draw(const GpuMesh& m, const glm::mat4& view_projection, bool lighting,
+            bool hand_filter = false);
+  /// Uniforms mapping world (x, y) to drape texture coordinates: uv = xy * scale + offset.
+  glm::vec4 uv_transform() const;
+  GLuint drape() const { return drape_.id(); }
+  /// A trilinear-only sampler for the drape (hand-filtered paths bind it).
+  GLuint trilinear_sampler() const { return trilinear_; }
+
+ private:
+  const Terrain& terrain_;
+  gl::Texture drape_{GL_TEXTURE_2D};
+  gl::Program program_;           // the plain textured terrain shader
+  GLuint trilinear_ = 0;          // sampler object: trilinear, no hardware anisotropy
+  std::map<int, GpuMesh> meshes_;  // by quads per side; 0 = full resolution
+};
+
+/// GLSL helper text: `vec2 drape_uv(vec2 world_xy)` using uniform vec4 u_uv (scale.xy, offset.xy).
+extern const char* const kDrapeUvGlsl;
+/// GLSL helper text: `vec4 drape_hand_filtered(sampler2D, vec2 uv, vec2 dFdx, vec2 dFdy)`:
+/// up to 8 trilinear taps along the footprint's major axis.
+extern const char* const kHandFilterGlsl;
+
+}  // namespace terrasprite

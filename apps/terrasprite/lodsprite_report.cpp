@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -160,6 +161,11 @@ void write_lodsprite_report(const nlohmann::json& j, OutputDir& out) {
       int(j["terrain"]["samples"][1]), j["terrain"]["texture"].get<std::string>(), int(j["frames"]),
       int(j["size"][0]), int(j["size"][1]), int(j["lod_quads"]), int(j["lod_quads"]),
       num(j["threshold_px"]), j["metric"].get<std::string>(), j["gl_renderer"].get<std::string>());
+  if (j.contains("video"))
+    h << fmt::format(
+        "<h2>The flight</h2><p><video src='{0}' controls loop muted width='{1}'></video><br>"
+        "LOD-sprite frames, H.264 (<a href='{0}'>{0}</a>)</p>\n",
+        j["video"].get<std::string>(), std::min(int(j["size"][0]), 1024));
   h << "<h2>Summary</h2><table>\n";
   h << row("speed-up (total full / total LOD-sprite)",
            fmt::format("<b>{:.2f}x</b> (paper: 12.32x)", num(j["speedup"])));

@@ -15,7 +15,7 @@ constexpr double kPaperFrames = 460.0;
 }  // namespace
 
 std::vector<Camera> paper_path(const Heightfield& h, int frames, double aspect, double fov_y_deg) {
-  if (frames < 1) throw InputError(fmt::format("--frames {}: must be at least 1", frames));
+  if (frames < 1) throw InputError(fmt::format("frames {}: must be at least 1", frames));
   const double E = h.extent();
   const glm::dvec3 centre(0.0, 0.0, h.sample(0.0, 0.0));
   std::vector<Camera> path;

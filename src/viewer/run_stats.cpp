@@ -2,17 +2,10 @@
 #include "viewer/run_stats.h"
 
 #include <algorithm>
-#include <cmath>
+
+#include "terrasprite/stats.h"
 
 namespace terrasprite::viewer {
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const double rank = std::ceil(p / 100.0 * double(v.size()));
-  const std::size_t i = std::size_t(std::clamp(rank, 1.0, double(v.size()))) - 1;
-  return v[i];
-}
 
 nlohmann::json stats_json(const RunStats& s) {
   const double p50 = percentile(s.frame_ms, 50), p99 = percentile(s.frame_ms, 99);

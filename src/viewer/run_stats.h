@@ -24,9 +24,6 @@ struct RunStats {
   Camera camera_start, camera_end;  ///< the flight's first and last pose
 };
 
-/// Nearest-rank percentile (p in [0, 100]) of `v`; 0 for none.
-double percentile(std::vector<double> v, double p);
-
 /// The stats file: mode, size, frames, fps_median, fps_low_1pct (the rate of
 /// the 99th-percentile frame time), frames (displayed new frames), frame_ms_p50, frame_ms_p99, render_ms_p50,
 /// latency_ms_p95, latency_ms_max, events [{t, latency_ms}], camera_start and

@@ -156,13 +156,7 @@ TEST(FlyController, StaysNearTheTerrainAndOrbitsAPickedPoint) {
   EXPECT_NEAR(glm::length(fly.camera().position - glm::dvec3(0, 0, 0)), d0, 20);
 }
 
-TEST(RunStats, NearestRankPercentilesAndKeys) {
-  EXPECT_EQ(percentile({}, 50), 0);
-  EXPECT_EQ(percentile({5, 1, 3}, 50), 3);
-  std::vector<double> v(100);
-  for (int i = 0; i < 100; ++i) v[i] = i + 1;
-  EXPECT_EQ(percentile(v, 99), 99);
-  EXPECT_EQ(percentile(v, 100), 100);
+TEST(RunStats, KeysAndRatesFromNearestRankFrameTimes) {
   RunStats s;
   s.mode = "lod";
   s.frames = 3;

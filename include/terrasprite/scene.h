@@ -4,9 +4,21 @@
 #pragma once
 #include <memory>
 
+#include "terrasprite/camera.h"
 #include "terrasprite/terrain.h"
 
 namespace terrasprite {
+
+/// Objects standing on the terrain (ObjectSet implements it). The full, LOD
+/// and LOD-sprite renderers draw them after the terrain, every frame, into
+/// their bound target (reversed-Z float depth, GL_GREATER), depth-tested
+/// against what the terrain wrote. Never part of a LOD-sprite keyframe.
+class SceneObjects {
+ public:
+  virtual ~SceneObjects() = default;
+  /// Draws every object for `camera`; returns the triangles submitted.
+  virtual long long draw(const Camera& camera) = 0;
+};
 
 class TerrainGpu;  // the library's GPU side of the terrain (src/scene/terrain_gpu.h)
 
@@ -30,12 +42,20 @@ class Scene {
   /// now, so that no timed frame pays for it; returns its triangle count.
   long long prepare(int quads);
 
+  /// Objects to draw over the terrain (not owned; nullptr = none). They must
+  /// outlive every draw of a renderer of this scene.
+  void set_objects(SceneObjects* objects) { objects_ = objects; }
+  bool has_objects() const { return objects_ != nullptr; }
+  /// Draws the objects, if any, into the bound target; returns their triangles.
+  long long draw_objects(const Camera& camera) { return objects_ ? objects_->draw(camera) : 0; }
+
   /// The GPU resources, for the library's renderers; the type is internal.
   TerrainGpu& terrain_gpu() { return *terrain_gpu_; }
 
  private:
   const Terrain& terrain_;
   std::unique_ptr<TerrainGpu> terrain_gpu_;
+  SceneObjects* objects_ = nullptr;
 };
 
 }  // namespace terrasprite

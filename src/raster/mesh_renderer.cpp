@@ -37,7 +37,8 @@ Frame MeshRenderer::draw(const Camera& camera) {
   const DrapeFilter filter = s_->options.drape_filter;
   terrain.draw(mesh, vp, s_->options.lighting,
                filter == DrapeFilter::kHand || (filter == DrapeFilter::kAuto && s_->quads > 0));
-  return make_frame(camera, timer().end(), s_->quads <= 0 ? "full" : "lod", mesh.triangles);
+  const long long triangles = mesh.triangles + s_->scene.draw_objects(camera);
+  return make_frame(camera, timer().end(), s_->quads <= 0 ? "full" : "lod", triangles);
 }
 
 }  // namespace terrasprite

@@ -144,8 +144,9 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
   long long triangles = 0;
   if (key) {
     s.key.capture(terrain, s.grid, camera, s.options.lighting);
-    // The keyframe textures are the frame; a caller's target gets a copy.
-    if (output().framebuffer != own_target().framebuffer()) {
+    // The keyframe textures are the frame; a caller's target, or a frame
+    // with objects over the terrain, gets a copy (keyframes hold terrain only).
+    if (output().framebuffer != own_target().framebuffer() || s.scene.has_objects()) {
       begin_output();
       s.pass.composite_keyframe(s.key);
     }
@@ -154,6 +155,7 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
     draw_sprite_pass(camera);
     triangles = terrain.mesh(s.options.lod_quads).triangles;
   }
+  triangles += s.scene.draw_objects(camera);  // over the sprite, against its depth
   const gl::FrameTime t = timer().end();
   s.last = e;
   s.last_was_key = key;
@@ -162,7 +164,7 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
 
 void SpriteRenderer::read_back(Frame& f, ReadBack what) {
   State& s = *s_;
-  if (!s.last_was_key || output().framebuffer != own_target().framebuffer()) {
+  if (!s.last_was_key || output().framebuffer != own_target().framebuffer() || s.scene.has_objects()) {
     GlRenderer::read_back(f, what);
     return;
   }

@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+// `objects table`: the measured quality table of one model, its on-disk
+// cache, its JSON and its report (plots of the paper's Figures 1-3, Table 1).
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "terrasprite/model.h"
+#include "terrasprite/output_dir.h"
+#include "terrasprite/quality_table.h"
+
+namespace terrasprite::cli {
+
+/// The table as the JSON contract has it (model, triangles, representations, table).
+nlohmann::json table_json(const QualityTable& t, const TableOptions& o);
+/// Reads back what table_json wrote (for the cache). Throws InputError on a
+/// document that does not have the expected shape.
+QualityTable table_from_json(const nlohmann::json& j);
+
+/// Cache key of a table: the model file's bytes (and its texture's), the
+/// model and table options, and the format version, as 32 hex digits.
+std::string table_cache_key(const std::string& model_file, const ModelOptions& m,
+                            const TableOptions& o);
+/// The cache directory: $TERRASPRITE_CACHE, else $XDG_CACHE_HOME/terrasprite,
+/// else ~/.cache/terrasprite; "objects" below it.
+std::string default_cache_dir();
+
+/// Writes the .dat files, plots (gnuplot; skipped with a note when missing),
+/// and table1.md into `out`.
+void write_objects_report(const QualityTable& t, const TableOptions& o, OutputDir& out);
+
+/// Table 1 as Markdown text (also printed by the command).
+std::string table1_markdown(const QualityTable& t, const TableOptions& o);
+
+}  // namespace terrasprite::cli

@@ -1,0 +1,134 @@
+// SPDX-License-Identifier: MIT
+// JSON of a quality table, both ways, and its cache key.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "objects_table.h"
+#include "terrasprite/error.h"
+
+namespace terrasprite::cli {
+namespace {
+
+constexpr const char* kFormat = "terrasprite-objects-table-1";
+
+// Infinite PSNR (identical images) is written as the string "inf": JSON has no infinity.
+nlohmann::json number(double v) { return std::isinf(v) ? nlohmann::json("inf") : nlohmann::json(v); }
+double number(const nlohmann::json& v) {
+  return v.is_string() && v == "inf" ? INFINITY : v.get<double>();
+}
+
+std::uint64_t fnv1a(const std::string& bytes, std::uint64_t h = 1469598103934665603ull) {
+  for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot read", path));
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+nlohmann::json table_json(const QualityTable& t, const TableOptions& o) {
+  nlohmann::json reps = nlohmann::json::array();
+  for (const RepresentationQuality& q : t.representations) {
+    nlohmann::json r = {{"kind", object_kind_name(q.rep.kind)},
+                        {"triangles", q.triangles},
+                        {"bytes", q.bytes},
+                        {"ms_per_instance", q.ms_per_instance},
+                        {"build_ms", q.build_ms}};
+    if (q.rep.kind == ObjectKind::kMesh) {
+      r["level"] = q.rep.level;
+      r["error_m"] = q.error_m;
+    } else {
+      r["resolution"] = q.rep.resolution;
+    }
+    if (q.rep.kind == ObjectKind::kOctahedral) r["views"] = q.rep.views;
+    nlohmann::json cost = nlohmann::json::array(), samples = nlohmann::json::array();
+    for (const SizeCost& c : q.cost) cost.push_back({{"size_px", c.size_px}, {"ms_per_instance", c.ms_per_instance}});
+    for (const QualitySample& s : q.samples)
+      samples.push_back({{"phi_deg", s.phi_deg}, {"theta_deg", s.theta_deg}, {"size_px", s.size_px},
+                         {"psnr", number(s.psnr)}, {"ssim", s.ssim}});
+    r["cost"] = cost;
+    r["samples"] = samples;
+    reps.push_back(r);
+  }
+  nlohmann::json table = nlohmann::json::array();
+  for (const TableEntry& e : t.table) {
+    nlohmann::json row = {{"kind", object_kind_name(e.kind)}, {"size_px", e.size_px}, {"metric", e.metric}, {"target", e.target}};
+    row[e.kind == ObjectKind::kMesh ? "level" : "resolution"] = e.choice ? nlohmann::json(*e.choice) : nlohmann::json(nullptr);
+    table.push_back(row);
+  }
+  std::vector<std::string> kinds;
+  for (ObjectKind k : o.kinds) kinds.push_back(object_kind_name(k));
+  return {{"format", kFormat},
+          {"model", t.model},
+          {"triangles", t.triangles},
+          {"build_ms", t.build_ms},
+          {"options", {{"kinds", kinds}, {"resolutions", o.resolutions}, {"sizes_px", o.sizes_px},
+                       {"angle_step_deg", o.angle_step_deg}, {"full_sphere", o.full_sphere}, {"views", o.views}}},
+          {"representations", reps},
+          {"table", table}};
+}
+
+QualityTable table_from_json(const nlohmann::json& j) {
+  try {
+    if (j.at("format") != kFormat) throw InputError("cached table has another format version");
+    QualityTable t;
+    t.model = j.at("model");
+    t.triangles = j.at("triangles");
+    t.build_ms = j.at("build_ms");
+    for (const auto& r : j.at("representations")) {
+      RepresentationQuality q;
+      q.rep.kind = parse_object_kind(r.at("kind"), "cache");
+      q.rep.level = r.value("level", 0);
+      q.rep.resolution = r.value("resolution", 0);
+      q.rep.views = r.value("views", 0);
+      q.triangles = r.at("triangles");
+      q.bytes = r.at("bytes");
+      q.ms_per_instance = r.at("ms_per_instance");
+      q.build_ms = r.at("build_ms");
+      q.error_m = r.value("error_m", 0.0);
+      for (const auto& c : r.at("cost")) q.cost.push_back({c.at("size_px"), c.at("ms_per_instance")});
+      for (const auto& s : r.at("samples"))
+        q.samples.push_back({s.at("phi_deg"), s.at("theta_deg"), s.at("size_px"), number(s.at("psnr")), s.at("ssim")});
+      t.representations.push_back(std::move(q));
+    }
+    for (const auto& e : j.at("table")) {
+      TableEntry row{parse_object_kind(e.at("kind"), "cache"), e.at("size_px"), e.at("metric"), e.at("target"), std::nullopt};
+      const auto& c = row.kind == ObjectKind::kMesh ? e.at("level") : e.at("resolution");
+      if (!c.is_null()) row.choice = c.get<int>();
+      t.table.push_back(row);
+    }
+    return t;
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("cached table: {}", e.what()));
+  }
+}
+
+std::string table_cache_key(const std::string& model_file, const ModelOptions& m, const TableOptions& o) {
+  std::string params = fmt::format("{}|up{}|h{}|tex{}|", kFormat, int(m.up), m.height_m, m.texture);
+  for (ObjectKind k : o.kinds) params += object_kind_name(k) + std::string(",");
+  params += fmt::format("|r{}|s{}|a{}|fs{}|v{}|n{}|t{}|{}", fmt::join(o.resolutions, ","),
+                        fmt::join(o.sizes_px, ","), o.angle_step_deg, o.full_sphere, o.views,
+                        o.timing_instances, fmt::join(o.ssim_targets, ","), fmt::join(o.psnr_targets, ","));
+  std::uint64_t h = fnv1a(file_bytes(model_file));
+  if (!m.texture.empty()) h = fnv1a(file_bytes(m.texture), h);
+  return fmt::format("{:016x}{:016x}", h, fnv1a(params));
+}
+
+std::string default_cache_dir() {
+  namespace fs = std::filesystem;
+  if (const char* d = std::getenv("TERRASPRITE_CACHE"); d && *d) return (fs::path(d) / "objects").string();
+  if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return (fs::path(d) / "terrasprite" / "objects").string();
+  if (const char* d = std::getenv("HOME"); d && *d) return (fs::path(d) / ".cache" / "terrasprite" / "objects").string();
+  return (fs::temp_directory_path() / "terrasprite-cache" / "objects").string();
+}
+
+}  // namespace terrasprite::cli

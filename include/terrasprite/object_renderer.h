@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: MIT
+// Objects on the terrain drawn with OpenGL: a model's LOD meshes and its two
+// image-based impostors (relief texture, octahedral), instanced, lit by the
+// sun (Lambert + ambient, the terrain's own light).
+#pragma once
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "terrasprite/camera.h"
+#include "terrasprite/lod_chain.h"
+#include "terrasprite/model.h"
+
+namespace terrasprite {
+
+/// One placed copy of a model: its base point in world metres, its compass
+/// heading (degrees clockwise from north; the model's +y axis points there)
+/// and a uniform scale on the model's own metres.
+struct ObjectInstance {
+  glm::dvec3 position{0.0};
+  double heading_deg = 0.0;
+  double scale = 1.0;
+};
+
+enum class ObjectKind { kMesh, kRelief, kOctahedral };
+
+/// Parses "pm" | "mesh", "relief", "octahedral"; throws InputError naming `option`.
+ObjectKind parse_object_kind(const std::string& text, const char* option);
+/// "pm", "relief" or "octahedral" (the JSON names).
+const char* object_kind_name(ObjectKind kind);
+
+/// Which representation to draw: a LOD level (kMesh), or an impostor at
+/// `resolution` texels per face (kRelief) or per view (kOctahedral, `views`
+/// x `views` views on the hemi-octahedron).
+struct Representation {
+  ObjectKind kind = ObjectKind::kMesh;
+  int level = 0;
+  int resolution = 64;
+  int views = 12;
+};
+
+/// A model resident on the GPU: every level of its LOD chain, and impostors
+/// built on first use (each built from level 0, unlit: albedo, normal and
+/// depth, lit when drawn). Needs a current GlContext for its whole life.
+/// Impostor resolutions are 16 to 512 (views 2 to 32); others throw InputError.
+class GlModel {
+ public:
+  GlModel(const Model& model, std::vector<LodLevel> chain);
+  ~GlModel();
+  GlModel(const GlModel&) = delete;
+  GlModel& operator=(const GlModel&) = delete;
+
+  const Model& model() const;
+  const std::vector<LodLevel>& chain() const;
+  /// Builds the impostor now (else the first draw does). Changes the bound
+  /// framebuffer, viewport and depth state: bind the target again afterwards.
+  void prepare(const Representation& rep);
+  /// Triangles submitted per instance (impostors: the box's 12 or the quad's 2).
+  long long triangles(const Representation& rep) const;
+  /// GPU memory of the representation: vertex + index buffers, or textures.
+  std::size_t bytes(const Representation& rep);
+
+  /// Draws `instances` with one instanced draw per part into the currently
+  /// bound framebuffer, which must use the RenderTarget conventions
+  /// (reversed-Z float depth, GL_GREATER, zero-to-one clip control). Writes
+  /// colour and true depth; depth-tests against what is there.
+  void draw(const Representation& rep, std::span<const ObjectInstance> instances,
+            const Camera& camera);
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace terrasprite

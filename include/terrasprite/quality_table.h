@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: MIT
+// Measured quality tables of a model's representations (Jehaes, Lamotte,
+// Tack, GRAPP 2008, section 3.2): each representation rendered beside the
+// full model from many viewing angles and on-screen sizes, scored with PSNR
+// and SSIM on the pixels either image covers, over the sky colour.
+#pragma once
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "terrasprite/object_renderer.h"
+
+namespace terrasprite {
+
+struct TableOptions {
+  std::vector<ObjectKind> kinds{ObjectKind::kMesh, ObjectKind::kRelief, ObjectKind::kOctahedral};
+  std::vector<int> resolutions{16, 32, 64, 128, 256, 512};  ///< impostor texels per face / view
+  std::vector<int> sizes_px{400, 200, 100, 50, 25};  ///< on-screen bounding-sphere diameter
+  /// phi in [0, 360), theta in [0, 90] (or [0, 180]); straight above (theta 0)
+  /// and below (180) are sampled once, at phi 0.
+  double angle_step_deg = 30.0;
+  bool full_sphere = false;      ///< theta up to 180 (from below too)
+  int views = 12;                ///< octahedral views per side
+  int timing_instances = 1;      ///< instances drawn (3 times, median) to time a representation
+  std::vector<double> ssim_targets{0.90, 0.95, 0.98, 0.99};
+  std::vector<double> psnr_targets{20, 25, 30, 35};
+};
+
+struct QualitySample {
+  double phi_deg = 0;    ///< azimuth of the camera around the object
+  double theta_deg = 0;  ///< 0 = from straight above, 90 = horizontal
+  int size_px = 0;
+  double psnr = 0;  ///< RGB PSNR in dB, masked; +inf when identical
+  double ssim = 0;  ///< Wang SSIM on luma, masked
+};
+
+struct SizeCost {
+  int size_px = 0;
+  double ms_per_instance = 0;  ///< median draw time per instance, pipeline drained
+};
+
+struct RepresentationQuality {
+  Representation rep;
+  long long triangles = 0;   ///< per instance
+  std::size_t bytes = 0;     ///< GPU memory of the representation
+  double error_m = 0;        ///< LOD level's geometric error (meshes only)
+  double build_ms = 0;       ///< building the impostor (0 for meshes)
+  double ms_per_instance = 0;  ///< at the middle size of the sweep
+  std::vector<SizeCost> cost;  ///< per size
+  std::vector<QualitySample> samples;
+  /// Mean of `metric` ("ssim" or "psnr"; psnr capped at 100 dB) over the samples at `size_px`.
+  double mean(const std::string& metric, int size_px) const;
+};
+
+/// One cell of the paper's Table 1: the lowest impostor resolution (or the
+/// coarsest LOD level) whose mean quality at `size_px` reaches `target`.
+struct TableEntry {
+  ObjectKind kind = ObjectKind::kRelief;
+  int size_px = 0;
+  std::string metric;  ///< "ssim" or "psnr"
+  double target = 0;
+  std::optional<int> choice;  ///< resolution (impostors) or level (meshes); none reaches it
+};
+
+struct QualityTable {
+  std::string model;
+  long long triangles = 0;
+  std::vector<RepresentationQuality> representations;
+  std::vector<TableEntry> table;
+  double build_ms = 0;  ///< wall time of measure_quality_table
+};
+
+/// Renders and scores every representation of `model` (levels of its chain
+/// for kMesh, each resolution for the impostors) at every view and size.
+/// Needs a current GlContext. `progress(done, total)` is called per view.
+/// Throws InputError for an empty list, a size under 16 or over 2048 px,
+/// or an angle step outside (0, 180].
+QualityTable measure_quality_table(GlModel& model, const TableOptions& options,
+                                   const std::function<void(int, int)>& progress = {});
+
+/// Table 1 from measured representations.
+std::vector<TableEntry> derive_table(const std::vector<RepresentationQuality>& reps,
+                                     const TableOptions& options);
+
+}  // namespace terrasprite

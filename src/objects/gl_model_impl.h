@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: MIT
+// GlModel's insides, shared by the mesh and impostor drawing files.
+#pragma once
+#include <map>
+#include <optional>
+
+#include "gl/gl_objects.h"
+#include "terrasprite/object_renderer.h"
+
+namespace terrasprite {
+
+namespace objects {
+
+/// Instance attributes: location 3 = vec4(position xyz, heading radians),
+/// location 4 = vec4(scale, 0, 0, 0); binding 1, divisor 1.
+struct GpuInstance {
+  float position_heading[4];
+  float scale[4];
+};
+
+struct GpuLevel {
+  gl::VertexArray vao;
+  gl::Buffer vertices;  // interleaved position, normal, uv: 8 floats
+  gl::Buffer indices;
+  std::vector<MeshPart> parts;
+  std::size_t bytes = 0;
+};
+
+/// Six colour + geometry images of the object seen orthographically through
+/// the faces of its bounding box (layers +x, -x, +y, -y, +z, -z).
+struct ReliefImpostor {
+  gl::Texture albedo{GL_TEXTURE_2D_ARRAY};    // RGBA8: base colour, alpha = coverage
+  gl::Texture geometry{GL_TEXTURE_2D_ARRAY};  // RGBA16F: object-space normal, depth in [0, 1]
+  int resolution = 0;
+  std::size_t bytes = 0;
+};
+
+/// views x views orthographic views on the upper hemi-octahedron, one atlas.
+struct OctahedralImpostor {
+  gl::Texture albedo{GL_TEXTURE_2D};    // RGBA8: base colour, alpha = coverage
+  gl::Texture geometry{GL_TEXTURE_2D};  // RGBA8: normal * 0.5 + 0.5, depth in [0, 1]
+  int resolution = 0, views = 0;
+  std::size_t bytes = 0;
+};
+
+/// GLSL: instance attributes, heading rotation and the sun.
+extern const char* const kObjectGlsl;
+/// GLSL: vec3 sun_lit(vec3 albedo, vec3 normal), the terrain's sun (Lambert + ambient).
+extern const char* const kSunGlsl;
+/// The relief impostor's box: the model's bounds grown by 0.5% of the diagonal.
+void relief_box(const Model& m, glm::vec3& lo, glm::vec3& hi);
+
+}  // namespace objects
+
+struct GlModel::Impl {
+  Model model;
+  std::vector<LodLevel> chain;
+  std::vector<objects::GpuLevel> levels;
+  std::vector<gl::Texture> textures;
+  gl::Program mesh_program;
+  gl::Program capture_program;  // unlit albedo + normal + depth, for impostor building
+  gl::Program relief_program;
+  gl::Program octahedral_program;
+  gl::VertexArray instance_vao;  // impostors: instance attributes only
+  std::optional<gl::Buffer> instance_buffer;
+  std::size_t instance_capacity = 0;
+  std::map<int, objects::ReliefImpostor> relief;
+  std::map<std::pair<int, int>, objects::OctahedralImpostor> octahedral;
+
+  /// Uploads the instances; binds the buffer to `vao`'s binding 1.
+  void upload_instances(std::span<const ObjectInstance> instances, GLuint vao);
+  void attach_instance_attributes(GLuint vao);
+  /// Draws level `level` with `program` (its u_vp set by the caller): one
+  /// instanced draw per part, material colour and texture bound.
+  void draw_level_parts(int level, GLuint program, GLsizei count);
+
+  objects::ReliefImpostor& relief_impostor(int resolution);
+  objects::OctahedralImpostor& octahedral_impostor(int resolution, int views);
+  void draw_relief(const objects::ReliefImpostor& r, GLsizei count, const Camera& camera);
+  void draw_octahedral(const objects::OctahedralImpostor& o, GLsizei count, const Camera& camera);
+};
+
+namespace objects {
+/// Programs of the impostors (compiled once per GlModel).
+gl::Program make_capture_program();
+gl::Program make_relief_program();
+gl::Program make_octahedral_program();
+}  // namespace objects
+
+}  // namespace terrasprite

@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: MIT
+// What a loader hands to finish_model: triangles in file units and axes, one
+// material per triangle. finish_model validates, computes missing normals,
+// groups triangles by material and brings the model to world conventions.
+#pragma once
+#include <vector>
+
+#include "terrasprite/model.h"
+
+namespace terrasprite::objects {
+
+struct RawModel {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  ///< empty, or one per vertex
+  std::vector<glm::vec2> uvs;      ///< empty, or one per vertex
+  std::vector<std::uint32_t> indices;
+  std::vector<int> triangle_material;  ///< one per triangle
+  std::vector<Material> materials;
+  std::vector<Image> textures;
+  std::vector<std::string> texture_names;
+};
+
+Model finish_model(RawModel raw, const std::string& path, const ModelOptions& options);
+
+Model load_obj(const std::string& path, const ModelOptions& options);
+Model load_gltf(const std::string& path, const ModelOptions& options);
+
+}  // namespace terrasprite::objects

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: MIT
+#include "terrasprite/object_set.h"
+
+#include <cassert>
+
+#include "terrasprite/lod_chain.h"
+
+namespace terrasprite {
+
+struct ObjectSet::Impl {
+  std::vector<SceneModel> scene_models;
+  std::vector<std::unique_ptr<GlModel>> models;
+  std::vector<std::vector<ObjectInstance>> instances;
+};
+
+ObjectSet::ObjectSet(const ObjectScene& scene, const LodOptions& lod) : impl_(std::make_unique<Impl>()) {
+  impl_->scene_models = scene.models;
+  impl_->instances.resize(scene.models.size());
+  for (const PlacedInstance& p : scene.instances) impl_->instances[p.model].push_back(p.instance);
+  for (const SceneModel& m : scene.models) {
+    const Model model = load_model(m.file, m.options);
+    impl_->models.push_back(std::make_unique<GlModel>(model, build_lod_chain(model, lod)));
+  }
+}
+
+ObjectSet::~ObjectSet() = default;
+
+std::size_t ObjectSet::model_count() const { return impl_->models.size(); }
+const SceneModel& ObjectSet::scene_model(std::size_t i) const { return impl_->scene_models[i]; }
+GlModel& ObjectSet::model(std::size_t i) { return *impl_->models[i]; }
+std::span<const ObjectInstance> ObjectSet::instances(std::size_t i) const { return impl_->instances[i]; }
+
+std::size_t ObjectSet::instance_count() const {
+  std::size_t n = 0;
+  for (const auto& v : impl_->instances) n += v.size();
+  return n;
+}
+
+long long ObjectSet::full_triangles() const {
+  long long n = 0;
+  for (std::size_t i = 0; i < impl_->models.size(); ++i)
+    n += (long long)impl_->models[i]->model().triangles() * (long long)impl_->instances[i].size();
+  return n;
+}
+
+long long ObjectSet::draw_with(const Camera& camera, std::span<const Representation> per_model) {
+  assert(per_model.empty() || per_model.size() == impl_->models.size());
+  long long triangles = 0;
+  for (std::size_t i = 0; i < impl_->models.size(); ++i) {
+    const Representation rep = per_model.empty() ? Representation{} : per_model[i];
+    impl_->models[i]->draw(rep, impl_->instances[i], camera);
+    triangles += impl_->models[i]->triangles(rep) * (long long)impl_->instances[i].size();
+  }
+  return triangles;
+}
+
+}  // namespace terrasprite

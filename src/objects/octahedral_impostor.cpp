@@ -1,0 +1,248 @@
+// SPDX-License-Identifier: MIT
+// Octahedral impostor (R. Brucks, "Octahedral Impostors", 2018; as in Unreal
+// Engine's ImpostorBaker): views x views orthographic views of the object
+// from directions on the upper hemi-octahedron, one atlas of albedo + alpha
+// and normal + depth; drawn as a camera-facing quad that blends the three
+// views nearest the view direction, each shifted by its depth (parallax:
+// the ray is marched against each view's depth image), and writes the
+// blended surface's depth.
+//
+//   hemi-octahedral map: d (d.z >= 0) -> a = d.xy / (|x|+|y|+z),
+//   grid (u, v) = (a.x + a.y, a.x - a.y) in [-1, 1]^2; frame (i, j) at
+//   u = 2 i / (views - 1) - 1 (grid points include the horizon).
+#include <algorithm>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/render_target.h"
+#include "objects/capture.h"
+#include "objects/gl_model_impl.h"
+
+namespace terrasprite {
+namespace objects {
+namespace {
+
+const char* kOctGlsl = R"(
+vec3 oct_decode(vec2 g) {
+  vec2 a = vec2(g.x + g.y, g.x - g.y) * 0.5;
+  return normalize(vec3(a, max(1.0 - abs(a.x) - abs(a.y), 0.0)));
+}
+vec2 oct_encode(vec3 d) {
+  d.z = max(d.z, 0.0);
+  d /= abs(d.x) + abs(d.y) + d.z;
+  return vec2(d.x + d.y, d.x - d.y);
+}
+// Image basis of the view from direction v (towards the viewer).
+void view_basis(vec3 v, out vec3 right, out vec3 up) {
+  vec3 ref = abs(v.z) > 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(0.0, 0.0, 1.0);
+  right = normalize(cross(ref, v));
+  up = cross(v, right);
+}
+)";
+
+const char* kOctVertex = R"(
+uniform vec3 u_center;   // model metres
+uniform float u_radius;  // model metres
+uniform mat4 u_vp;
+uniform vec3 u_eye;
+out vec3 v_world;
+flat out vec3 v_eye_local;
+flat out vec4 v_ph;
+flat out float v_scale;
+void main() {
+  vec2 corner = vec2(gl_VertexID & 1, gl_VertexID >> 1) * 2.0 - 1.0;
+  vec3 c = instance_to_world(u_center);
+  float r = u_radius * i_scale.x;
+  vec3 to_eye = u_eye - c;
+  float dist = length(to_eye);
+  vec3 n = to_eye / max(dist, 1e-6);
+  vec3 ref = abs(n.z) > 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(0.0, 0.0, 1.0);
+  vec3 right = normalize(cross(ref, n)), up = cross(n, right);
+  // The sphere's silhouette on the plane through its centre.
+  float half_size = dist > 1.01 * r ? r * dist / sqrt(dist * dist - r * r) : 8.0 * r;
+  v_world = c + (corner.x * right + corner.y * up) * half_size;
+  v_eye_local = world_to_instance(u_eye);
+  v_ph = i_pos_heading;
+  v_scale = i_scale.x;
+  gl_Position = u_vp * vec4(v_world, 1.0);
+}
+)";
+
+const char* kOctFragment = R"(
+uniform sampler2D u_albedo;
+uniform sampler2D u_geometry;
+uniform vec3 u_center;
+uniform float u_radius;
+uniform int u_views;
+uniform int u_res;
+uniform mat4 u_vp;
+in vec3 v_world;
+flat in vec3 v_eye_local;
+flat in vec4 v_ph;
+flat in float v_scale;
+out vec4 o_color;
+
+// One view: the first point of the ray (o + t d, model metres) inside the
+// bounding sphere that lies behind the view's recorded surface (a short
+// linear search, then bisection: depth parallax that also holds close up,
+// where the view plane's own intersection would miss thin parts). Returns
+// the view's albedo (a = coverage; 0 on a miss), the surface point and normal.
+vec4 view_sample(ivec2 f, vec3 o, vec3 d, out vec3 point, out vec3 normal) {
+  point = u_center;
+  normal = vec3(0.0, 0.0, 1.0);
+  vec3 v = oct_decode(vec2(f) / float(u_views - 1) * 2.0 - 1.0);
+  vec3 right, up;
+  view_basis(v, right, up);
+  vec3 oc = o - u_center;
+  float b = dot(oc, d), disc = b * b - (dot(oc, oc) - u_radius * u_radius);
+  if (disc <= 0.0) return vec4(0.0);
+  float t0 = max(-b - sqrt(disc), 0.0), t1 = -b + sqrt(disc);
+  float half_texel = 0.5 / float(u_res);
+  vec2 uv;
+  const int kSteps = 16;
+  float lo = t0, hi = -1.0;
+  for (int k = 0; k <= kSteps && hi < 0.0; ++k) {
+    float t = mix(t0, t1, float(k) / float(kSteps));
+    vec3 p = o + t * d - u_center;
+    uv = clamp(vec2(dot(p, right), dot(p, up)) / u_radius * 0.5 + 0.5, half_texel, 1.0 - half_texel);
+    float depth = texture(u_geometry, (vec2(f) + uv) / float(u_views)).a;
+    if (depth < 0.999 && dot(p, v) <= u_radius * (1.0 - 2.0 * depth)) hi = t; else lo = t;
+  }
+  if (hi < 0.0) return vec4(0.0);
+  for (int k = 0; k < 5; ++k) {
+    float t = 0.5 * (lo + hi);
+    vec3 p = o + t * d - u_center;
+    vec2 m = clamp(vec2(dot(p, right), dot(p, up)) / u_radius * 0.5 + 0.5, half_texel, 1.0 - half_texel);
+    float depth = texture(u_geometry, (vec2(f) + m) / float(u_views)).a;
+    if (depth < 0.999 && dot(p, v) <= u_radius * (1.0 - 2.0 * depth)) hi = t; else lo = t;
+  }
+  vec3 p = o + hi * d - u_center;
+  uv = clamp(vec2(dot(p, right), dot(p, up)) / u_radius * 0.5 + 0.5, half_texel, 1.0 - half_texel);
+  vec4 g = texture(u_geometry, (vec2(f) + uv) / float(u_views));
+  vec4 a = texture(u_albedo, (vec2(f) + uv) / float(u_views));
+  if (g.a >= 0.999) return vec4(0.0);
+  point = u_center + ((uv.x - 0.5) * 2.0 * right + (uv.y - 0.5) * 2.0 * up) * u_radius +
+          u_radius * (1.0 - 2.0 * g.a) * v;
+  normal = g.rgb * 2.0 - 1.0;
+  return a;
+}
+
+void main() {
+  vec3 o = v_eye_local;
+  float c = cos(v_ph.w), s = sin(v_ph.w);
+  mat3 rot = mat3(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0);  // heading_rotate as a matrix
+  vec3 d = normalize(transpose(rot) * (v_world - v_ph.xyz) / v_scale - o);
+  // The three frames around the view direction (centre towards the eye).
+  vec2 g = (oct_encode(normalize(o - u_center)) * 0.5 + 0.5) * float(u_views - 1);
+  ivec2 cell = clamp(ivec2(floor(g)), ivec2(0), ivec2(u_views - 2));
+  vec2 fr = g - vec2(cell);
+  ivec2 f0, f1 = cell + ivec2(1, 0), f2 = cell + ivec2(0, 1);
+  vec3 w;
+  if (fr.x + fr.y < 1.0) { f0 = cell; w = vec3(1.0 - fr.x - fr.y, fr.x, fr.y); }
+  else { f0 = cell + ivec2(1, 1); w = vec3(fr.x + fr.y - 1.0, 1.0 - fr.y, 1.0 - fr.x); }
+  vec3 p0, p1, p2, n0, n1, n2;
+  vec4 a0 = view_sample(f0, o, d, p0, n0), a1 = view_sample(f1, o, d, p1, n1), a2 = view_sample(f2, o, d, p2, n2);
+  vec3 wa = w * vec3(a0.a, a1.a, a2.a);
+  float alpha = wa.x + wa.y + wa.z;
+  if (alpha < 0.5) discard;
+  vec3 albedo = (a0.rgb * wa.x + a1.rgb * wa.y + a2.rgb * wa.z) / alpha;
+  vec3 n = n0 * wa.x + n1 * wa.y + n2 * wa.z;
+  vec3 p = (p0 * wa.x + p1 * wa.y + p2 * wa.z) / alpha;
+  vec3 world = v_ph.xyz + rot * (p * v_scale);
+  vec4 clip = u_vp * vec4(world, 1.0);
+  gl_FragDepth = clip.z / clip.w;
+  o_color = vec4(sun_lit(albedo, rot * n), 1.0);
+}
+)";
+
+glm::vec3 oct_decode(glm::vec2 g) {
+  const glm::vec2 a = glm::vec2(g.x + g.y, g.x - g.y) * 0.5f;
+  return glm::normalize(glm::vec3(a, std::max(1.f - std::abs(a.x) - std::abs(a.y), 0.f)));
+}
+
+// The view (i, j): orthographic, the bounding sphere fills the tile, depth 0
+// at the sphere's near side.
+glm::mat4 view_capture(int i, int j, int views, glm::vec3 c, float r) {
+  const glm::vec3 v = oct_decode(glm::vec2(i, j) / float(views - 1) * 2.f - 1.f);
+  const glm::vec3 ref = std::abs(v.z) > 0.999f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
+  const glm::vec3 right = glm::normalize(glm::cross(ref, v)), up = glm::cross(v, right);
+  return from_rows(glm::vec4(right / r, -glm::dot(right, c) / r), glm::vec4(up / r, -glm::dot(up, c) / r),
+                   glm::vec4(-v / (2.f * r), glm::dot(v, c) / (2.f * r) + 0.5f));
+}
+
+}  // namespace
+
+gl::Program make_octahedral_program() {
+  const std::string head = std::string("#version 450 core\n") + kObjectGlsl + kOctGlsl;
+  return gl::link_program(head + kOctVertex,
+                          std::string("#version 450 core\n") + kSunGlsl + kOctGlsl + kOctFragment);
+}
+
+}  // namespace objects
+
+objects::OctahedralImpostor& GlModel::Impl::octahedral_impostor(int res, int views) {
+  auto it = octahedral.find({res, views});
+  if (it != octahedral.end()) return it->second;
+  objects::OctahedralImpostor& o = octahedral[{res, views}];
+  o.resolution = res;
+  o.views = views;
+  const int size = res * views;
+  for (GLuint t : {o.albedo.id(), o.geometry.id()}) {
+    // Depth is never interpolated across a silhouette (it would bend the
+    // parallax off thin parts); colour and coverage are.
+    const GLint filter = t == o.albedo.id() ? GL_LINEAR : GL_NEAREST;
+    glTextureStorage2D(t, 1, GL_RGBA8, size, size);
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, filter);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  }
+  o.bytes = std::size_t(size) * size * 8;
+  gl::Texture depth(GL_TEXTURE_2D);
+  glTextureStorage2D(depth.id(), 1, GL_DEPTH_COMPONENT32F, size, size);
+  gl::Framebuffer fbo;
+  objects::GlStateGuard guard;
+  const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(fbo.id(), 2, bufs);
+  glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, o.albedo.id(), 0);
+  glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT1, o.geometry.id(), 0);
+  glNamedFramebufferTexture(fbo.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+  const float clear_albedo[4] = {0, 0, 0, 0}, clear_geometry[4] = {0.5f, 0.5f, 1, 1}, far = 1.f;
+  glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, clear_albedo);
+  glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 1, clear_geometry);
+  glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &far);
+  const glm::vec3 c = model.center();
+  const float r = float(model.bounding_radius());
+  // views^2 captures of the full mesh dominate the build; a LOD level whose
+  // error stays under a quarter texel draws the same image for less.
+  int level = 0;
+  while (level + 1 < int(chain.size()) && chain[level + 1].error_m <= 0.25 * 2.0 * r / res) ++level;
+  for (int j = 0; j < views; ++j)
+    for (int i = 0; i < views; ++i) {
+      glViewport(i * res, j * res, res, res);
+      objects::capture_view(*this, objects::view_capture(i, j, views, c, r), true, level);
+    }
+  return o;
+}
+
+void GlModel::Impl::draw_octahedral(const objects::OctahedralImpostor& o, GLsizei count, const Camera& camera) {
+  const GLuint p = octahedral_program.id();
+  glUseProgram(p);
+  const glm::mat4 vp(gl::view_projection_reversed_z(camera));
+  const glm::vec3 c = model.center();
+  glUniformMatrix4fv(glGetUniformLocation(p, "u_vp"), 1, GL_FALSE, glm::value_ptr(vp));
+  glUniform3fv(glGetUniformLocation(p, "u_center"), 1, glm::value_ptr(c));
+  glUniform1f(glGetUniformLocation(p, "u_radius"), float(model.bounding_radius()));
+  glUniform3f(glGetUniformLocation(p, "u_eye"), float(camera.position.x), float(camera.position.y),
+              float(camera.position.z));
+  glUniform1i(glGetUniformLocation(p, "u_views"), o.views);
+  glUniform1i(glGetUniformLocation(p, "u_res"), o.resolution);
+  glUniform1i(glGetUniformLocation(p, "u_albedo"), 0);
+  glUniform1i(glGetUniformLocation(p, "u_geometry"), 1);
+  glBindTextureUnit(0, o.albedo.id());
+  glBindTextureUnit(1, o.geometry.id());
+  glBindVertexArray(instance_vao.id());
+  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count);
+}
+
+}  // namespace terrasprite

@@ -1,0 +1,207 @@
+// SPDX-License-Identifier: MIT
+// Quality tables: Jehaes, Lamotte, Tack, "Objective quality selection for
+// hybrid LOD models" (GRAPP 2008), section 3.2 -- every representation
+// against the full model over a sphere of views and a range of on-screen
+// sizes, PSNR and SSIM masked to the pixels either image covers.
+#include "terrasprite/quality_table.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "gl/render_target.h"
+#include "terrasprite/error.h"
+#include "terrasprite/quality.h"
+
+namespace terrasprite {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kFovDeg = 20.0;
+constexpr double kPsnrCap = 100.0;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+void check(const TableOptions& o) {
+  if (o.kinds.empty() || o.sizes_px.empty())
+    throw InputError("objects table: no representations or no sizes to measure");
+  for (int s : o.sizes_px)
+    if (s < 16 || s > 2048) throw InputError(fmt::format("--sizes-px: {} is outside 16..2048", s));
+  if (!(o.angle_step_deg > 0 && o.angle_step_deg <= 180))
+    throw InputError(fmt::format("--angle-step: {} is outside (0, 180]", o.angle_step_deg));
+}
+
+// Image side for an on-screen size: the sphere plus a margin for SSIM's windows.
+int image_side(int size_px) { return size_px + std::max(16, size_px / 4); }
+
+/// Camera on a sphere around the model's centre at (phi, theta), far enough
+/// that the bounding sphere spans `size_px` of an image `side` pixels tall.
+Camera view_camera(const Model& m, double phi_deg, double theta_deg, int size_px, int side) {
+  const double r = m.bounding_radius();
+  const double k = double(size_px) / side * std::tan(glm::radians(kFovDeg) / 2);
+  const double dist = r * std::sqrt(1.0 + 1.0 / (k * k));
+  const double phi = glm::radians(phi_deg), elev = glm::radians(90.0 - theta_deg);
+  const glm::dvec3 c(m.center());
+  const glm::dvec3 eye = c + dist * glm::dvec3(-std::sin(phi) * std::cos(elev),
+                                               -std::cos(phi) * std::cos(elev), std::sin(elev));
+  Camera cam = Camera::look_at(eye, c, kFovDeg, 1.0, phi_deg);
+  cam.near_m = std::max(dist - 2 * r, dist * 0.05);
+  cam.far_m = dist + 2 * r;
+  return cam;
+}
+
+struct Shot {
+  Image color;
+  std::vector<std::uint8_t> covered;
+};
+
+Shot render(gl::RenderTarget& target, GlModel& model, const Representation& rep, const Camera& cam) {
+  const ObjectInstance origin;
+  target.bind_and_clear();
+  model.draw(rep, std::span(&origin, 1), cam);
+  Shot s{target.read_color(), {}};
+  const std::vector<float> depth = target.read_depth(cam.near_m, cam.far_m);
+  s.covered.resize(depth.size());
+  for (std::size_t i = 0; i < depth.size(); ++i) s.covered[i] = std::isfinite(depth[i]) ? 1 : 0;
+  return s;
+}
+
+// Median time per instance of drawing `n` instances on one spot (pipeline drained).
+double time_per_instance(gl::RenderTarget& target, GlModel& model, const Representation& rep,
+                         const Camera& cam, int n) {
+  const std::vector<ObjectInstance> same(std::size_t(std::max(n, 1)));
+  std::vector<double> ms;
+  for (int repeat = 0; repeat < 3; ++repeat) {
+    target.bind_and_clear();
+    glFinish();
+    const auto t0 = Clock::now();
+    model.draw(rep, same, cam);
+    glFinish();
+    ms.push_back(ms_since(t0) / double(same.size()));
+  }
+  std::sort(ms.begin(), ms.end());
+  return ms[1];
+}
+
+std::vector<Representation> representations(const GlModel& model, const TableOptions& o) {
+  std::vector<Representation> reps;
+  for (ObjectKind k : o.kinds) {
+    if (k == ObjectKind::kMesh) {
+      for (int l = 0; l < int(model.chain().size()); ++l) reps.push_back({k, l, 0, 0});
+    } else {
+      for (int r : o.resolutions) reps.push_back({k, 0, r, k == ObjectKind::kOctahedral ? o.views : 0});
+    }
+  }
+  return reps;
+}
+
+std::vector<std::pair<double, double>> view_angles(const TableOptions& o) {
+  std::vector<std::pair<double, double>> v;
+  const double theta_max = o.full_sphere ? 180.0 : 90.0;
+  for (double theta = 0; theta <= theta_max + 1e-9; theta += o.angle_step_deg) {
+    // Straight above (or below) every azimuth is the same view turned: one sample.
+    const bool pole = theta < 1e-9 || theta > 180.0 - 1e-9;
+    for (double phi = 0; phi < (pole ? 1e-9 : 360.0 - 1e-9); phi += o.angle_step_deg) v.emplace_back(phi, theta);
+  }
+  return v;
+}
+
+}  // namespace
+
+double RepresentationQuality::mean(const std::string& metric, int size_px) const {
+  double sum = 0;
+  int n = 0;
+  for (const QualitySample& s : samples)
+    if (s.size_px == size_px) {
+      sum += metric == "ssim" ? s.ssim : std::min(s.psnr, kPsnrCap);
+      ++n;
+    }
+  return n ? sum / n : NAN;
+}
+
+QualityTable measure_quality_table(GlModel& model, const TableOptions& o,
+                                   const std::function<void(int, int)>& progress) {
+  check(o);
+  const auto start = Clock::now();
+  const Model& m = model.model();
+  QualityTable t;
+  t.model = m.name;
+  t.triangles = (long long)m.triangles();
+  for (const Representation& rep : representations(model, o)) {
+    RepresentationQuality q;
+    q.rep = rep;
+    const auto t0 = Clock::now();
+    model.prepare(rep);
+    glFinish();
+    q.build_ms = rep.kind == ObjectKind::kMesh ? 0.0 : ms_since(t0);
+    q.triangles = model.triangles(rep);
+    q.bytes = model.bytes(rep);
+    q.error_m = rep.kind == ObjectKind::kMesh ? model.chain()[rep.level].error_m : 0.0;
+    t.representations.push_back(q);
+  }
+  const auto angles = view_angles(o);
+  const Representation full{ObjectKind::kMesh, 0};
+  int done = 0;
+  const int total = int(angles.size() * o.sizes_px.size());
+  for (int size : o.sizes_px) {
+    const int side = image_side(size);
+    gl::RenderTarget target(side, side);
+    for (auto [phi, theta] : angles) {
+      const Camera cam = view_camera(m, phi, theta, size, side);
+      const Shot ref = render(target, model, full, cam);
+      for (RepresentationQuality& q : t.representations) {
+        const Shot s = render(target, model, q.rep, cam);
+        std::vector<std::uint8_t> mask(ref.covered.size());
+        for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = ref.covered[i] | s.covered[i];
+        const double psnr = quality::psnr(ref.color.view(), s.color.view(), mask).rgb;
+        const double ssim = quality::ssim(ref.color.view(), s.color.view(), {quality::SsimMode::kWang, false, false}, mask).ssim;
+        q.samples.push_back({phi, theta, size, psnr, ssim});
+      }
+      if (progress) progress(++done, total);
+    }
+    const Camera timing_cam = view_camera(m, 30.0, 60.0, size, side);
+    for (RepresentationQuality& q : t.representations)
+      q.cost.push_back({size, time_per_instance(target, model, q.rep, timing_cam, o.timing_instances)});
+  }
+  const int middle = o.sizes_px[o.sizes_px.size() / 2];
+  for (RepresentationQuality& q : t.representations)
+    for (const SizeCost& c : q.cost)
+      if (c.size_px == middle) q.ms_per_instance = c.ms_per_instance;
+  t.table = derive_table(t.representations, o);
+  t.build_ms = ms_since(start);
+  return t;
+}
+
+std::vector<TableEntry> derive_table(const std::vector<RepresentationQuality>& reps,
+                                     const TableOptions& o) {
+  std::vector<TableEntry> out;
+  const std::pair<const char*, const std::vector<double>*> metrics[] = {{"ssim", &o.ssim_targets},
+                                                                        {"psnr", &o.psnr_targets}};
+  for (ObjectKind kind : o.kinds) {
+    // Cheapest first: impostors by rising resolution, meshes from the coarsest level.
+    std::vector<const RepresentationQuality*> order;
+    for (const RepresentationQuality& q : reps)
+      if (q.rep.kind == kind) order.push_back(&q);
+    std::sort(order.begin(), order.end(), [&](auto* a, auto* b) {
+      return kind == ObjectKind::kMesh ? a->rep.level > b->rep.level : a->rep.resolution < b->rep.resolution;
+    });
+    for (int size : o.sizes_px)
+      for (const auto& [metric, targets] : metrics)
+        for (double target : *targets) {
+          TableEntry e{kind, size, metric, target, std::nullopt};
+          for (const RepresentationQuality* q : order)
+            if (q->mean(metric, size) >= target) {
+              e.choice = kind == ObjectKind::kMesh ? q->rep.level : q->rep.resolution;
+              break;
+            }
+          out.push_back(e);
+        }
+  }
+  return out;
+}
+
+}  // namespace terrasprite

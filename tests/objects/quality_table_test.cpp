@@ -1,0 +1,101 @@
+// SPDX-License-Identifier: MIT
+// Quality tables on small sampling: identical renders score 1, quality does
+// not fall as the object shrinks on screen, Table 1 picks the cheapest, the
+// CLI writes the JSON contract and reuses its cache only for equal inputs.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "terrasprite/gl_context.h"
+#include "terrasprite/quality_table.h"
+#include "test_util.h"
+
+namespace ts = terrasprite;
+
+namespace {
+
+ts::QualityTable small_table(const ts::Model& m, ts::GlContext&) {
+  ts::GlModel gl(m, ts::build_lod_chain(m));
+  ts::TableOptions o;
+  o.kinds = {ts::ObjectKind::kMesh, ts::ObjectKind::kRelief, ts::ObjectKind::kOctahedral};
+  o.resolutions = {32, 64};
+  o.sizes_px = {100, 50};
+  o.angle_step_deg = 90;
+  o.timing_instances = 2;
+  return ts::measure_quality_table(gl, o);
+}
+
+}  // namespace
+
+TEST(QualityTable, IdenticalScoresOneAndQualityHoldsAsSizeShrinks) {
+  const std::string data = tstest::shared_data();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
+  ts::GlContext ctx;
+  ts::ModelOptions mo;
+  mo.height_m = 1.0;
+  const ts::Model m = ts::load_model(data + "/models_scans/teapot.obj", mo);
+  const ts::QualityTable t = small_table(m, ctx);
+  ASSERT_FALSE(t.representations.empty());
+  const ts::RepresentationQuality& full = t.representations[0];
+  ASSERT_EQ(full.rep.kind, ts::ObjectKind::kMesh);
+  ASSERT_EQ(full.rep.level, 0);
+  for (const ts::QualitySample& s : full.samples) {
+    EXPECT_DOUBLE_EQ(s.ssim, 1.0);
+    EXPECT_TRUE(std::isinf(s.psnr));
+  }
+  // theta 0 (once) and 90 x 4 phi views, at 2 sizes.
+  EXPECT_EQ(full.samples.size(), 10u);
+  // A fixed representation does not get worse when drawn smaller (tolerance
+  // 0.03 SSIM: nearest-texel impostors alias a little at small sizes).
+  for (const ts::RepresentationQuality& q : t.representations) {
+    EXPECT_GE(q.mean("ssim", 50), q.mean("ssim", 100) - 0.03) << ts::object_kind_name(q.rep.kind) << " "
+                                                                << q.rep.level << " " << q.rep.resolution;
+    EXPECT_GT(q.ms_per_instance, 0.0);
+    EXPECT_GT(q.bytes, 0u);
+  }
+  // More texels never hurt much; a finer mesh level beats a coarser one.
+  auto find = [&](ts::ObjectKind k, int res) {
+    for (const auto& q : t.representations)
+      if (q.rep.kind == k && q.rep.resolution == res) return q.mean("ssim", 100);
+    return double(NAN);
+  };
+  EXPECT_GT(find(ts::ObjectKind::kRelief, 64), find(ts::ObjectKind::kRelief, 32));
+  EXPECT_GT(find(ts::ObjectKind::kOctahedral, 64), find(ts::ObjectKind::kOctahedral, 32));
+  EXPECT_GT(t.representations[1].mean("ssim", 100), t.representations[4].mean("ssim", 100));
+  // Table 1: level 0 always reaches SSIM 0.99, so pm always has an answer.
+  for (const ts::TableEntry& e : t.table)
+    if (e.kind == ts::ObjectKind::kMesh) {
+      EXPECT_TRUE(e.choice.has_value());
+    }
+}
+
+TEST(QualityTable, CliJsonContractAndCache) {
+  const std::string data = tstest::shared_data();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
+  tstest::TempDir dir;
+  const std::string args = "objects table --model " + data +
+                           "/models_kenney_nature/tree_oak_fall.glb --height-m 3 --kinds pm,relief,octahedral "
+                           "--resolutions 16 --sizes-px 64 --angle-step 120 --cache " + (dir / "cache");
+  const tstest::CliResult first = tstest::run_cli(args + " --json " + (dir / "a.json") + " --out " + (dir / "a"));
+  ASSERT_EQ(first.status, 0) << first.output;
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "a.json"));
+  for (const char* k : {"model", "triangles", "representations", "table"}) EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_FALSE(j["cached"].get<bool>());
+  for (const auto& r : j["representations"]) {
+    for (const char* k : {"kind", "triangles", "bytes", "ms_per_instance", "samples"}) EXPECT_TRUE(r.contains(k)) << k;
+    EXPECT_TRUE(r.contains(r["kind"] == "pm" ? "level" : "resolution"));
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir / "a/table1.md"));
+  // Same inputs: read from the cache. Another parameter: measured again.
+  const tstest::CliResult second = tstest::run_cli(args + " --json " + (dir / "b.json") + " --out " + (dir / "b"));
+  ASSERT_EQ(second.status, 0) << second.output;
+  EXPECT_TRUE(nlohmann::json::parse(std::ifstream(dir / "b.json"))["cached"].get<bool>());
+  const tstest::CliResult third = tstest::run_cli(args + " --views 6 --json " + (dir / "c.json") + " --out " + (dir / "c"));
+  ASSERT_EQ(third.status, 0) << third.output;
+  EXPECT_FALSE(nlohmann::json::parse(std::ifstream(dir / "c.json"))["cached"].get<bool>());
+  // Bad option values: exit 2 with one line.
+  const tstest::CliResult bad = tstest::run_cli(args + " --resolutions 8 --out " + (dir / "d"));
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "d"));
+}

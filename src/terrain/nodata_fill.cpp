@@ -22,7 +22,7 @@
 namespace terrasprite {
 namespace {
 
-constexpr int kCoarsestSide = 16;        // below this a level is solved directly
+constexpr int kCoarsestSide = 16;        // a level no larger a side is solved directly
 constexpr double kOmega = 1.0;           // relaxation factor (AMLE is nonlinear: no over-relaxation)
 constexpr int kSweepsPerLevel = 200;     // most relaxations on a level with a coarse guess
 constexpr int kCoarsestSweeps = 4000;    // on the coarsest level (no guess)
@@ -129,7 +129,7 @@ std::vector<int> holes_of(const Level& l) {
 void solve(Level& l) {
   const std::vector<int> holes = holes_of(l);
   if (holes.empty()) return;
-  if (std::min(l.w, l.h) <= kCoarsestSide) {
+  if (std::max(l.w, l.h) <= kCoarsestSide) {  // max: a 16 x 12304 strip must coarsen too
     relax(l, holes, kCoarsestSweeps);
     return;
   }

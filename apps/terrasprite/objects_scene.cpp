@@ -40,26 +40,34 @@ double median(std::vector<double> v) {
 }  // namespace
 
 void add_objects_scene(CLI::App& objects) {
-  auto* cmd = objects.add_subcommand("scene", "a scene's objects on the terrain at full geometry: frame time, image");
+  auto* cmd = objects.add_subcommand(
+      "scene", "a scene's objects on the terrain at full geometry: frame time, image");
   struct Opts {
     TerrainOptions terrain;
-    std::string scene, models_dir = "../shared/data", size = "1280x720", json, out = "out/objects_scene";
+    std::string scene, models_dir = "../shared/data", size = "1280x720", json,
+                       out = "out/objects_scene";
     int frames = 5;
   };
   auto o = std::make_shared<Opts>();
   add_terrain_options(*cmd, o->terrain);
-  cmd->add_option("--scene", o->scene, "scene file (JSON); default: the built-in 400-instance scene");
-  cmd->add_option("--models-dir", o->models_dir, "where the default scene's models are")->capture_default_str();
+  cmd->add_option("--scene", o->scene,
+                  "scene file (JSON); default: the built-in 400-instance scene");
+  cmd->add_option("--models-dir", o->models_dir, "where the default scene's models are")
+      ->capture_default_str();
   cmd->add_option("--size", o->size, "image size WxH")->capture_default_str();
-  cmd->add_option("--frames", o->frames, "timed frames (median reported)")->capture_default_str()->check(CLI::Range(1, 1000));
+  cmd->add_option("--frames", o->frames, "timed frames (median reported)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
   cmd->add_option("--json", o->json, "write the figures as JSON");
-  cmd->add_option("--out", o->out, "output directory (frame.png, scene.json)")->capture_default_str();
+  cmd->add_option("--out", o->out, "output directory (frame.png, scene.json)")
+      ->capture_default_str();
   cmd->callback([o] {
     auto [w, h] = parse_size(o->size, "--size");
     check_outputs(o->out, {o->json});
     const Terrain terrain = load_terrain_verbose(o->terrain);
-    const ObjectScene scene = o->scene.empty() ? default_object_scene(o->models_dir, terrain.heights)
-                                               : load_object_scene(o->scene, terrain.heights);
+    const ObjectScene scene = o->scene.empty()
+                                  ? default_object_scene(o->models_dir, terrain.heights)
+                                  : load_object_scene(o->scene, terrain.heights);
     OutputDir out(o->out, output_policy());
     GlContext gl;
     Scene ground(terrain);
@@ -106,10 +114,14 @@ void add_objects_scene(CLI::App& objects) {
     write_json(j, out.file("scene.json"));
     if (!o->json.empty()) write_json(j, o->json);
     out.commit();
-    fmt::print("{} instances of {} models, {} triangles at full geometry, on {} terrain triangles\n",
-               objects.instance_count(), objects.model_count(), objects.full_triangles(), terrain_triangles);
-    fmt::print("full renderer: median frame {:.1f} ms with the objects, {:.1f} ms terrain alone, at {}x{} on {}\n",
-               median(total_ms), median(terrain_ms), w, h, gl.renderer());
+    fmt::print(
+        "{} instances of {} models, {} triangles at full geometry, on {} terrain triangles\n",
+        objects.instance_count(), objects.model_count(), objects.full_triangles(),
+        terrain_triangles);
+    fmt::print(
+        "full renderer: median frame {:.1f} ms with the objects, {:.1f} ms terrain alone, at {}x{} "
+        "on {}\n",
+        median(total_ms), median(terrain_ms), w, h, gl.renderer());
   });
 }
 

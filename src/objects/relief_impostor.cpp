@@ -145,8 +145,10 @@ glm::mat4 face_capture(int face, glm::vec3 lo, glm::vec3 hi) {
   glm::vec4 rs(0.f), rt(0.f), rd(0.f);
   rs[u] = 2.f / ext[u], rs.w = -2.f * lo[u] / ext[u] - 1.f;
   rt[v] = 2.f / ext[v], rt.w = -2.f * lo[v] / ext[v] - 1.f;
-  if (face % 2 == 0) rd[a] = -1.f / ext[a], rd.w = hi[a] / ext[a];
-  else rd[a] = 1.f / ext[a], rd.w = -lo[a] / ext[a];
+  if (face % 2 == 0)
+    rd[a] = -1.f / ext[a], rd.w = hi[a] / ext[a];
+  else
+    rd[a] = 1.f / ext[a], rd.w = -lo[a] / ext[a];
   return from_rows(rs, rt, rd);
 }
 
@@ -198,7 +200,8 @@ objects::ReliefImpostor& GlModel::Impl::relief_impostor(int res) {
   return r;
 }
 
-void GlModel::Impl::draw_relief(const objects::ReliefImpostor& r, GLsizei count, const Camera& camera) {
+void GlModel::Impl::draw_relief(const objects::ReliefImpostor& r, GLsizei count,
+                                const Camera& camera) {
   const GLuint p = relief_program.id();
   glUseProgram(p);
   glm::vec3 lo, hi;

@@ -33,7 +33,7 @@ void BM_ColumnMarch(benchmark::State& state) {
   MarchSettings s;
   s.multires = multires;
   s.pixel_angle = 60.0 * 3.14159265358979323846 / 180.0 / 1080.0;
-  ColumnMarcher marcher(voxels().data(), eye, s);
+  ColumnMarcher marcher(voxels(), eye, s);
   std::vector<double> slopes(1080);
   for (int i = 0; i < 1080; ++i) slopes[i] = -0.6 + 0.6 * i / 1080.0;
   std::vector<MarchHit> hits(slopes.size());

@@ -51,6 +51,11 @@ inline CliResult run_cli(const std::string& args) {
   return run_shell(std::string(TS_CLI) + " " + args);
 }
 
+/// Runs the built CLI under a wrapper command (e.g. "xvfb-run -a").
+inline CliResult run_cli_prefixed(const std::string& prefix, const std::string& args) {
+  return run_shell(prefix + " " + std::string(TS_CLI) + " " + args);
+}
+
 /// run_cli with `dir` as the working directory.
 inline CliResult run_cli_in(const std::string& dir, const std::string& args) {
   return run_shell("cd '" + dir + "' && " + std::string(TS_CLI) + " " + args);

@@ -11,5 +11,7 @@ void add_bench_render(CLI::App& bench);
 void add_bench_voxel(CLI::App& bench);
 /// bench lodsprite: the LOD-sprite paper's reproduction.
 void add_bench_lodsprite(CLI::App& bench);
+/// bench warp: post-render warp quality (vs true renders) and cost per method.
+void add_bench_warp(CLI::App& bench);
 
 }  // namespace terrasprite::cli

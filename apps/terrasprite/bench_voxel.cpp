@@ -111,9 +111,9 @@ void run(const BenchVoxelOpts& o) {
   std::vector<int> sizes;
   if (!o.terrain_sizes.empty() && o.terrain_sizes != "none")
     for (double s : parse_list(o.terrain_sizes, "--terrain-sizes")) {
-      if (s < 2 || s > 16385 || s != std::floor(s))
+      if (s < 2 || s > 8193 || s != std::floor(s))  // the synthetic terrain's bound
         throw InputError(
-            fmt::format("--terrain-sizes {}: sizes must be whole, 2..16385", o.terrain_sizes));
+            fmt::format("--terrain-sizes {}: sizes must be whole, 2..8193", o.terrain_sizes));
       sizes.push_back(int(s));
     }
   const int tmax = *std::max_element(threads.begin(), threads.end());

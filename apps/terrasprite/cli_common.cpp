@@ -18,6 +18,28 @@
 
 namespace terrasprite::cli {
 
+std::string with_option_names(const std::string& message) {
+  // Value names of the library's options structs -> the CLI options that set them.
+  static const std::pair<const char*, const char*> kNames[] = {
+      {"dem", "--dem"},
+      {"synthetic_size", "--synthetic-size"},
+      {"erosion_passes", "--erosion"},
+      {"z_scale", "--z-scale"},
+      {"exaggeration", "--exaggeration"},
+      {"spacing_m", "--spacing"},
+      {"resample", "--resample"},
+      {"frames", "--frames"},
+      {"lod_quads", "--lod-quads"},
+      {"threshold_px", "--threshold"},
+      {"pixel_voxel_ratio", "--pixel-voxel-ratio"},
+  };
+  for (const auto& [value, option] : kNames) {
+    const std::string prefix = std::string(value) + " ";
+    if (message.rfind(prefix, 0) == 0) return option + message.substr(std::string(value).size());
+  }
+  return message;
+}
+
 void add_terrain_options(CLI::App& cmd, TerrainOptions& o) {
   cmd.add_option_function<std::string>(
       "--dem",

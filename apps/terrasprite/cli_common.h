@@ -11,6 +11,11 @@
 
 namespace terrasprite::cli {
 
+/// The library names values as its options structs do ("lod_quads 0: must
+/// be at least 1"); a message that starts with such a name gets the CLI
+/// option that sets it instead ("--lod-quads 0: ..."). Others pass unchanged.
+std::string with_option_names(const std::string& library_message);
+
 /// --dem --texture --z-scale --spacing --nodata --encoding --exaggeration
 /// --resample --seed --synthetic-size --erosion
 void add_terrain_options(CLI::App& cmd, TerrainOptions& o);

@@ -11,6 +11,7 @@ void add_bench(CLI::App& app) {
   add_bench_render(*bench);
   add_bench_voxel(*bench);
   add_bench_lodsprite(*bench);
+  add_bench_warp(*bench);
 }
 
 }  // namespace terrasprite::cli

@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "lodsprite_run.h"
 #include "terrasprite/output_dir.h"
+#include "terrasprite/video_writer.h"
 
 namespace terrasprite::cli {
 
@@ -39,10 +40,14 @@ void add_demo(CLI::App& app) {
     c.lod_sweep = {8, 16, 32};
     c.sweep_score_every = 4;
     c.flip = false;  // FLIP is the slowest score; the bench has it
+    VideoWriter video(out.file("flythrough.mp4"), w, h);  // the flight at 30 fps
+    c.video = "flythrough.mp4";
     c.on_sprite_frame = [&](int i, const Frame& f) {
       save_png(f.color, out.file(fmt::format("frames/frame_{:04d}.png", i)));
+      video.push(f.color);
     };
     nlohmann::json report = run_lodsprite(c, terrain, out, "demo");
+    video.finish();
     nlohmann::json frames = nlohmann::json::array();
     for (const auto& p : report["per_frame"])
       frames.push_back({{"frame", p["frame"]},

@@ -3,7 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <memory>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
 
 #include "cli_common.h"
 #include "commands.h"
@@ -12,6 +17,9 @@
 #include "terrasprite/error.h"
 #include "terrasprite/flythrough.h"
 #include "terrasprite/output_dir.h"
+#include "terrasprite/warp_renderer.h"
+#include "terrasprite/output_file.h"
+#include "terrasprite/video_writer.h"
 
 namespace terrasprite::cli {
 namespace {
@@ -27,7 +35,40 @@ struct RenderOpts {
   bool depth = false;
   bool lighting = false;
   std::string json;
+  std::string warp;  // empty: every frame real
+  int real_every = 4;
+  double warp_margin = 0.05;
+  // Video and frame range
+  std::string video;
+  VideoOptions video_opts;
+  bool frames_png = false;
+  bool no_images = false;
+  std::string frame_range;
 };
+
+/// "A:B" -> [A, B) within [0, frames]; empty text: the whole run.
+std::pair<int, int> parse_frame_range(const std::string& text, int frames) {
+  if (text.empty()) return {0, frames};
+  int a = 0, b = 0;
+  char colon = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &a, &colon, &b, &extra) != 3 || colon != ':')
+    throw InputError(fmt::format("--frame-range {}: expected A:B (frames A to B-1)", text));
+  if (a < 0 || b <= a || b > frames)
+    throw InputError(fmt::format(
+        "--frame-range {}: need 0 <= A < B <= --frames ({})", text, frames));
+  return {a, b};
+}
+
+/// Refuses to replace a file the user did not ask us to replace (a video is
+/// never recognisably ours, so an existing one needs --overwrite).
+void check_video_target(const RenderOpts& o) {
+  if (o.video.empty()) return;
+  validate_video_options(o.video_opts);
+  if (std::filesystem::exists(o.video) && !output_policy().overwrite)
+    throw InputError(fmt::format("--video {}: file exists (pass --overwrite to replace it)",
+                                 o.video));
+  check_output_file(o.video, output_policy());
+}
 
 // Linear depth as 16-bit PNG: value = metres / m_per_unit, sky = 65535.
 void save_depth(const Frame& f, double m_per_unit, const std::string& file) {
@@ -41,31 +82,76 @@ void save_depth(const Frame& f, double m_per_unit, const std::string& file) {
 
 void run(const RenderOpts& o) {
   // Validate everything before any output exists.
-  if (o.out.empty()) throw InputError("--out: an output directory is required");
+  if (o.out.empty() && o.video.empty())
+    throw InputError("--out: an output directory is required (or --video FILE.mp4)");
+  if (o.out.empty() && (o.frames_png || o.depth))
+    throw InputError("--out: --frames-png and --depth need an output directory");
   auto [w, h] = parse_size(o.size, "--size");
   if (o.frames < 1 || o.frames > 1000000)
     throw InputError(fmt::format("--frames {}: must be between 1 and 1000000", o.frames));
+  const auto [first, last] = parse_frame_range(o.frame_range, o.frames);
   check_outputs(o.out, {o.json});
+  check_video_target(o);
   Terrain terrain = load_terrain_verbose(o.terrain);
   std::vector<Camera> path = make_path(o.path, terrain.heights, o.frames, double(w) / h);
-  RenderStack stack = make_render_stack(o.mode, terrain, w, h, o.lod_quads, o.lighting);
+  std::optional<WarpMethod> warp;
+  if (!o.warp.empty()) warp = parse_warp_method(o.warp);
+  if (o.real_every < 1)
+    throw InputError(fmt::format("--real-every {}: must be at least 1", o.real_every));
+  if (!(o.warp_margin >= 0 && o.warp_margin <= 1))
+    throw InputError(fmt::format("--warp-margin {}: must be within 0..1", o.warp_margin));
+  // With --warp the real renderer draws a margin around the image (a wider
+  // field of view at the same pixel density) that the warp can read.
+  const int mx = warp ? int(std::lround(o.warp_margin * w)) : 0;
+  const int my = warp ? int(std::lround(o.warp_margin * h)) : 0;
+  RenderStack stack =
+      make_render_stack(o.mode, terrain, w + 2 * mx, h + 2 * my, o.lod_quads, o.lighting);
+  std::unique_ptr<WarpScheduler> scheduler;
+  if (warp) {
+    WarpScheduleOptions so;
+    so.real_every = o.real_every;
+    so.margin_x = mx;
+    so.margin_y = my;
+    so.warp.method = *warp;
+    scheduler = std::make_unique<WarpScheduler>(*stack.renderer, w, h, so);
+  }
+  Renderer& renderer = scheduler ? *scheduler : *stack.renderer;
   double far_max = 1.0;
   for (const Camera& c : path) far_max = std::max(far_max, c.far_m);
   const double m_per_unit = far_max / 65534.0;
+  if (o.mode == "sprite" && first > 0)
+    fmt::print(stderr, "note: --frame-range {}: LOD-sprite starts the range with a keyframe\n",
+               o.frame_range);
 
-  OutputDir out(o.out, output_policy());
+  std::optional<OutputDir> out;
+  if (!o.out.empty()) out.emplace(o.out, output_policy());
+  const bool png = !o.no_images && (o.video.empty() || o.frames_png);
+  std::optional<VideoWriter> video;
+  if (!o.video.empty()) {
+    video.emplace(o.video, w, h, o.video_opts);
+    if (video->padded())
+      fmt::print(stderr, "note: --video {}: {}x{} padded to {}x{} (H.264 4:2:0 needs even sizes)\n",
+                 o.video, w, h, video->encoded_width(), video->encoded_height());
+  }
   Progress progress("render");
+  const auto t0 = std::chrono::steady_clock::now();
   auto stats = fly(
-      *stack.renderer, path, o.depth ? ReadBack::kColorDepth : ReadBack::kColor,
-      [&](int i, const Frame& f) {
-        save_png(f.color, out.file(fmt::format("frame_{:04d}.png", i)));
-        if (o.depth) save_depth(f, m_per_unit, out.file(fmt::format("depth_{:04d}.png", i)));
+      renderer, std::span(path).subspan(first, last - first),
+      o.depth ? ReadBack::kColorDepth : ReadBack::kColor,
+      [&](int local, const Frame& f) {
+        const int i = first + local;
+        if (png) save_png(f.color, out->file(fmt::format("frame_{:04d}.png", i)));
+        if (o.depth) save_depth(f, m_per_unit, out->file(fmt::format("depth_{:04d}.png", i)));
+        if (video) video->push(f.color);
       },
       std::ref(progress));
+  if (video) video->finish();
+  const double wall_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   nlohmann::json frames = nlohmann::json::array();
   std::vector<double> ms;
   for (const auto& s : stats) {
-    frames.push_back({{"frame", s.frame},
+    frames.push_back({{"frame", first + s.frame},
                       {"class", s.cls},
                       {"ms", s.ms},
                       {"gpu_ms", s.gpu_ms},
@@ -74,17 +160,33 @@ void run(const RenderOpts& o) {
   }
   nlohmann::json j = {{"gl_renderer", stack.device},
                       {"mode", o.mode},
+                      {"warp", warp ? nlohmann::json(to_string(*warp)) : nlohmann::json(nullptr)},
+                      {"real_every", warp ? o.real_every : 1},
+                      {"warp_margin_px", {mx, my}},
                       {"size", {w, h}},
                       {"terrain", terrain_json(terrain)},
                       {"path", o.path},
                       {"median_ms", median(ms)},
+                      {"wall_ms", wall_ms},
+                      {"frame_range", {first, last}},
                       {"frames", frames}};
   if (o.depth) j["depth_m_per_unit"] = m_per_unit;
-  write_json(j, out.file("stats.json"));  // JSON last: the directory is complete
-  out.commit();
+  if (video)
+    j["video"] = {{"file", o.video},
+                  {"frames", video->frames()},
+                  {"fps", o.video_opts.fps},
+                  {"crf", o.video_opts.crf},
+                  {"preset", o.video_opts.preset},
+                  {"size", {video->encoded_width(), video->encoded_height()}},
+                  {"padded", video->padded()}};
+  if (out) {
+    write_json(j, out->file("stats.json"));  // JSON last: the directory is complete
+    out->commit();
+  }
   if (!o.json.empty()) write_json(j, o.json);
-  fmt::print("{}: {} frames {}x{} ({}), median {:.2f} ms/frame on {} -> {}\n", o.mode, stats.size(),
-             w, h, terrain.heights.name, median(ms), stack.device, out.final_path().string());
+  fmt::print("{}: {} frames {}x{} ({}), median {:.2f} ms/frame, {:.0f} ms in all on {} -> {}\n",
+             o.mode, stats.size(), w, h, terrain.heights.name, median(ms), wall_ms, stack.device,
+             out ? out->final_path().string() : o.video);
 }
 
 }  // namespace
@@ -97,7 +199,7 @@ void add_render(CLI::App& app) {
   cmd->add_option("--mode", o->mode, "renderer")->check(CLI::IsMember(render_modes()));
   cmd->add_option("--lod-quads", o->lod_quads,
                   "coarse grid quads per side for lod modes (default 16)");
-  cmd->add_option("--path", o->path, "'paper' or a JSON path file");
+  cmd->add_option("--path", o->path, "'paper', 'low-fast' or a JSON path file");
   cmd->add_option("--frames", o->frames, "frames along the path (default 460)");
   cmd->add_option("--size", o->size, "image size WxH (default 512x512)");
   // Checked in run(), so a parse error (e.g. an unknown option) is reported first.
@@ -108,6 +210,24 @@ void add_render(CLI::App& app) {
       "--lighting", o->lighting,
       "simple sun lighting on top of the texture (off: the derived texture is hillshaded)");
   cmd->add_option("--json", o->json, "also write the stats JSON here");
+  cmd->add_option("--warp", o->warp,
+                  "warp frames between real ones: poly2 (2D polynomial) or depth (3D reprojection)")
+      ->check(CLI::IsMember({"poly2", "depth"}));
+  cmd->add_option("--real-every", o->real_every,
+                  "with --warp: render every K-th frame for real, warp the rest (default 4)");
+  cmd->add_option("--warp-margin", o->warp_margin,
+                  "with --warp: real frames drawn this fraction wider on each side (default 0.05)");
+  cmd->add_option("--video", o->video,
+                  "also write an H.264 MP4 (yuv420p, +faststart) through ffmpeg; PNG frames then "
+                  "only with --frames-png");
+  cmd->add_option("--fps", o->video_opts.fps, "video frame rate (default 30)");
+  cmd->add_option("--crf", o->video_opts.crf, "x264 constant rate factor 0..51 (default 18)");
+  cmd->add_option("--preset", o->video_opts.preset, "x264 preset (default veryfast)");
+  cmd->add_flag("--frames-png", o->frames_png, "with --video, keep writing PNG frames too");
+  cmd->add_flag("--no-images", o->no_images, "write no PNG frames (stats only; for timing)");
+  cmd->add_option("--frame-range", o->frame_range,
+                  "render only frames A to B-1 of the --frames run (A:B), for splitting a long "
+                  "run across machines");
   cmd->callback([o] { run(*o); });
 }
 

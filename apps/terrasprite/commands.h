@@ -12,6 +12,9 @@ void add_compare(CLI::App& app);
 void add_demo(CLI::App& app);
 /// `objects info|table`: an object model, its representations and quality tables.
 void add_objects(CLI::App& app);
+#ifdef TS_HAVE_VIEWER
+void add_view(CLI::App& app);
+#endif
 /// `bench` groups the benchmarks; each adds itself under it.
 void add_bench(CLI::App& app);
 

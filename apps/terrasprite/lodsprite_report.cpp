@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -31,52 +32,54 @@ std::string flip_text(const nlohmann::json& v) {
 }
 
 const char* kPlots = R"GP(set terminal pngcairo size 900,420 font "sans,10"
+# Columns by the names in each .dat file's header row, never by number.
+set datafile columnheaders
 set grid
 set key outside right top
 set output 'fig08_error.png'
 set title "Error per frame against the keyframe in use (paper Fig. 8)"
 set xlabel "frame"; set ylabel "RMS error (pixels)"
-plot 'per_frame.dat' u 1:6 w l lw 1.5 t 'paper metric (Eq. 1-2)', \
-     '' u 1:7 w l lw 1.5 t 'exact reprojection', \
-     '' u 1:($2==1 ? $THRESHOLD_COL : 1/0) w p pt 7 ps 0.8 lc rgb 'red' t 'keyframe (trigger value)', \
+plot 'per_frame.dat' u "frame":"error_px" w l lw 1.5 t 'paper metric (Eq. 1-2)', \
+     '' u "frame":"error_px_exact" w l lw 1.5 t 'exact reprojection', \
+     '' u "frame":(column("is_key")==1 ? column("THRESHOLD_COL") : 1/0) w p pt 7 ps 0.8 lc rgb 'red' t 'keyframe (trigger value)', \
      THRESHOLD w l dt 2 lc rgb 'black' t 'threshold'
 set output 'fig09_time.png'
 set title "Time per frame by class (paper Fig. 9)"
 set ylabel "ms (log)"; set logscale y
-plot 'per_frame.dat' u 1:4 w l lc rgb '#888888' t 'full resolution', \
-     '' u 1:5 w l lc rgb '#2a9d8f' t 'plain LOD', \
-     '' u 1:($2==1 ? $3 : 1/0) w p pt 7 ps 0.8 lc rgb 'red' t 'LOD-sprite: key', \
-     '' u 1:($2==0 ? $3 : 1/0) w p pt 7 ps 0.4 lc rgb 'blue' t 'LOD-sprite: sprite'
+plot 'per_frame.dat' u "frame":"full_ms" w l lc rgb '#888888' t 'full resolution', \
+     '' u "frame":"lod_ms" w l lc rgb '#2a9d8f' t 'plain LOD', \
+     '' u "frame":(column("is_key")==1 ? column("ms") : 1/0) w p pt 7 ps 0.8 lc rgb 'red' t 'LOD-sprite: key', \
+     '' u "frame":(column("is_key")==0 ? column("ms") : 1/0) w p pt 7 ps 0.4 lc rgb 'blue' t 'LOD-sprite: sprite'
 unset logscale y
 set output 'fig10_keyframes_vs_frames.png'
 set title "Keyframe fraction against frame count (paper Fig. 10)"
 set xlabel "frames along the same path (log)"; set ylabel "keyframe fraction"; set logscale x
-plot 'frames.dat' u 1:3 w lp pt 7 lw 1.5 t 'keyframes / frames'
+plot 'frames.dat' u "frames":"keyframe_fraction" w lp pt 7 lw 1.5 t 'keyframes / frames'
 set output 'fig11_keyframes_vs_threshold.png'
 set title "Keyframe fraction against threshold (paper Fig. 11)"
 set xlabel "threshold (pixels, log)"
-plot 'threshold.dat' u 1:3 w lp pt 7 lw 1.5 t 'keyframes / frames'
+plot 'threshold.dat' u "threshold_px":"keyframe_fraction" w lp pt 7 lw 1.5 t 'keyframes / frames'
 set output 'fig12_speedup_vs_threshold.png'
 set title "Speed-up over full resolution against threshold (paper Fig. 12)"
 set ylabel "speed-up (total full / total LOD-sprite)"
-plot 'threshold.dat' u 1:4 w lp pt 7 lw 1.5 t 'measured (totals)', '' u 1:6 w lp pt 5 lw 1.5 t 'from per-class medians'
+plot 'threshold.dat' u "threshold_px":"speedup" w lp pt 7 lw 1.5 t 'measured (totals)', '' u "threshold_px":"speedup_from_medians" w lp pt 5 lw 1.5 t 'from per-class medians'
 set output 'lod_sweep.png'
 set title "Coarse mesh size at the chosen threshold"
 set xlabel "coarse quads per side (log)"; set ylabel "speed-up"; set y2label "mean SSIM"; set y2tics; set ytics nomirror
-plot 'lod.dat' u 1:3 w lp pt 7 lw 1.5 t 'speed-up (totals)', '' u 1:5 w lp pt 6 lw 1.5 t 'speed-up (medians)', '' u 1:4 axes x1y2 w lp pt 5 lw 1.5 t 'mean SSIM'
+plot 'lod.dat' u "lod_quads":"speedup" w lp pt 7 lw 1.5 t 'speed-up (totals)', '' u "lod_quads":"speedup_from_medians" w lp pt 6 lw 1.5 t 'speed-up (medians)', '' u "lod_quads":"mean_ssim" axes x1y2 w lp pt 5 lw 1.5 t 'mean SSIM'
 unset logscale x; unset y2tics; unset y2label; set ytics mirror
 set output 'quality_ssim.png'
 set title "SSIM per frame against full resolution"
 set xlabel "frame"; set ylabel "SSIM"
-plot 'per_frame.dat' u 1:9 w l lw 1.5 t 'LOD-sprite', '' u 1:12 w l lw 1.5 t 'plain LOD'
+plot 'per_frame.dat' u "frame":"ssim" w l lw 1.5 t 'LOD-sprite', '' u "frame":"lod_ssim" w l lw 1.5 t 'plain LOD'
 set output 'quality_psnr.png'
 set title "PSNR per frame against full resolution (keyframes capped)"
 set ylabel "PSNR (dB)"
-plot 'per_frame.dat' u 1:8 w l lw 1.5 t 'LOD-sprite', '' u 1:11 w l lw 1.5 t 'plain LOD'
+plot 'per_frame.dat' u "frame":"psnr" w l lw 1.5 t 'LOD-sprite', '' u "frame":"lod_psnr" w l lw 1.5 t 'plain LOD'
 set output 'quality_flip.png'
 set title "Mean FLIP per frame against full resolution"
 set ylabel "FLIP"
-plot 'per_frame.dat' u 1:10 w l lw 1.5 t 'LOD-sprite', '' u 1:13 w l lw 1.5 t 'plain LOD'
+plot 'per_frame.dat' u "frame":"flip" w l lw 1.5 t 'LOD-sprite', '' u "frame":"lod_flip" w l lw 1.5 t 'plain LOD'
 )GP";
 
 std::string row(const std::string& name, const std::string& value) {
@@ -110,15 +113,15 @@ void write_lodsprite_report(const nlohmann::json& j, OutputDir& out) {
     ld << fmt::format("{} {} {} {} {}\n", int(t["lod_quads"]), int(t["keyframes"]),
                       num(t["speedup"]), num(t["mean_ssim"]), num(t["speedup_from_medians"]));
   write_text(out.file("per_frame.dat"),
-             "# frame is_key ms full_ms lod_ms error_px error_px_exact psnr ssim flip lod_psnr "
+             "frame is_key ms full_ms lod_ms error_px error_px_exact psnr ssim flip lod_psnr "
              "lod_ssim lod_flip fallback_fraction\n" +
                  pf.str());
   write_text(out.file("threshold.dat"),
-             "# threshold_px keyframes keyframe_fraction speedup mean_ssim speedup_from_medians\n" +
+             "threshold_px keyframes keyframe_fraction speedup mean_ssim speedup_from_medians\n" +
                  th.str());
-  write_text(out.file("frames.dat"), "# frames keyframes keyframe_fraction\n" + fr.str());
+  write_text(out.file("frames.dat"), "frames keyframes keyframe_fraction\n" + fr.str());
   write_text(out.file("lod.dat"),
-             "# lod_quads keyframes speedup mean_ssim speedup_from_medians\n" + ld.str());
+             "lod_quads keyframes speedup mean_ssim speedup_from_medians\n" + ld.str());
   std::string gp = kPlots;
   const bool paper = j["metric"] == "paper";
   auto replace_all = [&](const std::string& from, const std::string& to) {
@@ -126,7 +129,7 @@ void write_lodsprite_report(const nlohmann::json& j, OutputDir& out) {
          at = gp.find(from, at + to.size()))
       gp.replace(at, from.size(), to);
   };
-  replace_all("$THRESHOLD_COL", paper ? "$6" : "$7");
+  replace_all("THRESHOLD_COL", paper ? "error_px" : "error_px_exact");
   replace_all("THRESHOLD", fmt::format("{}", num(j["threshold_px"])));
   write_text(out.file("plots.gp"), gp);
   const std::string plot_error = run_gnuplot(out.partial().string(), "plots.gp");
@@ -158,6 +161,11 @@ void write_lodsprite_report(const nlohmann::json& j, OutputDir& out) {
       int(j["terrain"]["samples"][1]), j["terrain"]["texture"].get<std::string>(), int(j["frames"]),
       int(j["size"][0]), int(j["size"][1]), int(j["lod_quads"]), int(j["lod_quads"]),
       num(j["threshold_px"]), j["metric"].get<std::string>(), j["gl_renderer"].get<std::string>());
+  if (j.contains("video"))
+    h << fmt::format(
+        "<h2>The flight</h2><p><video src='{0}' controls loop muted width='{1}'></video><br>"
+        "LOD-sprite frames, H.264 (<a href='{0}'>{0}</a>)</p>\n",
+        j["video"].get<std::string>(), std::min(int(j["size"][0]), 1024));
   h << "<h2>Summary</h2><table>\n";
   h << row("speed-up (total full / total LOD-sprite)",
            fmt::format("<b>{:.2f}x</b> (paper: 12.32x)", num(j["speedup"])));

@@ -424,6 +424,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
       {"lod_sweep", lod_sweep},
       {"figures", figures},
       {"per_frame", per_frame}};
+  if (!cfg.video.empty()) j["video"] = cfg.video;
   write_lodsprite_report(j, out);
   return j;
 }

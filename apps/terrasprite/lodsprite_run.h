@@ -32,6 +32,9 @@ struct LodspriteConfig {
   bool flip = true;           ///< FLIP per frame in the main run
   /// Called with (frame, sprite frame) after scoring, e.g. to save it.
   std::function<void(int, const Frame&)> on_sprite_frame;
+  /// A video of the sprite frames beside the report (file name inside `out`),
+  /// embedded next to the figures; empty: none.
+  std::string video;
 };
 
 /// Runs everything; writes figures (PNG) and plots into `out`, returns the

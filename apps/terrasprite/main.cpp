@@ -38,6 +38,9 @@ int main(int argc, char** argv) {
   terrasprite::cli::add_objects(app);
   terrasprite::cli::add_bench(app);
   terrasprite::cli::add_demo(app);
+#ifdef TS_HAVE_VIEWER
+  terrasprite::cli::add_view(app);
+#endif
   int rc = 0;
   std::string error;
   try {
@@ -50,7 +53,7 @@ int main(int argc, char** argv) {
     error = e.what();
     rc = 2;
   } catch (const terrasprite::InputError& e) {
-    error = e.what();
+    error = terrasprite::cli::with_option_names(e.what());
     rc = 2;
   } catch (const terrasprite::DeviceError& e) {
     error = e.what();

@@ -18,12 +18,17 @@ std::vector<std::string> render_modes() {
 }
 
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
-                              int height, int lod_quads, bool lighting) {
+                              int height, int lod_quads, bool lighting,
+                              double sprite_threshold_px, GlContext* context) {
   RenderStack s;
+  // GL modes: the caller's current context, else one of our own.
+  auto use_gl = [&] {
+    if (!context) s.gl = std::make_unique<GlContext>();
+    s.device = (context ? context : s.gl.get())->renderer();
+  };
   if (mode == "full" || mode == "lod") {
     if (mode == "lod") check_lod_quads(lod_quads, terrain.heights);
-    s.gl = std::make_unique<GlContext>();
-    s.device = s.gl->renderer();
+    use_gl();
     s.scene = std::make_unique<Scene>(terrain);
     s.renderer = std::make_unique<MeshRenderer>(
         *s.scene, width, height, mode == "full" ? 0 : lod_quads, RasterOptions{lighting});
@@ -42,8 +47,8 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
     check_lod_quads(lod_quads, terrain.heights);
     SpriteOptions o;
     o.lod_quads = lod_quads;
-    s.gl = std::make_unique<GlContext>();
-    s.device = s.gl->renderer();
+    o.threshold_px = sprite_threshold_px;
+    use_gl();
     s.scene = std::make_unique<Scene>(terrain);
     s.renderer = std::make_unique<SpriteRenderer>(*s.scene, width, height, o);
     return s;

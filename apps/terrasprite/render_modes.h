@@ -22,9 +22,14 @@ struct RenderStack {
 
 /// Modes: full, lod, sprite (LOD-sprite with default SpriteOptions and `lod_quads`), voxel
 /// (CPU, all cores). Throws InputError for an unknown mode, DeviceError when a GL mode finds no
-/// GL device. `terrain` must outlive the stack.
+/// GL device. `terrain` must outlive the stack. `sprite_threshold_px`: the
+/// LOD-sprite keyframe threshold. `context` (may be null): a GL context current
+/// on the calling thread that the stack draws with instead of creating its
+/// own (e.g. the viewer's context sharing objects with its window); it must
+/// outlive the stack.
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
-                              int height, int lod_quads, bool lighting = false);
+                              int height, int lod_quads, bool lighting = false,
+                              double sprite_threshold_px = 1.0, GlContext* context = nullptr);
 
 /// The modes make_render_stack accepts, for CLI11's check.
 std::vector<std::string> render_modes();

@@ -36,7 +36,13 @@ std::vector<Camera> load_path_file(const std::string& path, const Heightfield& h
 std::vector<Camera> path_from_json(std::string_view text, const std::string& name,
                                    const Heightfield& h, int frames, double aspect);
 
-/// "paper" or a JSON file name: dispatches to the two above.
+/// A low, fast flight: about 150 m above the ground ahead at 200 m/s, one
+/// frame per 1/60 s (so `frames` sets its length: 460 frames fly 1.5 km),
+/// weaving gently northwards from 0.2 E south of the centre in banked turns
+/// (roll up to 30 degrees), looking 8 degrees down. Near/far planes fitted.
+std::vector<Camera> low_fast_path(const Heightfield& h, int frames, double aspect,
+                                  double fov_y_deg = 60.0);
+/// "paper", "low-fast" or a JSON file name: dispatches to the three above.
 std::vector<Camera> make_path(const std::string& spec, const Heightfield& h, int frames,
                               double aspect);
 

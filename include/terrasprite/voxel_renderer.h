@@ -10,6 +10,7 @@
 
 #include "terrasprite/renderer.h"
 #include "terrasprite/terrain.h"
+#include "terrasprite/terrain_tiles.h"
 
 namespace terrasprite {
 
@@ -19,14 +20,18 @@ namespace terrasprite {
 /// read-only afterwards, so any number of renderers and threads can share it.
 /// A height field narrower than 2 samples on a side has no area: every ray
 /// leaves it (sky). Memory: about 16 bytes per height sample (both pyramids).
-class VoxelTerrain {
+/// As TerrainTiles: levels 0..levels()-1, every tile resident for the
+/// object's lifetime, 128-cell tiles viewing the pyramids in place.
+class VoxelTerrain : public TerrainTiles {
  public:
   explicit VoxelTerrain(const Terrain& terrain);
-  ~VoxelTerrain();
+  ~VoxelTerrain() override;
   VoxelTerrain(const VoxelTerrain&) = delete;
   VoxelTerrain& operator=(const VoxelTerrain&) = delete;
 
   int levels() const;  ///< pyramid levels, >= 1 (level 0 = full resolution)
+  const TerrainGrid& grid() const override;
+  const TileBlock* tile(int level, int tx, int ty) const override;
   struct Data;
   const Data& data() const { return *d_; }
 
@@ -61,7 +66,8 @@ struct VoxelOptions {
 };
 
 /// The ray caster. Renders `width` x `height` frames of the camera view of
-/// `terrain` (which must outlive it): colour, and depth in metres along the
+/// `terrain` (which must outlive it; read through its tiles, falling back to
+/// a coarser level where a tile is not resident): colour, and depth in metres along the
 /// view axis (+inf where a ray leaves the terrain: sky colour kSkyColor).
 /// Conventions are the Camera's, so images register with the GL renderers.
 /// Rays see the height field's top surface only (no skirts, no near/far
@@ -69,7 +75,7 @@ struct VoxelOptions {
 /// An eye below the surface sees the ground colour under it at depth 0.
 class VoxelRenderer : public Renderer {
  public:
-  VoxelRenderer(const VoxelTerrain& terrain, int width, int height, VoxelOptions options = {});
+  VoxelRenderer(const TerrainTiles& terrain, int width, int height, VoxelOptions options = {});
   ~VoxelRenderer() override;
   /// Draws colour and depth straight into the returned Frame (CPU memory).
   Frame draw(const Camera& camera) override;

@@ -142,7 +142,7 @@ std::vector<Camera> load_path_file(const std::string& path, const Heightfield& h
 
 std::vector<Camera> path_from_json(std::string_view text, const std::string& path,
                                    const Heightfield& h, int frames, double aspect) {
-  if (frames < 1) throw InputError(fmt::format("--frames {}: must be at least 1", frames));
+  if (frames < 1) throw InputError(fmt::format("frames {}: must be at least 1", frames));
   std::vector<Key> keys = parse(text, path, aspect);
   std::vector<Camera> out;
   const double t0 = keys.front().t, t1 = keys.back().t;

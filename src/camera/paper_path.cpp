@@ -15,7 +15,7 @@ constexpr double kPaperFrames = 460.0;
 }  // namespace
 
 std::vector<Camera> paper_path(const Heightfield& h, int frames, double aspect, double fov_y_deg) {
-  if (frames < 1) throw InputError(fmt::format("--frames {}: must be at least 1", frames));
+  if (frames < 1) throw InputError(fmt::format("frames {}: must be at least 1", frames));
   const double E = h.extent();
   const glm::dvec3 centre(0.0, 0.0, h.sample(0.0, 0.0));
   std::vector<Camera> path;
@@ -49,6 +49,7 @@ std::vector<Camera> paper_path(const Heightfield& h, int frames, double aspect, 
 std::vector<Camera> make_path(const std::string& spec, const Heightfield& h, int frames,
                               double aspect) {
   if (spec.empty() || spec == "paper") return paper_path(h, frames, aspect);
+  if (spec == "low-fast") return low_fast_path(h, frames, aspect);
   return load_path_file(spec, h, frames, aspect);
 }
 

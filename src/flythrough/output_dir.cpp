@@ -103,7 +103,7 @@ OutputDir::OutputDir(const std::string& dir, OutputPolicy policy) : policy_(poli
   partial_ = partial_of(final_);
   std::error_code ec;
   if (fs::exists(fs::symlink_status(partial_, ec))) fs::remove_all(partial_, ec);  // ours: checked
-  ec.clear();  // symlink_status of an absent DIR.partial sets it; a bare "NAME" has no parent to reset it
+  ec.clear();
   if (final_.has_parent_path()) fs::create_directories(final_.parent_path(), ec);
   // create_directory fails if the path appeared meanwhile: we own what we create.
   if (ec || !fs::create_directory(partial_, ec) || ec)

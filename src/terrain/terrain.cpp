@@ -54,22 +54,22 @@ constexpr int kMaxSyntheticSize = 8193, kMaxErosionPasses = 100;
 
 void check_options(const TerrainOptions& o) {
   if (o.dem.empty() && o.dem_given)
-    throw InputError("--dem \"\": empty file name (omit --dem for the synthetic terrain)");
+    throw InputError("dem \"\": empty file name (no DEM means the synthetic terrain)");
   if (o.synthetic_size < 2 || o.synthetic_size > kMaxSyntheticSize)
-    throw InputError(fmt::format("--synthetic-size {}: must be between 2 and {} samples",
+    throw InputError(fmt::format("synthetic_size {}: must be between 2 and {} samples",
                                  o.synthetic_size, kMaxSyntheticSize));
   if (o.erosion_passes < 0 || o.erosion_passes > kMaxErosionPasses)
-    throw InputError(fmt::format("--erosion {}: must be between 0 and {} passes", o.erosion_passes,
+    throw InputError(fmt::format("erosion_passes {}: must be between 0 and {} passes", o.erosion_passes,
                                  kMaxErosionPasses));
   if (!(o.z_scale != 0) || !std::isfinite(o.z_scale))
-    throw InputError(fmt::format("--z-scale {}: must be a non-zero number", o.z_scale));
+    throw InputError(fmt::format("z_scale {}: must be a non-zero number", o.z_scale));
   if (!(o.exaggeration > 0) || o.exaggeration > 1000)
-    throw InputError(fmt::format("--exaggeration {}: must be in (0, 1000]", o.exaggeration));
+    throw InputError(fmt::format("exaggeration {}: must be in (0, 1000]", o.exaggeration));
   if (o.spacing && !(*o.spacing >= kMinSpacingM && *o.spacing <= kMaxSpacingM))
-    throw InputError(fmt::format("--spacing {}: must be between {:g} and {:g} metres", *o.spacing,
+    throw InputError(fmt::format("spacing_m {}: must be between {:g} and {:g} metres", *o.spacing,
                                  kMinSpacingM, kMaxSpacingM));
   if (o.resample != 0 && (o.resample < 2 || o.resample > 16385))
-    throw InputError(fmt::format("--resample {}: must be between 2 and 16385 samples", o.resample));
+    throw InputError(fmt::format("resample {}: must be between 2 and 16385 samples", o.resample));
 }
 
 // After every scale and offset: finite heights within bounds, a real extent.

@@ -23,17 +23,19 @@
 #include <cmath>
 #include <limits>
 
+#include "voxel/tile_reader.h"
+
 namespace terrasprite {
 
-ColumnMarcher::ColumnMarcher(const VoxelTerrain::Data& terrain, const double eye[3],
+ColumnMarcher::ColumnMarcher(const TerrainTiles& terrain, const double eye[3],
                              const MarchSettings& settings)
-    : d_(terrain), s_(settings) {
-  eu_ = d_.grid_u(eye[0]);
-  ev_ = d_.grid_v(eye[1]);
+    : src_(terrain), d_(terrain.grid()), s_(settings) {
+  eu_ = eye[0] / d_.spacing_x + (d_.width - 1) * 0.5;
+  ev_ = (d_.height - 1) * 0.5 - eye[1] / d_.spacing_y;
   ez_ = eye[2];
-  lift_ = std::max(0.0, ez_ - double(d_.hmax));
-  t1_ = std::min(d_.sx, d_.sy) / std::max(s_.pixel_angle * s_.ratio, 1e-12);
-  lmax_ = s_.multires ? int(d_.levels.size()) - 1 : 0;
+  lift_ = std::max(0.0, ez_ - double(d_.max_height));
+  t1_ = std::min(d_.spacing_x, d_.spacing_y) / std::max(s_.pixel_angle * s_.ratio, 1e-12);
+  lmax_ = s_.multires ? std::min(d_.coarsest_level, TileReader::kMaxLevels - 2) : 0;
 }
 
 void ColumnMarcher::march(double dx, double dy, std::span<const double> slopes,
@@ -44,9 +46,10 @@ void ColumnMarcher::march(double dx, double dy, std::span<const double> slopes,
     for (; r < n; ++r) hits[r] = {kInf, 0};
   };
   if (!d_.has_area()) return sky_from(0);
+  TileReader tiles(src_);
 
   // Grid units per horizontal metre along the plane.
-  const double gu = dx / d_.sx, gv = -dy / d_.sy;
+  const double gu = dx / d_.spacing_x, gv = -dy / d_.spacing_y;
   double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
   auto clip = [&](double e, double g, double hi) {
     if (std::abs(g) < 1e-300) return e >= 0.0 && e <= hi;
@@ -55,7 +58,8 @@ void ColumnMarcher::march(double dx, double dy, std::span<const double> slopes,
     t1 = std::min(t1, std::max(ta, tb));
     return true;
   };
-  if (!clip(eu_, gu, d_.w - 1) || !clip(ev_, gv, d_.h - 1) || !(t1 > t0)) return sky_from(0);
+  if (!clip(eu_, gu, d_.width - 1) || !clip(ev_, gv, d_.height - 1) || !(t1 > t0))
+    return sky_from(0);
 
   const bool mu = std::abs(gu) >= std::abs(gv);  // major axis is u (columns)
   const double em = mu ? eu_ : ev_, en = mu ? ev_ : eu_;
@@ -64,7 +68,7 @@ void ColumnMarcher::march(double dx, double dy, std::span<const double> slopes,
   const double inv_gm = 1.0 / gm;
   const double a1 = em + t1 * gm;  // major coordinate at the exit
   const double lift2 = lift_ * lift_;
-  const int kmax = int(d_.maxes.size()) - 1;
+  const int kmax = std::min(d_.bound_levels, TileReader::kMaxLevels) - 1;
 
   auto dist2 = [&](double t) { return t * t + lift2; };
   // Level L spans distances [lo_L, hi_L) (lo_0 = 0, hi_L = t1 2^L); it morphs
@@ -90,43 +94,45 @@ void ColumnMarcher::march(double dx, double dy, std::span<const double> slopes,
   auto blend_parent = [&](int L, double i, double j, float h, double t) {
     float a = alpha(L, t);
     if (a <= 0.f) return h;
-    float p = bilinear_height(d_.levels[L + 1], i * 0.5, j * 0.5);
+    float p = tiles.bilinear_height(L + 1, i * 0.5, j * 0.5);
     return h + a * (p - h);
   };
   // Height on major grid line m (a multiple of 2^L) at distance t.
   auto height_line = [&](int L, long m, double t) {
-    const PyramidLevel& lev = d_.levels[L];
     const double scale = 1.0 / double(1 << L);
-    const long mL = m >> L;
+    const int mL = int(m >> L);
     const double qL = (en + t * gn) * scale;
-    const int nmin = mu ? lev.h : lev.w;
-    int j0 = std::clamp(int(floor_i64(qL)), 0, std::max(nmin - 2, 0));
-    int j1 = std::min(j0 + 1, nmin - 1);
-    float f = float(std::clamp(qL - j0, 0.0, 1.0));
-    float h0, h1;
-    if (mu) {
-      h0 = lev.height[std::size_t(j0) * lev.w + mL];
-      h1 = lev.height[std::size_t(j1) * lev.w + mL];
+    const int nmin = mu ? tiles.height(L) : tiles.width(L);
+    const int nmaj = mu ? tiles.width(L) : tiles.height(L);
+    const int j0 = std::clamp(int(floor_i64(qL)), 0, nmin - 2);
+    const int j1 = j0 + 1;
+    const int ca = std::min(mL, nmaj - 2);
+    const TileReader::Slot* tb = mu ? tiles.cell(L, ca, j0) : tiles.cell(L, j0, ca);
+    float h;
+    if (tb) [[likely]] {  // levels <= coarsest_level carry samples
+      const float f = float(std::clamp(qL - j0, 0.0, 1.0));
+      const float h0 = mu ? tb->height_at(mL, j0) : tb->height_at(j0, mL);
+      const float h1 = mu ? tb->height_at(mL, j1) : tb->height_at(j1, mL);
+      h = h0 + (h1 - h0) * f;
     } else {
-      h0 = lev.height[std::size_t(mL) * lev.w + j0];
-      h1 = lev.height[std::size_t(mL) * lev.w + j1];
+      h = mu ? tiles.bilinear_height(L + 1, mL * 0.5, qL * 0.5)
+             : tiles.bilinear_height(L + 1, qL * 0.5, mL * 0.5);
     }
-    float h = h0 + (h1 - h0) * f;
     return mu ? blend_parent(L, double(mL), qL, h, t) : blend_parent(L, qL, double(mL), h, t);
   };
   // Height anywhere (entry and exit points).
   auto height_point = [&](int L, double t) {
     const double scale = 1.0 / double(1 << L);
     double i = (eu_ + t * gu) * scale, j = (ev_ + t * gv) * scale;
-    return blend_parent(L, i, j, bilinear_height(d_.levels[L], i, j), t);
+    return blend_parent(L, i, j, tiles.bilinear_height(L, i, j), t);
   };
   auto color_at = [&](int L, double t) {
     const double scale = 1.0 / double(1 << L);
     const double i = (eu_ + t * gu) * scale, j = (ev_ + t * gv) * scale;
-    const std::uint32_t c = bilinear_color_packed(d_.levels[L], i, j);
+    const std::uint32_t c = tiles.bilinear_color(L, i, j);
     const float a = alpha(L, t);
     if (a <= 0.f) return c;
-    const std::uint32_t p = bilinear_color_packed(d_.levels[L + 1], i * 0.5, j * 0.5);
+    const std::uint32_t p = tiles.bilinear_color(L + 1, i * 0.5, j * 0.5);
     return lerp_packed(c, p, std::uint32_t(a * 256.0f + 0.5f));
   };
 
@@ -182,13 +188,21 @@ void ColumnMarcher::march(double dx, double dy, std::span<const double> slopes,
         const double tb = (double(me) - em) * inv_gm;
         const double zmin = ez_ + s * (s < 0 ? tb : t_cur);
         const double qa = en + t_cur * gn, qb = en + tb * gn;
-        const MaxLevel& ml = d_.maxes[k];
-        const int nmaj = mu ? ml.w : ml.h, nmin = mu ? ml.h : ml.w;
+        // Cells of level k.
+        const int nmaj = (mu ? tiles.width(k) : tiles.height(k)) - 1;
+        const int nmin = (mu ? tiles.height(k) : tiles.width(k)) - 1;
         const int ca = std::clamp(int(std::min(m, me) >> k), 0, nmaj - 1);
         const int b0 = std::clamp(int(floor_i64(std::min(qa, qb) / double(size))), 0, nmin - 1);
         const int b1 = std::clamp(int(floor_i64(std::max(qa, qb) / double(size))), 0, nmin - 1);
         float bound = -std::numeric_limits<float>::infinity();
-        for (int b = b0; b <= b1; ++b) bound = std::max(bound, mu ? ml.at(ca, b) : ml.at(b, ca));
+        const TileReader::Slot* sl = mu ? tiles.cell(k, ca, b0) : tiles.cell(k, b0, ca);
+        if (sl && unsigned(b1 - (mu ? sl->y0 : sl->x0)) < (mu ? sl->ch : sl->cw)) [[likely]] {
+          for (int b = b0; b <= b1; ++b)  // the whole run in one tile
+            bound = std::max(bound, mu ? sl->bound_at(ca, b) : sl->bound_at(b, ca));
+        } else {
+          for (int b = b0; b <= b1; ++b)
+            bound = std::max(bound, mu ? tiles.bound(k, ca, b) : tiles.bound(k, b, ca));
+        }
         if (zmin > bound) {
           m = me;
           t_cur = tb;

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <span>
 
-#include "voxel/voxel_terrain_data.h"
+#include "terrasprite/terrain_tiles.h"
 
 namespace terrasprite {
 
@@ -29,14 +29,17 @@ struct MarchHit {
 /// horizontal direction (dx, dy) (unit). `slopes` (dz per horizontal metre)
 /// must be non-decreasing: each ray starts where the one below hit, since a
 /// height field cannot hide a nearer hit above it. Writes one hit per slope.
+/// The terrain is read through its tiles (levels 0 and coarser); where a tile
+/// is not resident the march reads the next coarser level there. `march` may
+/// be called from several threads at once.
 class ColumnMarcher {
  public:
-  ColumnMarcher(const VoxelTerrain::Data& terrain, const double eye[3],
-                const MarchSettings& settings);
+  ColumnMarcher(const TerrainTiles& terrain, const double eye[3], const MarchSettings& settings);
   void march(double dx, double dy, std::span<const double> slopes, std::span<MarchHit> hits) const;
 
  private:
-  const VoxelTerrain::Data& d_;
+  const TerrainTiles& src_;
+  const TerrainGrid& d_;
   MarchSettings s_;
   double eu_, ev_, ez_;  // eye in level-0 grid units (u, v) and metres (z)
   double lift_;          // eye height above the highest terrain (>= 0): bounds 3D distance

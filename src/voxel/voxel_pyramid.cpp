@@ -16,7 +16,54 @@ namespace terrasprite {
 namespace {
 
 int level_size(int n0, int level) {
-  return ((n0 - 1 + (1 << level) - 1) >> level) + 1;
+  return TerrainGrid::level_size(n0, level);
+}
+
+constexpr int kTileLog2 = 7;
+
+// Tile tables viewing the pyramids in place (see TerrainTiles).
+void build_tiles(VoxelTerrain::Data& d) {
+  TerrainGrid& g = d.grid;
+  g.width = d.w;
+  g.height = d.h;
+  g.spacing_x = d.sx;
+  g.spacing_y = d.sy;
+  g.min_height = d.hmin;
+  g.max_height = d.hmax;
+  g.finest_level = 0;
+  g.coarsest_level = int(d.levels.size()) - 1;
+  g.bound_levels = int(d.maxes.size());
+  g.tile_log2 = kTileLog2;
+  constexpr int T = 1 << kTileLog2;
+  d.tiles.resize(d.maxes.size());
+  for (int L = 0; L < g.bound_levels; ++L) {
+    const MaxLevel& ml = d.maxes[L];  // cells of level L
+    const PyramidLevel* lev = L < int(d.levels.size()) ? &d.levels[L] : nullptr;
+    auto& lt = d.tiles[L];
+    lt.nx = (ml.w + T - 1) / T;
+    lt.ny = (ml.h + T - 1) / T;
+    lt.tiles.resize(std::size_t(lt.nx) * lt.ny);
+    for (int ty = 0; ty < lt.ny; ++ty)
+      for (int tx = 0; tx < lt.nx; ++tx) {
+        TileBlock& b = lt.tiles[std::size_t(ty) * lt.nx + tx];
+        b.x0 = tx * T;
+        b.y0 = ty * T;
+        b.w = std::min(T, ml.w - b.x0) + 1;
+        b.h = std::min(T, ml.h - b.y0) + 1;
+        b.bound = ml.bound.data() + std::size_t(b.y0) * ml.w + b.x0;
+        b.bound_stride = ml.w;
+        if (lev) {
+          const std::size_t at = std::size_t(b.y0) * lev->w + b.x0;
+          b.height = lev->height.data() + at;
+          b.color = lev->color.data() + at;
+          b.stride = lev->w;
+        }
+        b.max_height = -std::numeric_limits<float>::infinity();
+        for (int y = 0; y < b.h - 1; ++y)
+          for (int x = 0; x < b.w - 1; ++x)
+            b.max_height = std::max(b.max_height, b.bound[y * b.bound_stride + x]);
+      }
+  }
 }
 
 // Drape texture box-filtered onto the height samples (Terrain's mapping:
@@ -164,9 +211,21 @@ VoxelTerrain::VoxelTerrain(const Terrain& terrain) : d_(std::make_unique<Data>()
     d.maxes.push_back(std::move(ml));
     if (cw == 1 && ch == 1) break;
   }
+  build_tiles(d);
 }
 
 VoxelTerrain::~VoxelTerrain() = default;
+
+const TerrainGrid& VoxelTerrain::grid() const {
+  return d_->grid;
+}
+
+const TileBlock* VoxelTerrain::tile(int level, int tx, int ty) const {
+  if (level < 0 || level >= int(d_->tiles.size())) return nullptr;
+  const auto& lt = d_->tiles[std::size_t(level)];
+  if (tx < 0 || ty < 0 || tx >= lt.nx || ty >= lt.ny) return nullptr;
+  return &lt.tiles[std::size_t(ty) * lt.nx + tx];
+}
 
 int VoxelTerrain::levels() const {
   return int(d_->levels.size());

@@ -16,8 +16,10 @@
 #include <vector>
 
 #include "terrasprite/error.h"
+#include "terrasprite/voxel_renderer.h"
 #include "voxel/column_march.h"
 #include "voxel/vertical_planes.h"
+#include "voxel/voxel_terrain_data.h"
 
 namespace terrasprite {
 namespace {
@@ -58,7 +60,7 @@ MarchSettings settings_for(const VoxelOptions& o, const Camera& cam, int height)
 }  // namespace
 
 struct VoxelRenderer::State {
-  const VoxelTerrain& terrain;
+  const TerrainTiles& terrain;
   int w, h;
   VoxelOptions options;
   tbb::task_arena arena;
@@ -71,19 +73,19 @@ struct VoxelRenderer::State {
   };
   std::vector<Sample> samples;
 
-  State(const VoxelTerrain& t, int w_, int h_, const VoxelOptions& o)
+  State(const TerrainTiles& t, int w_, int h_, const VoxelOptions& o)
       : terrain(t), w(w_), h(h_), options(o), arena(resolve_threads(o.threads)) {}
 
   void naive(const Camera& cam, Frame& out);
   void planes(const Camera& cam, Frame& out);
 };
 
-VoxelRenderer::VoxelRenderer(const VoxelTerrain& terrain, int width, int height,
+VoxelRenderer::VoxelRenderer(const TerrainTiles& terrain, int width, int height,
                              VoxelOptions options) {
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
     throw InputError(fmt::format("voxel renderer: image size {}x{} out of range", width, height));
   if (!(options.pixel_voxel_ratio > 0) || !std::isfinite(options.pixel_voxel_ratio))
-    throw InputError(fmt::format("--pixel-voxel-ratio {}: must be a positive number",
+    throw InputError(fmt::format("pixel_voxel_ratio {}: must be a positive number",
                                  options.pixel_voxel_ratio));
   if (!(options.plane_oversample >= 0.25 && options.plane_oversample <= 8))
     throw InputError(
@@ -121,7 +123,7 @@ Frame VoxelRenderer::draw(const Camera& camera) {
 
 void VoxelRenderer::State::naive(const Camera& cam, Frame& out) {
   const double eye[3] = {cam.position.x, cam.position.y, cam.position.z};
-  const ColumnMarcher marcher(terrain.data(), eye, settings_for(options, cam, h));
+  const ColumnMarcher marcher(terrain, eye, settings_for(options, cam, h));
   const ImageRays rays(cam, w, h);
   tbb::parallel_for(
       tbb::blocked_range<int>(0, h, 1),
@@ -164,7 +166,7 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
   samples.resize(offset[n]);
 
   const double eye[3] = {cam.position.x, cam.position.y, cam.position.z};
-  const ColumnMarcher marcher(terrain.data(), eye, settings_for(options, cam, h));
+  const ColumnMarcher marcher(terrain, eye, settings_for(options, cam, h));
   const ImageRays rays(cam, w, h);
 
   // One column: its rays bottom-up through the marcher, into the buffer.

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/packed_rgba.h"
 #include "terrasprite/voxel_renderer.h"
 
 namespace terrasprite {
@@ -35,6 +36,14 @@ struct VoxelTerrain::Data {
   float hmin = 0, hmax = 0;  // height range, metres
   std::vector<PyramidLevel> levels;
   std::vector<MaxLevel> maxes;
+  // The same pyramids seen as tiles (TerrainTiles): one table per bound level,
+  // tiles row-major, viewing `levels` and `maxes` in place.
+  TerrainGrid grid;
+  struct LevelTiles {
+    int nx = 0, ny = 0;
+    std::vector<TileBlock> tiles;
+  };
+  std::vector<LevelTiles> tiles;
 
   bool has_area() const { return w >= 2 && h >= 2; }
   // World metres <-> level-0 grid index (fractional).
@@ -84,17 +93,6 @@ inline void bilinear_color(const PyramidLevel& lev, double i, double j, float ou
     for (int k = 0; k < 4; ++k) s += wgt[k] * float((p[k] >> (8 * ch)) & 0xff);
     out[ch] = s;
   }
-}
-
-/// Lerp of two packed RGBA8 colours, weight f in 0..256 towards b, two
-/// channels per multiply (16-bit lanes cannot overflow: 255 * 256 < 2^16).
-inline std::uint32_t lerp_packed(std::uint32_t a, std::uint32_t b, std::uint32_t f) {
-  const std::uint32_t g = 256 - f;
-  const std::uint32_t rb =
-      (((a & 0xff00ffu) * g + (b & 0xff00ffu) * f + 0x800080u) >> 8) & 0xff00ffu;
-  const std::uint32_t ga =
-      ((((a >> 8) & 0xff00ffu) * g + ((b >> 8) & 0xff00ffu) * f + 0x800080u) >> 8) & 0xff00ffu;
-  return rb | (ga << 8);
 }
 
 /// Bilinear packed colour of `lev` at (i, j), clamped; 8-bit weights.

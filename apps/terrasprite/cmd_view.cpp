@@ -1,0 +1,123 @@
+// SPDX-License-Identifier: MIT
+// terrasprite view: fly the terrain in a window, or replay a timed script of
+// input events and measure frame rate and input-to-display latency.
+#include <fmt/format.h>
+
+#include <filesystem>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "render_modes.h"
+#include "terrasprite/camera_path.h"
+#include "terrasprite/error.h"
+#include "terrasprite/sprite_renderer.h"
+#include "viewer/viewer.h"
+
+namespace terrasprite::cli {
+namespace {
+
+struct ViewOpts {
+  TerrainOptions terrain;
+  std::string size = "1280x720";
+  std::string script, stats, record, play;
+  viewer::ViewerOptions viewer;
+  bool lighting = false, free = false;
+};
+
+/// One --mode's renderer stack, built on the viewer's render thread.
+class StackRenderer : public viewer::ViewRenderer {
+ public:
+  StackRenderer(const Terrain& t, const viewer::LiveSettings& s, int w, int h, bool lighting,
+                GlContext* context)
+      : stack_(make_render_stack(s.mode, t, w, h, s.lod_quads, lighting, s.threshold_px, context)),
+        sprite_(dynamic_cast<SpriteRenderer*>(stack_.renderer.get())) {}
+  Renderer& renderer() override { return *stack_.renderer; }
+  std::string device() const override { return stack_.device; }
+  double error_px() const override {
+    return sprite_ ? sprite_->last_error().value(sprite_->options().metric) : -1;
+  }
+
+ private:
+  RenderStack stack_;
+  SpriteRenderer* sprite_;
+};
+
+/// The first view: from half the extent south, a tenth of the extent above the
+/// highest point, looking north at the terrain centre's lowest level.
+Camera start_camera(const Heightfield& h, double aspect) {
+  const double e = h.extent();
+  Camera c = Camera::look_at({0, -0.5 * e, h.max_height() + 0.1 * e}, {0, 0, h.min_height()},
+                             60.0, aspect);
+  fit_clip_planes(c, h);
+  return c;
+}
+
+void run(ViewOpts& o) {
+  auto [w, h] = parse_size(o.size, "--size");
+  viewer::ViewerOptions& v = o.viewer;
+  v.width = w;
+  v.height = h;
+  v.fly.bounded = !o.free;
+  if (v.frames < 0) throw InputError(fmt::format("--frames {}: must be at least 0", v.frames));
+  if (!(v.record_every_s > 0))
+    throw InputError(fmt::format("--record-every {}: must be positive", v.record_every_s));
+  if (!o.script.empty()) {
+    v.script = viewer::load_input_script(o.script);
+    v.scripted = true;
+  }
+  if (!o.stats.empty() && !std::filesystem::is_directory(
+                              std::filesystem::absolute(o.stats).parent_path()))
+    throw InputError(fmt::format("--stats {}: its directory does not exist", o.stats));
+  Terrain terrain = load_terrain_verbose(o.terrain);
+  if (!o.play.empty()) load_path_file(o.play, terrain.heights, 2, double(w) / h);  // validate
+  v.play = o.play;
+  v.record = o.record;
+  const bool lighting = o.lighting;
+  viewer::RunStats stats = viewer::run_viewer(
+      terrain.heights, start_camera(terrain.heights, double(w) / h), v,
+      [&terrain, w, h, lighting](const viewer::LiveSettings& s, GlContext* context) {
+        return std::make_unique<StackRenderer>(terrain, s, w, h, lighting, context);
+      });
+  nlohmann::json j = viewer::stats_json(stats);
+  if (!o.stats.empty()) write_json(j, o.stats);
+  fmt::print("view {}: {} frames, median {:.1f} fps, 1% low {:.1f} fps, latency p95 {:.0f} ms\n",
+             stats.mode, stats.frames, double(j["fps_median"]), double(j["fps_low_1pct"]),
+             double(j["latency_ms_p95"]));
+}
+
+}  // namespace
+
+void add_view(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "view", "fly the terrain in a window (F1: keys); --script for measured, scripted runs");
+  auto o = std::make_shared<ViewOpts>();
+  add_terrain_options(*cmd, o->terrain);
+  cmd->add_option("--mode", o->viewer.settings.mode, "renderer, switchable live (default sprite)")
+      ->check(CLI::IsMember(render_modes()));
+  cmd->add_option("--size", o->size, "window and render size WxH (default 1280x720)");
+  cmd->add_option("--lod-quads", o->viewer.settings.lod_quads, "coarse grid quads (default 16)");
+  cmd->add_option("--threshold", o->viewer.settings.threshold_px,
+                  "LOD-sprite keyframe threshold, pixels (default 1)");
+  cmd->add_flag("--lighting", o->lighting, "simple sun lighting on top of the texture");
+  cmd->add_option("--script", o->script,
+                  "replay timed input events from this JSON file (ends 1 s after the last)");
+  cmd->add_option("--stats", o->stats, "write frame-rate and latency statistics JSON here");
+  cmd->add_option("--frames", o->viewer.frames, "end after this many displayed frames");
+  cmd->add_option("--record", o->record, "record the flight into this path JSON file");
+  cmd->add_option("--record-every", o->viewer.record_every_s,
+                  "seconds between recorded keyframes (default 0.5)");
+  cmd->add_option("--play", o->play, "fly this path JSON file in real time");
+  cmd->add_option("--speed", o->viewer.fly.speed_mps,
+                  "flying speed m/s (default: a tenth of the terrain extent per second)");
+  cmd->add_option("--clearance", o->viewer.fly.clearance_m,
+                  "minimum height above ground, metres (default 0.5% of the extent)");
+  cmd->add_flag("--free", o->free, "allow flying far outside the terrain");
+  cmd->add_flag("--shared-context", o->viewer.share_context,
+                "GL renderers draw in a context shared with the window, nothing read back "
+                "(default off: on llvmpipe the window then waits for the renderer)");
+  cmd->add_option("--screenshot-dir", o->viewer.screenshot_dir,
+                  "where F2 screenshots and F5 recordings go (default .)");
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace terrasprite::cli

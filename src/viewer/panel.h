@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: MIT
+// The live panel (ImGui): frame-time graph with keyframes marked, fps,
+// triangles, the LOD-sprite error and threshold, the mode switch, path and
+// screenshot buttons; and the F1 key list.
+#pragma once
+#include <deque>
+#include <string>
+
+#include "terrasprite/camera.h"
+#include "viewer/render_worker.h"
+
+namespace terrasprite::viewer {
+
+/// One displayed frame in the graph.
+struct GraphSample {
+  float ms = 0;     ///< interval since the previous new frame
+  bool key = false; ///< a keyframe (LOD-sprite "key") or a real frame (voxel)
+};
+
+/// What the panel shows; filled by the event loop.
+struct PanelInfo {
+  std::deque<GraphSample> history;  ///< newest last
+  double fps = 0;                   ///< over the graph's span
+  double render_ms = 0;             ///< the renderer's own time for the last frame
+  long long triangles = 0;
+  std::string cls, device;
+  double error_px = -1;
+  double stale_ms = 0;              ///< age of the frame on screen while the worker is busy
+  bool building = false;
+  Camera camera;
+  double speed_mps = 0, clearance_m = 0;
+  bool orbit = false, recording = false, playing = false, captured = true;
+  std::string message;              ///< last action's result (screenshot written, ...)
+};
+
+struct PanelActions {
+  bool screenshot = false, toggle_record = false, play = false;
+};
+
+/// Draws the panel (between ImGui::NewFrame and ImGui::Render); edits
+/// `settings` in place when the user switches mode or moves a slider.
+PanelActions draw_panel(const PanelInfo& info, LiveSettings& settings);
+/// Draws the key list.
+void draw_help();
+
+}  // namespace terrasprite::viewer

@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: MIT
+// What a viewer run measured: displayed frames and input-to-display latency.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "terrasprite/camera.h"
+
+namespace terrasprite::viewer {
+
+struct EventLatency {
+  double t = 0;           ///< the event's time in the script, seconds
+  double latency_ms = -1; ///< injection to the swap of the first frame rendered with it; -1: never shown
+};
+
+struct RunStats {
+  std::string mode;
+  int width = 0, height = 0;
+  int frames = 0;                 ///< swaps showing a newly rendered frame
+  std::vector<double> frame_ms;   ///< intervals between swaps showing newly rendered frames
+  std::vector<double> render_ms;  ///< the renderer's own Frame::ms per displayed frame
+  std::vector<EventLatency> events;
+  Camera camera_start, camera_end;  ///< the flight's first and last pose
+};
+
+/// Nearest-rank percentile (p in [0, 100]) of `v`; 0 for none.
+double percentile(std::vector<double> v, double p);
+
+/// The stats file: mode, size, frames, fps_median, fps_low_1pct (the rate of
+/// the 99th-percentile frame time), frames (displayed new frames), frame_ms_p50, frame_ms_p99, render_ms_p50,
+/// latency_ms_p95, latency_ms_max, events [{t, latency_ms}], camera_start and
+/// camera_end ({position, yaw_deg, pitch_deg}).
+nlohmann::json stats_json(const RunStats& s);
+
+}  // namespace terrasprite::viewer

@@ -1,0 +1,269 @@
+// SPDX-License-Identifier: MIT
+// Per-pixel 3D warping with depth (after Mark, McMillan, Bishop,
+// "Post-rendering 3D warping", I3D 1997): forward splatting with a depth test,
+// then per output pixel a sub-pixel correction and a bilinear read.
+//
+//   1. splat: every real-frame pixel goes to the new image at its depth; the
+//      nearest one wins each output pixel (64-bit atomic min of depth | index).
+//   2. resolve: an output pixel with a winner reads the real frame at the
+//      winner's position moved by the sub-pixel offset of its landing point.
+//      One without (a crack, or a disocclusion) starts from its farthest
+//      neighbouring winner and iterates to the real-frame point that lands
+//      on it (fixed point); if none does and the pixel sees sky in the real
+//      frame, sky; otherwise it is a hole: read from the second reference
+//      by the same iteration, or else
+//   3. extend the background: along the row, from the farther side.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "warp/warp_internal.h"
+
+namespace terrasprite::warp {
+namespace {
+
+constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
+
+// Real-frame pixel -> new-camera coordinates, linear along a row:
+// q = z (row_base(j) + i step) + offset, in the new camera's (right, up, forward).
+struct SplatMap {
+  glm::vec3 rr, ru, rf, step, offset;
+  float mx, my, fx, fy;     // new camera
+  float smx, smy, sfx, sfy;  // real camera
+  SplatMap(const Pinhole& s, const Pinhole& t) {
+    auto in_t = [&](const glm::dvec3& v) {
+      return glm::vec3(glm::dot(v, t.r), glm::dot(v, t.u), glm::dot(v, t.f));
+    };
+    rr = in_t(s.r);
+    ru = in_t(s.u);
+    rf = in_t(s.f);
+    offset = in_t(s.eye - t.eye);
+    step = rr / float(s.fx);
+    mx = float(t.mx), my = float(t.my), fx = float(t.fx), fy = float(t.fy);
+    smx = float(s.mx), smy = float(s.my), sfx = float(s.fx), sfy = float(s.fy);
+  }
+  glm::vec3 row_base(int j) const {
+    const float b = (j + 0.5f - smy) / sfy, a = (0.5f - smx) / sfx;
+    return rf - b * ru + a * rr;
+  }
+  // New-image position (pixel coordinates) and depth of real pixel (i, j) at depth z.
+  bool land(int i, int j, float z, float& x, float& y, float& zt) const {
+    const glm::vec3 q = z * (row_base(j) + float(i) * step) + offset;
+    if (!(q.z > 1e-3f)) return false;
+    zt = q.z;
+    const float inv = 1.0f / q.z;
+    x = mx + fx * q.x * inv;
+    y = my - fy * q.y * inv;
+    return true;
+  }
+};
+
+std::uint64_t pack(float depth, std::uint32_t index) {
+  return (std::uint64_t(std::bit_cast<std::uint32_t>(depth)) << 32) | index;
+}
+
+void splat(const Reference& ref, const SplatMap& map, int w, int h, std::vector<std::uint64_t>& win) {
+  const int sw = ref.cam.w;
+  tbb::parallel_for(tbb::blocked_range<int>(0, ref.cam.h, 8), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j < rows.end(); ++j) {
+      const glm::vec3 base = map.row_base(j);
+      const float* depth = ref.frame.depth.data() + std::size_t(j) * sw;
+      for (int i = 0; i < sw; ++i) {
+        const float z = depth[i];
+        if (!(z < Frame::kSky)) continue;
+        const glm::vec3 q = z * (base + float(i) * map.step) + map.offset;
+        if (!(q.z > 1e-3f)) continue;
+        const float inv = 1.0f / q.z;
+        const float x = map.mx + map.fx * q.x * inv, y = map.my - map.fy * q.y * inv;
+        if (!(x >= 0.f && y >= 0.f && x < float(w) && y < float(h))) continue;
+        const std::uint64_t key = pack(q.z, std::uint32_t(std::size_t(j) * sw + i));
+        std::atomic_ref<std::uint64_t> slot(win[std::size_t(int(y)) * w + int(x)]);
+        std::uint64_t cur = slot.load(std::memory_order_relaxed);
+        while (key < cur && !slot.compare_exchange_weak(cur, key, std::memory_order_relaxed)) {
+        }
+      }
+    }
+  });
+}
+
+// Fixed point: the reference position whose surface point lands on new pixel
+// (x, y), starting from (sx, sy). True when found within a fraction of a pixel.
+bool converge(const Reference& ref, const Pinhole& out, double x, double y, double& sx, double& sy,
+              double& zt) {
+  const double kx = ref.cam.fx / out.fx, ky = ref.cam.fy / out.fy;
+  for (int it = 0; it < 4; ++it) {
+    if (!ref.inside(sx, sy)) return false;
+    const float zs = ref.depth_at(sx, sy);
+    if (!(zs < Frame::kSky)) return false;
+    double px, py;
+    if (!out.project(ref.cam.unproject(sx, sy, zs), px, py, zt)) return false;
+    const double ex = x - px, ey = y - py;
+    if (ex * ex + ey * ey < 0.01) return true;
+    if (it == 3) return ex * ex + ey * ey < 0.25;
+    sx += ex * kx;
+    sy += ey * ky;
+  }
+  return false;
+}
+
+// The reference sees sky where the new pixel looks (at infinity).
+bool sees_sky(const Reference& ref, const Pinhole& out, double x, double y, double& sx,
+              double& sy) {
+  if (!ref.cam.project_dir(out.ray(x, y), sx, sy) || !ref.inside(sx, sy)) return false;
+  return !(ref.depth_nearest(sx, sy) < Frame::kSky) ||
+         !(ref.depth_nearest(sx + 0.5, sy + 0.5) < Frame::kSky) ||
+         !(ref.depth_nearest(sx - 0.5, sy - 0.5) < Frame::kSky);
+}
+
+struct Resolver {
+  const Reference& ref;
+  const Reference* second;
+  const Pinhole& out;
+  const SplatMap& map;
+  const std::vector<std::uint64_t>& win;
+  bool keep_sources;
+  WarpedFrame& result;
+
+  // Where winner `key` says new pixel (x, y) reads the reference; its depth.
+  bool from_winner(std::uint64_t key, double x, double y, double& sx, double& sy, float& zt) const {
+    const std::uint32_t idx = std::uint32_t(key);
+    const int i = int(idx % std::uint32_t(ref.cam.w)), j = int(idx / std::uint32_t(ref.cam.w));
+    float lx, ly;
+    if (!map.land(i, j, ref.frame.depth[idx], lx, ly, zt)) return false;
+    sx = i + 0.5 + (x - lx) * (ref.cam.fx / out.fx);
+    sy = j + 0.5 + (y - ly) * (ref.cam.fy / out.fy);
+    return true;
+  }
+
+  // The farthest winner among the 5 x 5 neighbours of (px, py), or kEmpty.
+  std::uint64_t farthest_neighbour(int px, int py) const {
+    std::uint64_t best = kEmpty;
+    float best_z = -1.f;
+    for (int r = 1; r <= 2 && best == kEmpty; ++r)
+      for (int b = std::max(py - r, 0); b <= std::min(py + r, out.h - 1); ++b)
+        for (int a = std::max(px - r, 0); a <= std::min(px + r, out.w - 1); ++a) {
+          const std::uint64_t k = win[std::size_t(b) * out.w + a];
+          if (k == kEmpty) continue;
+          const float z = std::bit_cast<float>(std::uint32_t(k >> 32));
+          if (z > best_z) {
+            best_z = z;
+            best = k;
+          }
+        }
+    return best;
+  }
+
+  // Resolves pixel (px, py); false when neither reference sees it.
+  bool pixel(int px, int py, bool& hole) {
+    const std::size_t at = std::size_t(py) * out.w + px;
+    const double x = px + 0.5, y = py + 0.5;
+    std::uint8_t* rgba = result.frame.color.px(px, py);
+    double sx, sy, zt = Frame::kSky;
+    float zf;
+    hole = false;
+    const std::uint64_t key = win[at];
+    bool ok = key != kEmpty && from_winner(key, x, y, sx, sy, zf);
+    if (ok) {
+      zt = zf;
+    } else {
+      const std::uint64_t nb = farthest_neighbour(px, py);
+      ok = nb != kEmpty && from_winner(nb, x, y, sx, sy, zf) && converge(ref, out, x, y, sx, sy, zt);
+      if (!ok && sees_sky(ref, out, x, y, sx, sy)) {
+        ok = true;
+        zt = Frame::kSky;
+      }
+    }
+    if (ok) {
+      ref.color_at(sx, sy, rgba);
+      result.frame.depth[at] = float(zt);
+      if (keep_sources) {
+        result.source_x[at] = float(sx);
+        result.source_y[at] = float(sy);
+      }
+      return true;
+    }
+    hole = true;
+    return second && from_second(px, py, rgba);
+  }
+
+  // A hole of the primary reference read from the second one: start where
+  // the pixel's ray at its neighbours' (background) depth lands.
+  bool from_second(int px, int py, std::uint8_t* rgba) {
+    const std::size_t at = std::size_t(py) * out.w + px;
+    const double x = px + 0.5, y = py + 0.5;
+    double sx, sy, zt, d;
+    const std::uint64_t nb = farthest_neighbour(px, py);
+    if (nb != kEmpty) {
+      const float z = std::bit_cast<float>(std::uint32_t(nb >> 32));
+      if (second->cam.project(out.unproject(x, y, z), sx, sy, d) &&
+          converge(*second, out, x, y, sx, sy, zt)) {
+        second->color_at(sx, sy, rgba);
+        result.frame.depth[at] = float(zt);
+        return true;
+      }
+    }
+    if (sees_sky(*second, out, x, y, sx, sy)) {
+      second->color_at(sx, sy, rgba);
+      return true;
+    }
+    return false;
+  }
+};
+
+// Fills the unresolved pixels of one row from the farther of their resolved
+// neighbours on the row (background extension); rows with none stay sky.
+void extend_background(WarpedFrame& r, int y, const std::vector<std::uint8_t>& unresolved) {
+  const int w = r.frame.width();
+  const std::uint8_t* miss = unresolved.data() + std::size_t(y) * w;
+  float* depth = r.frame.depth.data() + std::size_t(y) * w;
+  for (int x = 0; x < w;) {
+    if (!miss[x]) {
+      ++x;
+      continue;
+    }
+    int e = x;
+    while (e < w && miss[e]) ++e;
+    const int left = x - 1, right = e < w ? e : -1;
+    int from = left;
+    if (left < 0 || (right >= 0 && depth[right] > depth[left])) from = right;
+    if (from >= 0)
+      for (int k = x; k < e; ++k) {
+        std::memcpy(r.frame.color.px(k, y), r.frame.color.px(from, y), 4);
+        depth[k] = depth[from];
+      }
+    x = e;
+  }
+}
+
+}  // namespace
+
+void warp_depth(const Reference& ref, const Reference* second, const Pinhole& out,
+                const WarpOptions& options, WarpedFrame& result) {
+  const SplatMap map(ref.cam, out);
+  std::vector<std::uint64_t> win(std::size_t(out.w) * out.h, kEmpty);
+  splat(ref, map, out.w, out.h, win);
+  std::vector<std::uint8_t> unresolved(win.size(), 0);
+  Resolver res{ref, second, out, map, win, options.keep_sources, result};
+  tbb::parallel_for(tbb::blocked_range<int>(0, out.h, 4), [&](const tbb::blocked_range<int>& rows) {
+    Resolver local = res;
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      bool any = false;
+      for (int x = 0; x < out.w; ++x) {
+        bool hole;
+        const bool ok = local.pixel(x, y, hole);
+        const std::size_t at = std::size_t(y) * out.w + x;
+        result.holes[at] = hole;
+        unresolved[at] = !ok;
+        any = any || !ok;
+      }
+      if (any) extend_background(result, y, unresolved);
+    }
+  });
+}
+
+}  // namespace terrasprite::warp

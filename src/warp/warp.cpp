@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: MIT
+// warp_frame(): checks the references, sizes the output, runs one method,
+// times it.
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <optional>
+
+#include "terrasprite/error.h"
+#include "warp/warp_internal.h"
+
+namespace terrasprite {
+
+WarpMethod parse_warp_method(const std::string& text) {
+  if (text == "poly2") return WarpMethod::kPoly2;
+  if (text == "depth") return WarpMethod::kDepth;
+  throw InputError(fmt::format("warp method '{}': expected poly2 or depth", text));
+}
+
+const char* to_string(WarpMethod m) {
+  return m == WarpMethod::kPoly2 ? "poly2" : "depth";
+}
+
+namespace {
+
+void check_reference(const Frame& f, const char* what) {
+  const std::size_t n = std::size_t(std::max(f.width(), 0)) * std::max(f.height(), 0);
+  if (f.width() < 1 || f.height() < 1 || f.width() > 16384 || f.height() > 16384)
+    throw InputError(fmt::format("warp: {} frame size {}x{} out of range", what, f.width(), f.height()));
+  if (f.depth.size() != n)
+    throw InputError(fmt::format("warp: {} frame has no depth ({} values for {}x{} pixels)", what,
+                                 f.depth.size(), f.width(), f.height()));
+}
+
+}  // namespace
+
+WarpedFrame warp_frame(const Frame& real, const Camera& target, int width, int height,
+                       const WarpOptions& options, const Frame* second) {
+  check_reference(real, "real");
+  if (second) check_reference(*second, "second reference");
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw InputError(fmt::format("warp: output size {}x{} out of range", width, height));
+  const auto start = std::chrono::steady_clock::now();
+  WarpedFrame r;
+  const std::size_t n = std::size_t(width) * height;
+  r.frame.color = Image(width, height);
+  r.frame.depth.assign(n, Frame::kSky);
+  r.frame.cls = "warp";
+  r.frame.camera = target;
+  r.holes.assign(n, 0);
+  if (options.keep_sources) {
+    r.source_x.assign(n, std::numeric_limits<float>::quiet_NaN());
+    r.source_y.assign(n, std::numeric_limits<float>::quiet_NaN());
+  }
+  const warp::Reference ref(real);
+  const warp::Pinhole out(target, width, height);
+  if (options.method == WarpMethod::kPoly2) {
+    warp::warp_poly2(ref, out, options, r);
+  } else {
+    std::optional<warp::Reference> ref2;
+    if (second) ref2.emplace(*second);
+    warp::warp_depth(ref, ref2 ? &*ref2 : nullptr, out, options, r);
+  }
+  r.frame.ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  r.hole_fraction =
+      double(std::accumulate(r.holes.begin(), r.holes.end(), std::size_t(0))) / double(n);
+  return r;
+}
+
+Camera with_margin(const Camera& camera, int width, int height, int margin_x, int margin_y) {
+  Camera c = camera;
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  const double t = std::tan(camera.fov_y_deg * kDeg * 0.5);
+  const int wm = width + 2 * margin_x, hm = height + 2 * margin_y;
+  // Same focal length in pixels: tan grows with the image's half-height;
+  // the horizontal focal length must match too, which fixes the aspect.
+  const double fx = width / (2.0 * t * camera.aspect);
+  const double tm = t * double(hm) / double(height);
+  c.fov_y_deg = 2.0 * std::atan(tm) / kDeg;
+  c.aspect = double(wm) / (2.0 * tm * fx);
+  return c;
+}
+
+}  // namespace terrasprite

@@ -13,9 +13,11 @@
 #include "terrasprite/model.h"
 
 inline int fuzz_model_file(const std::uint8_t* data, std::size_t size, const char* extension) {
-  static const std::string path =
-      (std::filesystem::temp_directory_path() / ("terrasprite_fuzz_" + std::to_string(getpid()) + extension)).string();
-  std::ofstream(path, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data), std::streamsize(size));
+  static const std::string path = (std::filesystem::temp_directory_path() /
+                                   ("terrasprite_fuzz_" + std::to_string(getpid()) + extension))
+                                      .string();
+  std::ofstream(path, std::ios::binary | std::ios::trunc)
+      .write(reinterpret_cast<const char*>(data), std::streamsize(size));
   try {
     terrasprite::load_model(path);
   } catch (const terrasprite::InputError&) {

@@ -5,9 +5,9 @@
 
 #include <chrono>
 #include <cmath>
-#include <optional>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "cli_common.h"
@@ -45,10 +45,13 @@ ModelOptions model_options(const ModelArgs& m) {
   return o;
 }
 
-Model load(const ModelArgs& m) { return load_model(m.file, model_options(m)); }
+Model load(const ModelArgs& m) {
+  return load_model(m.file, model_options(m));
+}
 
 void add_objects_info(CLI::App& objects) {
-  auto* cmd = objects.add_subcommand("info", "describe a model: triangles, vertices, bounds, textures");
+  auto* cmd =
+      objects.add_subcommand("info", "describe a model: triangles, vertices, bounds, textures");
   auto m = std::make_shared<ModelArgs>();
   auto json = std::make_shared<std::string>();
   add_model_options(*cmd, *m);
@@ -99,7 +102,8 @@ struct TableArgs {
 std::vector<int> int_list(const std::string& text, const char* option) {
   std::vector<int> out;
   for (double v : parse_list(text, option)) {
-    if (v != std::floor(v) || v <= 0) throw InputError(fmt::format("{}: {} is not a positive whole number", option, v));
+    if (v != std::floor(v) || v <= 0)
+      throw InputError(fmt::format("{}: {} is not a positive whole number", option, v));
     out.push_back(int(v));
   }
   return out;
@@ -117,7 +121,8 @@ TableOptions table_options(const TableArgs& a) {
   o.views = a.views;
   for (int r : o.resolutions)
     if (r < 16 || r > 512) throw InputError(fmt::format("--resolutions: {} is outside 16..512", r));
-  if (o.views < 2 || o.views > 32) throw InputError(fmt::format("--views: {} is outside 2..32", o.views));
+  if (o.views < 2 || o.views > 32)
+    throw InputError(fmt::format("--views: {} is outside 2..32", o.views));
   return o;
 }
 
@@ -156,13 +161,18 @@ QualityTable measure(const Model& model, const TableOptions& o) {
 }
 
 void add_objects_table(CLI::App& objects) {
-  auto* cmd = objects.add_subcommand("table", "measure a model's representations against it: quality tables, plots, Table 1");
+  auto* cmd = objects.add_subcommand(
+      "table", "measure a model's representations against it: quality tables, plots, Table 1");
   auto a = std::make_shared<TableArgs>();
   add_model_options(*cmd, a->model);
-  cmd->add_option("--kinds", a->kinds, "representations: pm,relief,octahedral")->capture_default_str();
-  cmd->add_option("--resolutions", a->resolutions, "impostor resolutions (16..512)")->capture_default_str();
-  cmd->add_option("--sizes-px", a->sizes, "on-screen bounding-sphere diameters")->capture_default_str();
-  cmd->add_option("--angle-step", a->angle_step, "degrees between sampled views")->capture_default_str();
+  cmd->add_option("--kinds", a->kinds, "representations: pm,relief,octahedral")
+      ->capture_default_str();
+  cmd->add_option("--resolutions", a->resolutions, "impostor resolutions (16..512)")
+      ->capture_default_str();
+  cmd->add_option("--sizes-px", a->sizes, "on-screen bounding-sphere diameters")
+      ->capture_default_str();
+  cmd->add_option("--angle-step", a->angle_step, "degrees between sampled views")
+      ->capture_default_str();
   cmd->add_flag("--full-sphere", a->full_sphere, "theta 0..180 (views from below too)");
   cmd->add_option("--views", a->views, "octahedral views per side")->capture_default_str();
   cmd->add_option("--json", a->json, "write the table as JSON");
@@ -177,8 +187,9 @@ void add_objects_table(CLI::App& objects) {
     check_outputs(out_dir, {a->json});
     const Model model = load_model(a->model.file, mo);
     OutputDir out(out_dir, output_policy());
-    const std::filesystem::path cache_file = std::filesystem::path(a->cache.empty() ? default_cache_dir() : a->cache) /
-                                             (stem + "-" + table_cache_key(a->model.file, mo, o) + ".json");
+    const std::filesystem::path cache_file =
+        std::filesystem::path(a->cache.empty() ? default_cache_dir() : a->cache) /
+        (stem + "-" + table_cache_key(a->model.file, mo, o) + ".json");
     std::optional<QualityTable> t = a->no_cache ? std::nullopt : read_cache(cache_file);
     const bool cached = t.has_value();
     if (!cached) t = measure(model, o);
@@ -202,7 +213,8 @@ void add_objects_table(CLI::App& objects) {
 void add_objects_scene(CLI::App& objects);  // objects_scene.cpp
 
 void add_objects(CLI::App& app) {
-  auto* objects = app.add_subcommand("objects", "object models: info, representations, quality tables");
+  auto* objects =
+      app.add_subcommand("objects", "object models: info, representations, quality tables");
   objects->require_subcommand(1);
   add_objects_info(*objects);
   add_objects_table(*objects);

@@ -25,8 +25,9 @@ void write_file(const std::string& path, const std::string& text) {
 }
 
 std::string rep_label(const RepresentationQuality& q) {
-  return q.rep.kind == ObjectKind::kMesh ? fmt::format("pm L{} ({} tris)", q.rep.level, q.triangles)
-                                         : fmt::format("{} {}", object_kind_name(q.rep.kind), q.rep.resolution);
+  return q.rep.kind == ObjectKind::kMesh
+             ? fmt::format("pm L{} ({} tris)", q.rep.level, q.triangles)
+             : fmt::format("{} {}", object_kind_name(q.rep.kind), q.rep.resolution);
 }
 
 // The impostor whose resolution is nearest the middle of the sweep, per kind.
@@ -54,17 +55,20 @@ std::string figure1(const QualityTable& t, const TableOptions& o, OutputDir& out
       for (const QualitySample& s : q->samples)
         if (s.size_px == size) by_phi[s.phi_deg].push_back(&s);
       for (auto& [phi, row] : by_phi) {
-        for (const QualitySample* s : row) dat << fmt::format("{} {} {:.5f}\n", s->phi_deg, s->theta_deg, s->ssim);
+        for (const QualitySample* s : row)
+          dat << fmt::format("{} {} {:.5f}\n", s->phi_deg, s->theta_deg, s->ssim);
         dat << "\n";
       }
       dat << "\n";
     }
     write_file(out.file(name + ".dat"), dat.str());
-    gp += fmt::format("set output '{0}.png'\nset multiplot layout 1,3 title 'SSIM over viewing angle: {1}'\n"
-                      "set xlabel 'phi (deg)'; set ylabel 'theta (deg)'; set view map; set cbrange [0.5:1]\n",
-                      name, rep_label(*q));
+    gp += fmt::format(
+        "set output '{0}.png'\nset multiplot layout 1,3 title 'SSIM over viewing angle: {1}'\n"
+        "set xlabel 'phi (deg)'; set ylabel 'theta (deg)'; set view map; set cbrange [0.5:1]\n",
+        name, rep_label(*q));
     for (int i = 0; i < 3; ++i)
-      gp += fmt::format("set title '{} px'\nsplot '{}.dat' index {} u 1:2:3 w pm3d notitle\n", pick[i], name, i);
+      gp += fmt::format("set title '{} px'\nsplot '{}.dat' index {} u 1:2:3 w pm3d notitle\n",
+                        pick[i], name, i);
     gp += "unset multiplot\nunset view\n";
   }
   return gp;
@@ -83,14 +87,18 @@ std::string figure2(const QualityTable& t, const TableOptions& o, OutputDir& out
       dat << "# " << rep_label(q) << "\n# size_px mean_ssim mean_psnr\n";
       std::vector<int> sizes = o.sizes_px;
       std::sort(sizes.begin(), sizes.end());
-      for (int s : sizes) dat << fmt::format("{} {:.5f} {:.3f}\n", s, q.mean("ssim", s), q.mean("psnr", s));
+      for (int s : sizes)
+        dat << fmt::format("{} {:.5f} {:.3f}\n", s, q.mean("ssim", s), q.mean("psnr", s));
       dat << "\n\n";
-      plots += fmt::format("{}'{}.dat' index {} u 1:2 w lp lw 1.5 t '{}'", plots.empty() ? "" : ", ", name, index++, rep_label(q));
+      plots += fmt::format("{}'{}.dat' index {} u 1:2 w lp lw 1.5 t '{}'",
+                           plots.empty() ? "" : ", ", name, index++, rep_label(q));
     }
     write_file(out.file(name + ".dat"), dat.str());
-    gp += fmt::format("set output '{}.png'\nset title 'Quality against on-screen size: {}'\nset logscale x 2\n"
-                      "set xlabel 'bounding-sphere diameter (px)'; set ylabel 'mean SSIM'; set key bottom right\nplot {}\nunset logscale x\n",
-                      name, object_kind_name(kind), plots);
+    gp += fmt::format(
+        "set output '{}.png'\nset title 'Quality against on-screen size: {}'\nset logscale x 2\n"
+        "set xlabel 'bounding-sphere diameter (px)'; set ylabel 'mean SSIM'; set key bottom "
+        "right\nplot {}\nunset logscale x\n",
+        name, object_kind_name(kind), plots);
   }
   return gp;
 }
@@ -102,29 +110,34 @@ std::string figure3(const QualityTable& t, const TableOptions& o, OutputDir& out
   int index = 0;
   for (ObjectKind kind : o.kinds)
     for (int size : o.sizes_px) {
-      dat << fmt::format("# {} at {} px\n# ms_per_instance mean_ssim\n", object_kind_name(kind), size);
+      dat << fmt::format("# {} at {} px\n# ms_per_instance mean_ssim\n", object_kind_name(kind),
+                         size);
       for (const auto& q : t.representations) {
         if (q.rep.kind != kind) continue;
         for (const SizeCost& c : q.cost)
-          if (c.size_px == size) dat << fmt::format("{:.5f} {:.5f}\n", c.ms_per_instance, q.mean("ssim", size));
+          if (c.size_px == size)
+            dat << fmt::format("{:.5f} {:.5f}\n", c.ms_per_instance, q.mean("ssim", size));
       }
       dat << "\n\n";
-      plots += fmt::format("{}'fig3.dat' index {} u 1:2 w lp t '{} {} px'", plots.empty() ? "" : ", ", index++,
-                           object_kind_name(kind), size);
+      plots += fmt::format("{}'fig3.dat' index {} u 1:2 w lp t '{} {} px'",
+                           plots.empty() ? "" : ", ", index++, object_kind_name(kind), size);
     }
   write_file(out.file("fig3.dat"), dat.str());
-  return fmt::format("set output 'fig3.png'\nset title 'Draw time against quality'\nset logscale x\n"
-                     "set xlabel 'ms per instance (llvmpipe)'; set ylabel 'mean SSIM'; set key outside right\nplot {}\nunset logscale x\n",
-                     plots);
+  return fmt::format(
+      "set output 'fig3.png'\nset title 'Draw time against quality'\nset logscale x\n"
+      "set xlabel 'ms per instance (llvmpipe)'; set ylabel 'mean SSIM'; set key outside "
+      "right\nplot {}\nunset logscale x\n",
+      plots);
 }
 
 }  // namespace
 
 std::string table1_markdown(const QualityTable& t, const TableOptions& o) {
   std::ostringstream md;
-  md << fmt::format("Table 1: {} ({} triangles) -- lowest resolution (impostors) or coarsest level (pm) "
-                    "whose mean quality over all views reaches the target; '-' = none.\n",
-                    t.model, t.triangles);
+  md << fmt::format(
+      "Table 1: {} ({} triangles) -- lowest resolution (impostors) or coarsest level (pm) "
+      "whose mean quality over all views reaches the target; '-' = none.\n",
+      t.model, t.triangles);
   for (ObjectKind kind : o.kinds)
     for (const char* metric : {"ssim", "psnr"}) {
       const auto& targets = std::string(metric) == "ssim" ? o.ssim_targets : o.psnr_targets;
@@ -136,7 +149,9 @@ std::string table1_markdown(const QualityTable& t, const TableOptions& o) {
         for (double target : targets)
           for (const TableEntry& e : t.table)
             if (e.kind == kind && e.size_px == size && e.metric == metric && e.target == target)
-              md << (e.choice ? fmt::format("{}{} | ", kind == ObjectKind::kMesh ? "L" : "", *e.choice) : std::string("- | "));
+              md << (e.choice
+                         ? fmt::format("{}{} | ", kind == ObjectKind::kMesh ? "L" : "", *e.choice)
+                         : std::string("- | "));
         md << "\n";
       }
     }
@@ -145,7 +160,8 @@ std::string table1_markdown(const QualityTable& t, const TableOptions& o) {
 
 void write_objects_report(const QualityTable& t, const TableOptions& o, OutputDir& out) {
   std::string gp = "set terminal pngcairo size 1500,480 font 'sans,10'\n" + figure1(t, o, out) +
-                   "set terminal pngcairo size 900,600 font 'sans,10'\n" + figure2(t, o, out) + figure3(t, o, out);
+                   "set terminal pngcairo size 900,600 font 'sans,10'\n" + figure2(t, o, out) +
+                   figure3(t, o, out);
   write_file(out.file("plots.gp"), gp);
   write_file(out.file("table1.md"), table1_markdown(t, o));
   const std::string failed = run_gnuplot(out.partial().string(), "plots.gp");

@@ -17,7 +17,9 @@ namespace {
 constexpr const char* kFormat = "terrasprite-objects-table-1";
 
 // Infinite PSNR (identical images) is written as the string "inf": JSON has no infinity.
-nlohmann::json number(double v) { return std::isinf(v) ? nlohmann::json("inf") : nlohmann::json(v); }
+nlohmann::json number(double v) {
+  return std::isinf(v) ? nlohmann::json("inf") : nlohmann::json(v);
+}
 double number(const nlohmann::json& v) {
   return v.is_string() && v == "inf" ? INFINITY : v.get<double>();
 }
@@ -51,18 +53,26 @@ nlohmann::json table_json(const QualityTable& t, const TableOptions& o) {
     }
     if (q.rep.kind == ObjectKind::kOctahedral) r["views"] = q.rep.views;
     nlohmann::json cost = nlohmann::json::array(), samples = nlohmann::json::array();
-    for (const SizeCost& c : q.cost) cost.push_back({{"size_px", c.size_px}, {"ms_per_instance", c.ms_per_instance}});
+    for (const SizeCost& c : q.cost)
+      cost.push_back({{"size_px", c.size_px}, {"ms_per_instance", c.ms_per_instance}});
     for (const QualitySample& s : q.samples)
-      samples.push_back({{"phi_deg", s.phi_deg}, {"theta_deg", s.theta_deg}, {"size_px", s.size_px},
-                         {"psnr", number(s.psnr)}, {"ssim", s.ssim}});
+      samples.push_back({{"phi_deg", s.phi_deg},
+                         {"theta_deg", s.theta_deg},
+                         {"size_px", s.size_px},
+                         {"psnr", number(s.psnr)},
+                         {"ssim", s.ssim}});
     r["cost"] = cost;
     r["samples"] = samples;
     reps.push_back(r);
   }
   nlohmann::json table = nlohmann::json::array();
   for (const TableEntry& e : t.table) {
-    nlohmann::json row = {{"kind", object_kind_name(e.kind)}, {"size_px", e.size_px}, {"metric", e.metric}, {"target", e.target}};
-    row[e.kind == ObjectKind::kMesh ? "level" : "resolution"] = e.choice ? nlohmann::json(*e.choice) : nlohmann::json(nullptr);
+    nlohmann::json row = {{"kind", object_kind_name(e.kind)},
+                          {"size_px", e.size_px},
+                          {"metric", e.metric},
+                          {"target", e.target}};
+    row[e.kind == ObjectKind::kMesh ? "level" : "resolution"] =
+        e.choice ? nlohmann::json(*e.choice) : nlohmann::json(nullptr);
     table.push_back(row);
   }
   std::vector<std::string> kinds;
@@ -71,8 +81,13 @@ nlohmann::json table_json(const QualityTable& t, const TableOptions& o) {
           {"model", t.model},
           {"triangles", t.triangles},
           {"build_ms", t.build_ms},
-          {"options", {{"kinds", kinds}, {"resolutions", o.resolutions}, {"sizes_px", o.sizes_px},
-                       {"angle_step_deg", o.angle_step_deg}, {"full_sphere", o.full_sphere}, {"views", o.views}}},
+          {"options",
+           {{"kinds", kinds},
+            {"resolutions", o.resolutions},
+            {"sizes_px", o.sizes_px},
+            {"angle_step_deg", o.angle_step_deg},
+            {"full_sphere", o.full_sphere},
+            {"views", o.views}}},
           {"representations", reps},
           {"table", table}};
 }
@@ -95,13 +110,16 @@ QualityTable table_from_json(const nlohmann::json& j) {
       q.ms_per_instance = r.at("ms_per_instance");
       q.build_ms = r.at("build_ms");
       q.error_m = r.value("error_m", 0.0);
-      for (const auto& c : r.at("cost")) q.cost.push_back({c.at("size_px"), c.at("ms_per_instance")});
+      for (const auto& c : r.at("cost"))
+        q.cost.push_back({c.at("size_px"), c.at("ms_per_instance")});
       for (const auto& s : r.at("samples"))
-        q.samples.push_back({s.at("phi_deg"), s.at("theta_deg"), s.at("size_px"), number(s.at("psnr")), s.at("ssim")});
+        q.samples.push_back({s.at("phi_deg"), s.at("theta_deg"), s.at("size_px"),
+                             number(s.at("psnr")), s.at("ssim")});
       t.representations.push_back(std::move(q));
     }
     for (const auto& e : j.at("table")) {
-      TableEntry row{parse_object_kind(e.at("kind"), "cache"), e.at("size_px"), e.at("metric"), e.at("target"), std::nullopt};
+      TableEntry row{parse_object_kind(e.at("kind"), "cache"), e.at("size_px"), e.at("metric"),
+                     e.at("target"), std::nullopt};
       const auto& c = row.kind == ObjectKind::kMesh ? e.at("level") : e.at("resolution");
       if (!c.is_null()) row.choice = c.get<int>();
       t.table.push_back(row);
@@ -112,12 +130,14 @@ QualityTable table_from_json(const nlohmann::json& j) {
   }
 }
 
-std::string table_cache_key(const std::string& model_file, const ModelOptions& m, const TableOptions& o) {
+std::string table_cache_key(const std::string& model_file, const ModelOptions& m,
+                            const TableOptions& o) {
   std::string params = fmt::format("{}|up{}|h{}|tex{}|", kFormat, int(m.up), m.height_m, m.texture);
   for (ObjectKind k : o.kinds) params += object_kind_name(k) + std::string(",");
   params += fmt::format("|r{}|s{}|a{}|fs{}|v{}|n{}|t{}|{}", fmt::join(o.resolutions, ","),
                         fmt::join(o.sizes_px, ","), o.angle_step_deg, o.full_sphere, o.views,
-                        o.timing_instances, fmt::join(o.ssim_targets, ","), fmt::join(o.psnr_targets, ","));
+                        o.timing_instances, fmt::join(o.ssim_targets, ","),
+                        fmt::join(o.psnr_targets, ","));
   std::uint64_t h = fnv1a(file_bytes(model_file));
   if (!m.texture.empty()) h = fnv1a(file_bytes(m.texture), h);
   return fmt::format("{:016x}{:016x}", h, fnv1a(params));
@@ -125,9 +145,12 @@ std::string table_cache_key(const std::string& model_file, const ModelOptions& m
 
 std::string default_cache_dir() {
   namespace fs = std::filesystem;
-  if (const char* d = std::getenv("TERRASPRITE_CACHE"); d && *d) return (fs::path(d) / "objects").string();
-  if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return (fs::path(d) / "terrasprite" / "objects").string();
-  if (const char* d = std::getenv("HOME"); d && *d) return (fs::path(d) / ".cache" / "terrasprite" / "objects").string();
+  if (const char* d = std::getenv("TERRASPRITE_CACHE"); d && *d)
+    return (fs::path(d) / "objects").string();
+  if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d)
+    return (fs::path(d) / "terrasprite" / "objects").string();
+  if (const char* d = std::getenv("HOME"); d && *d)
+    return (fs::path(d) / ".cache" / "terrasprite" / "objects").string();
   return (fs::temp_directory_path() / "terrasprite-cache" / "objects").string();
 }
 

@@ -16,13 +16,13 @@ namespace terrasprite {
 struct TableOptions {
   std::vector<ObjectKind> kinds{ObjectKind::kMesh, ObjectKind::kRelief, ObjectKind::kOctahedral};
   std::vector<int> resolutions{16, 32, 64, 128, 256, 512};  ///< impostor texels per face / view
-  std::vector<int> sizes_px{400, 200, 100, 50, 25};  ///< on-screen bounding-sphere diameter
+  std::vector<int> sizes_px{400, 200, 100, 50, 25};         ///< on-screen bounding-sphere diameter
   /// phi in [0, 360), theta in [0, 90] (or [0, 180]); straight above (theta 0)
   /// and below (180) are sampled once, at phi 0.
   double angle_step_deg = 30.0;
-  bool full_sphere = false;      ///< theta up to 180 (from below too)
-  int views = 12;                ///< octahedral views per side
-  int timing_instances = 1;      ///< instances drawn (3 times, median) to time a representation
+  bool full_sphere = false;  ///< theta up to 180 (from below too)
+  int views = 12;            ///< octahedral views per side
+  int timing_instances = 1;  ///< instances drawn (3 times, median) to time a representation
   std::vector<double> ssim_targets{0.90, 0.95, 0.98, 0.99};
   std::vector<double> psnr_targets{20, 25, 30, 35};
 };
@@ -42,10 +42,10 @@ struct SizeCost {
 
 struct RepresentationQuality {
   Representation rep;
-  long long triangles = 0;   ///< per instance
-  std::size_t bytes = 0;     ///< GPU memory of the representation
-  double error_m = 0;        ///< LOD level's geometric error (meshes only)
-  double build_ms = 0;       ///< building the impostor (0 for meshes)
+  long long triangles = 0;     ///< per instance
+  std::size_t bytes = 0;       ///< GPU memory of the representation
+  double error_m = 0;          ///< LOD level's geometric error (meshes only)
+  double build_ms = 0;         ///< building the impostor (0 for meshes)
   double ms_per_instance = 0;  ///< at the middle size of the sweep
   std::vector<SizeCost> cost;  ///< per size
   std::vector<QualitySample> samples;

@@ -49,7 +49,8 @@ void main() {
 }  // namespace
 
 gl::Program make_capture_program() {
-  return gl::link_program(std::string("#version 450 core\n") + kObjectGlsl + kCaptureVertex, kCaptureFragment);
+  return gl::link_program(std::string("#version 450 core\n") + kObjectGlsl + kCaptureVertex,
+                          kCaptureFragment);
 }
 
 GlStateGuard::GlStateGuard() {
@@ -75,7 +76,10 @@ GlStateGuard::~GlStateGuard() {
   glBindVertexArray(GLuint(vao_));
   glClearColor(clear_color_[0], clear_color_[1], clear_color_[2], clear_color_[3]);
   glClearDepth(clear_depth_);
-  if (depth_test_) glEnable(GL_DEPTH_TEST); else glDisable(GL_DEPTH_TEST);
+  if (depth_test_)
+    glEnable(GL_DEPTH_TEST);
+  else
+    glDisable(GL_DEPTH_TEST);
   glDepthMask(depth_mask_);
 }
 
@@ -99,10 +103,12 @@ void capture_view(GlModel::Impl& m, const glm::mat4& local_to_clip, bool pack_no
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
-  glUniformMatrix4fv(glGetUniformLocation(p, "u_capture"), 1, GL_FALSE, glm::value_ptr(local_to_clip));
+  glUniformMatrix4fv(glGetUniformLocation(p, "u_capture"), 1, GL_FALSE,
+                     glm::value_ptr(local_to_clip));
   // Depth grows away from the viewer, so an unmirrored view has a negative
   // determinant (as GL's own projections do).
-  glUniform1i(glGetUniformLocation(p, "u_mirrored"), glm::determinant(glm::mat3(local_to_clip)) > 0 ? 1 : 0);
+  glUniform1i(glGetUniformLocation(p, "u_mirrored"),
+              glm::determinant(glm::mat3(local_to_clip)) > 0 ? 1 : 0);
   glUniform1i(glGetUniformLocation(p, "u_pack_normal"), pack_normal ? 1 : 0);
   m.draw_level_parts(level, p, 1);
 }

@@ -29,7 +29,8 @@ class GlStateGuard {
 /// z is the depth in [0, 1], w = 1) into the bound framebuffer's attachments
 /// 0 (albedo) and 1 (normal, depth), depth-tested nearest-first. The caller
 /// sets the viewport and clears. `pack_normal` writes n * 0.5 + 0.5.
-void capture_view(GlModel::Impl& m, const glm::mat4& local_to_clip, bool pack_normal, int level = 0);
+void capture_view(GlModel::Impl& m, const glm::mat4& local_to_clip, bool pack_normal,
+                  int level = 0);
 
 /// Rows of an affine map: clip = (dot(r0, p) + r0.w, ...).
 glm::mat4 from_rows(glm::vec4 r0, glm::vec4 r1, glm::vec4 r2);

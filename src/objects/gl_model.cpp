@@ -96,7 +96,8 @@ gl::Texture upload_texture(const Image& img) {
   const int levels = 1 + int(std::floor(std::log2(std::max(img.width, img.height))));
   glTextureStorage2D(t.id(), levels, GL_RGBA8, img.width, img.height);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTextureSubImage2D(t.id(), 0, 0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
+  glTextureSubImage2D(t.id(), 0, 0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                      img.rgba.data());
   glGenerateTextureMipmap(t.id());
   glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -108,7 +109,8 @@ gl::Texture upload_texture(const Image& img) {
 void check_representation(const Representation& rep, const GlModel::Impl& m) {
   if (rep.kind == ObjectKind::kMesh) {
     if (rep.level < 0 || rep.level >= int(m.levels.size()))
-      throw InputError(fmt::format("{}: no LOD level {} (the chain has {})", m.model.name, rep.level, m.levels.size()));
+      throw InputError(fmt::format("{}: no LOD level {} (the chain has {})", m.model.name,
+                                   rep.level, m.levels.size()));
     return;
   }
   if (rep.resolution < 16 || rep.resolution > 512)
@@ -123,19 +125,24 @@ ObjectKind parse_object_kind(const std::string& text, const char* option) {
   if (text == "pm" || text == "mesh") return ObjectKind::kMesh;
   if (text == "relief") return ObjectKind::kRelief;
   if (text == "octahedral") return ObjectKind::kOctahedral;
-  throw InputError(fmt::format("{}: '{}' is not a representation (pm, relief, octahedral)", option, text));
+  throw InputError(
+      fmt::format("{}: '{}' is not a representation (pm, relief, octahedral)", option, text));
 }
 
 const char* object_kind_name(ObjectKind kind) {
   switch (kind) {
-    case ObjectKind::kMesh: return "pm";
-    case ObjectKind::kRelief: return "relief";
-    case ObjectKind::kOctahedral: return "octahedral";
+    case ObjectKind::kMesh:
+      return "pm";
+    case ObjectKind::kRelief:
+      return "relief";
+    case ObjectKind::kOctahedral:
+      return "octahedral";
   }
   return "?";
 }
 
-GlModel::GlModel(const Model& model, std::vector<LodLevel> chain) : impl_(std::make_unique<Impl>()) {
+GlModel::GlModel(const Model& model, std::vector<LodLevel> chain)
+    : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.model = model;
   m.chain = std::move(chain);
@@ -146,7 +153,8 @@ GlModel::GlModel(const Model& model, std::vector<LodLevel> chain) : impl_(std::m
   }
   for (const Image& img : model.textures) m.textures.push_back(upload_texture(img));
   const std::string head = std::string("#version 450 core\n") + objects::kObjectGlsl;
-  m.mesh_program = gl::link_program(head + kMeshVertex, std::string("#version 450 core\n") + objects::kSunGlsl + kMeshFragment);
+  m.mesh_program = gl::link_program(
+      head + kMeshVertex, std::string("#version 450 core\n") + objects::kSunGlsl + kMeshFragment);
   m.capture_program = objects::make_capture_program();
   m.relief_program = objects::make_relief_program();
   m.octahedral_program = objects::make_octahedral_program();
@@ -155,8 +163,12 @@ GlModel::GlModel(const Model& model, std::vector<LodLevel> chain) : impl_(std::m
 
 GlModel::~GlModel() = default;
 
-const Model& GlModel::model() const { return impl_->model; }
-const std::vector<LodLevel>& GlModel::chain() const { return impl_->chain; }
+const Model& GlModel::model() const {
+  return impl_->model;
+}
+const std::vector<LodLevel>& GlModel::chain() const {
+  return impl_->chain;
+}
 
 void GlModel::Impl::attach_instance_attributes(GLuint vao) {
   for (GLuint a = 3; a < 5; ++a) {
@@ -171,16 +183,19 @@ void GlModel::Impl::upload_instances(std::span<const ObjectInstance> instances, 
   std::vector<objects::GpuInstance> data(instances.size());
   for (std::size_t i = 0; i < instances.size(); ++i) {
     const ObjectInstance& s = instances[i];
-    data[i] = {{float(s.position.x), float(s.position.y), float(s.position.z), float(glm::radians(s.heading_deg))},
+    data[i] = {{float(s.position.x), float(s.position.y), float(s.position.z),
+                float(glm::radians(s.heading_deg))},
                {float(s.scale), 0.f, 0.f, 0.f}};
   }
   if (!instance_buffer || instance_capacity < data.size()) {
     instance_capacity = std::max<std::size_t>(64, data.size() * 2);
     instance_buffer.emplace();
-    glNamedBufferStorage(instance_buffer->id(), GLsizeiptr(instance_capacity * sizeof(objects::GpuInstance)),
-                         nullptr, GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferStorage(instance_buffer->id(),
+                         GLsizeiptr(instance_capacity * sizeof(objects::GpuInstance)), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
   }
-  glNamedBufferSubData(instance_buffer->id(), 0, GLsizeiptr(data.size() * sizeof(objects::GpuInstance)), data.data());
+  glNamedBufferSubData(instance_buffer->id(), 0,
+                       GLsizeiptr(data.size() * sizeof(objects::GpuInstance)), data.data());
   glVertexArrayVertexBuffer(vao, 1, instance_buffer->id(), 0, sizeof(objects::GpuInstance));
 }
 
@@ -194,7 +209,8 @@ void GlModel::Impl::draw_level_parts(int level, GLuint p, GLsizei count) {
     glUniform1i(glGetUniformLocation(p, "u_texture"), 0);
     if (mat.texture >= 0) glBindTextureUnit(0, textures[mat.texture].id());
     glDrawElementsInstanced(GL_TRIANGLES, GLsizei(part.index_count), GL_UNSIGNED_INT,
-                            reinterpret_cast<const void*>(std::uintptr_t(part.first_index) * 4), count);
+                            reinterpret_cast<const void*>(std::uintptr_t(part.first_index) * 4),
+                            count);
   }
 }
 
@@ -207,9 +223,12 @@ void GlModel::prepare(const Representation& rep) {
 long long GlModel::triangles(const Representation& rep) const {
   check_representation(rep, *impl_);
   switch (rep.kind) {
-    case ObjectKind::kMesh: return (long long)impl_->chain[rep.level].triangles();
-    case ObjectKind::kRelief: return 12;
-    case ObjectKind::kOctahedral: return 2;
+    case ObjectKind::kMesh:
+      return (long long)impl_->chain[rep.level].triangles();
+    case ObjectKind::kRelief:
+      return 12;
+    case ObjectKind::kOctahedral:
+      return 2;
   }
   return 0;
 }
@@ -217,14 +236,18 @@ long long GlModel::triangles(const Representation& rep) const {
 std::size_t GlModel::bytes(const Representation& rep) {
   check_representation(rep, *impl_);
   switch (rep.kind) {
-    case ObjectKind::kMesh: return impl_->levels[rep.level].bytes;
-    case ObjectKind::kRelief: return impl_->relief_impostor(rep.resolution).bytes;
-    case ObjectKind::kOctahedral: return impl_->octahedral_impostor(rep.resolution, rep.views).bytes;
+    case ObjectKind::kMesh:
+      return impl_->levels[rep.level].bytes;
+    case ObjectKind::kRelief:
+      return impl_->relief_impostor(rep.resolution).bytes;
+    case ObjectKind::kOctahedral:
+      return impl_->octahedral_impostor(rep.resolution, rep.views).bytes;
   }
   return 0;
 }
 
-void GlModel::draw(const Representation& rep, std::span<const ObjectInstance> instances, const Camera& camera) {
+void GlModel::draw(const Representation& rep, std::span<const ObjectInstance> instances,
+                   const Camera& camera) {
   if (instances.empty()) return;
   check_representation(rep, *impl_);
   Impl& m = *impl_;

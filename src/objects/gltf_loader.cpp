@@ -39,19 +39,22 @@ struct Reader {
     bool normalized = false;
   };
   View view(int accessor, int want_width) const {
-    if (accessor < 0 || accessor >= int(g.accessors.size())) fail("an accessor index is out of range");
+    if (accessor < 0 || accessor >= int(g.accessors.size()))
+      fail("an accessor index is out of range");
     const tinygltf::Accessor& a = g.accessors[accessor];
     if (a.sparse.isSparse) fail("sparse accessors are not supported");
     if (a.bufferView < 0 || a.bufferView >= int(g.bufferViews.size()))
       fail("an accessor has no valid buffer view");
     const tinygltf::BufferView& bv = g.bufferViews[a.bufferView];
-    if (bv.buffer < 0 || bv.buffer >= int(g.buffers.size())) fail("a buffer view has no valid buffer");
+    if (bv.buffer < 0 || bv.buffer >= int(g.buffers.size()))
+      fail("a buffer view has no valid buffer");
     const auto& buf = g.buffers[bv.buffer].data;
     const int width = tinygltf::GetNumComponentsInType(a.type);
     const int csize = tinygltf::GetComponentSizeInBytes(a.componentType);
     if (width != want_width || csize <= 0) fail("an accessor has an unsupported type");
-    View v{nullptr, bv.byteStride ? bv.byteStride : std::size_t(width * csize), a.count,
-           a.componentType, width, a.normalized};
+    View v{nullptr, bv.byteStride ? bv.byteStride : std::size_t(width * csize),
+           a.count, a.componentType,
+           width,   a.normalized};
     const std::size_t elem = std::size_t(width) * csize;
     const std::size_t start = bv.byteOffset + a.byteOffset;
     if (a.count == 0) return v;
@@ -70,7 +73,8 @@ struct Reader {
         std::memcpy(&f, p + 4 * k, 4);
         return f;
       }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return v.normalized ? p[k] / 255.0 : p[k];
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return v.normalized ? p[k] / 255.0 : p[k];
       case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
         std::uint16_t s;
         std::memcpy(&s, p + 2 * k, 2);
@@ -81,7 +85,8 @@ struct Reader {
         std::memcpy(&u, p + 4 * k, 4);
         return u;
       }
-      default: return 0.0;
+      default:
+        return 0.0;
     }
   }
 };
@@ -89,10 +94,12 @@ struct Reader {
 glm::dmat4 node_matrix(const tinygltf::Node& n) {
   if (n.matrix.size() == 16) return glm::make_mat4(n.matrix.data());
   glm::dmat4 t(1.0), r(1.0), s(1.0);
-  if (n.translation.size() == 3) t[3] = glm::dvec4(n.translation[0], n.translation[1], n.translation[2], 1);
+  if (n.translation.size() == 3)
+    t[3] = glm::dvec4(n.translation[0], n.translation[1], n.translation[2], 1);
   if (n.rotation.size() == 4)
     r = glm::mat4_cast(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
-  if (n.scale.size() == 3) s = glm::scale(glm::dmat4(1.0), glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
+  if (n.scale.size() == 3)
+    s = glm::scale(glm::dmat4(1.0), glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
   return t * r * s;
 }
 
@@ -111,15 +118,17 @@ void add_materials(RawModel& raw, const tinygltf::Model& g, const Reader& rd) {
       auto [it, fresh] = texture_of_image.try_emplace(src, int(raw.textures.size()));
       if (fresh) {
         const tinygltf::Image& im = g.images[src];
-        if (im.width <= 0 || im.height <= 0 || im.bits != 8 || im.component < 1 || im.component > 4 ||
-            im.image.size() != std::size_t(im.width) * im.height * im.component)
-          rd.fail(fmt::format("texture '{}' is missing or unreadable", im.uri.empty() ? im.name : im.uri));
+        if (im.width <= 0 || im.height <= 0 || im.bits != 8 || im.component < 1 ||
+            im.component > 4 || im.image.size() != std::size_t(im.width) * im.height * im.component)
+          rd.fail(fmt::format("texture '{}' is missing or unreadable",
+                              im.uri.empty() ? im.name : im.uri));
         Image img(im.width, im.height);
         for (std::size_t p = 0; p < std::size_t(im.width) * im.height; ++p)
           for (int c = 0; c < 4; ++c) {
             const int from = im.component >= 3 ? c : (c < 3 ? 0 : 1);
-            img.rgba[p * 4 + c] =
-                c == 3 && (im.component == 3 || im.component == 1) ? 255 : im.image[p * im.component + from];
+            img.rgba[p * 4 + c] = c == 3 && (im.component == 3 || im.component == 1)
+                                      ? 255
+                                      : im.image[p * im.component + from];
           }
         raw.textures.push_back(std::move(img));
         raw.texture_names.push_back(im.uri.empty() ? im.name : im.uri);
@@ -133,32 +142,40 @@ void add_materials(RawModel& raw, const tinygltf::Model& g, const Reader& rd) {
 
 bool add_primitive(RawModel& raw, const Reader& rd, const tinygltf::Primitive& prim,
                    const glm::dmat4& xf) {
-  if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) return true;  // points, lines: no surface
+  if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
+    return true;  // points, lines: no surface
   auto pos_it = prim.attributes.find("POSITION");
   if (pos_it == prim.attributes.end()) rd.fail("a primitive has no POSITION");
   const Reader::View pos = rd.view(pos_it->second, 3);
   if (pos.component != TINYGLTF_COMPONENT_TYPE_FLOAT) rd.fail("POSITION is not float");
   Reader::View nrm, uv;
-  if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) nrm = rd.view(it->second, 3);
-  if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) uv = rd.view(it->second, 2);
+  if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end())
+    nrm = rd.view(it->second, 3);
+  if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end())
+    uv = rd.view(it->second, 2);
   if ((nrm.base && nrm.count != pos.count) || (uv.base && uv.count != pos.count))
     rd.fail("a primitive's attributes have different counts");
   const std::uint32_t first = std::uint32_t(raw.positions.size());
   const glm::dmat3 nxf = glm::inverseTranspose(glm::dmat3(xf));
   for (std::size_t i = 0; i < pos.count; ++i) {
-    glm::dvec3 p(Reader::component(pos, i, 0), Reader::component(pos, i, 1), Reader::component(pos, i, 2));
+    glm::dvec3 p(Reader::component(pos, i, 0), Reader::component(pos, i, 1),
+                 Reader::component(pos, i, 2));
     raw.positions.push_back(glm::vec3(xf * glm::dvec4(p, 1.0)));
     glm::dvec3 n(0.0);
-    if (nrm.base) n = nxf * glm::dvec3(Reader::component(nrm, i, 0), Reader::component(nrm, i, 1), Reader::component(nrm, i, 2));
+    if (nrm.base)
+      n = nxf * glm::dvec3(Reader::component(nrm, i, 0), Reader::component(nrm, i, 1),
+                           Reader::component(nrm, i, 2));
     raw.normals.push_back(glm::vec3(n));
-    raw.uvs.push_back(uv.base ? glm::vec2(Reader::component(uv, i, 0), Reader::component(uv, i, 1)) : glm::vec2(0.f));
+    raw.uvs.push_back(uv.base ? glm::vec2(Reader::component(uv, i, 0), Reader::component(uv, i, 1))
+                              : glm::vec2(0.f));
   }
   std::vector<std::uint32_t> idx;
   if (prim.indices >= 0) {
     const Reader::View iv = rd.view(prim.indices, 1);
     for (std::size_t i = 0; i < iv.count; ++i) {
       const double k = Reader::component(iv, i, 0);
-      if (k >= double(pos.count)) rd.fail(fmt::format("index {} is out of range ({} vertices)", k, pos.count));
+      if (k >= double(pos.count))
+        rd.fail(fmt::format("index {} is out of range ({} vertices)", k, pos.count));
       idx.push_back(first + std::uint32_t(k));
     }
   } else {

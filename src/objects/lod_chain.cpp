@@ -37,9 +37,12 @@ Welded weld(const Model& m) {
   w.positions.resize(n);
   w.uvs.resize(n);
   w.material.resize(n);
-  meshopt_remapVertexBuffer(w.positions.data(), m.positions.data(), m.vertices(), sizeof(glm::vec3), remap.data());
-  meshopt_remapVertexBuffer(w.uvs.data(), m.uvs.data(), m.vertices(), sizeof(glm::vec2), remap.data());
-  meshopt_remapVertexBuffer(w.material.data(), vertex_material.data(), m.vertices(), sizeof(int), remap.data());
+  meshopt_remapVertexBuffer(w.positions.data(), m.positions.data(), m.vertices(), sizeof(glm::vec3),
+                            remap.data());
+  meshopt_remapVertexBuffer(w.uvs.data(), m.uvs.data(), m.vertices(), sizeof(glm::vec2),
+                            remap.data());
+  meshopt_remapVertexBuffer(w.material.data(), vertex_material.data(), m.vertices(), sizeof(int),
+                            remap.data());
   w.indices.resize(m.indices.size());
   meshopt_remapIndexBuffer(w.indices.data(), m.indices.data(), m.indices.size(), remap.data());
   return w;
@@ -63,7 +66,8 @@ std::vector<glm::vec3> crease_normals(const Welded& w, const std::vector<std::ui
   const std::size_t tris = idx.size() / 3;
   std::vector<glm::dvec3> face(tris);
   for (std::size_t t = 0; t < tris; ++t) {
-    const glm::dvec3 a(w.positions[idx[3 * t]]), b(w.positions[idx[3 * t + 1]]), c(w.positions[idx[3 * t + 2]]);
+    const glm::dvec3 a(w.positions[idx[3 * t]]), b(w.positions[idx[3 * t + 1]]),
+        c(w.positions[idx[3 * t + 2]]);
     face[t] = glm::cross(b - a, c - a);
     for (int k = 0; k < 3; ++k) faces_at[key(idx[3 * t + k])].push_back(std::uint32_t(t));
   }
@@ -85,7 +89,8 @@ std::vector<glm::vec3> crease_normals(const Welded& w, const std::vector<std::ui
 
 // A level from welded vertices and a simplified index list: triangles grouped
 // by material, normals, unused vertices dropped, cache and fetch optimised.
-LodLevel make_level(const Welded& w, std::vector<std::uint32_t> idx, bool crease, double crease_deg) {
+LodLevel make_level(const Welded& w, std::vector<std::uint32_t> idx, bool crease,
+                    double crease_deg) {
   const std::size_t tris = idx.size() / 3;
   std::vector<std::uint32_t> order(tris);
   std::iota(order.begin(), order.end(), 0u);
@@ -109,9 +114,11 @@ LodLevel make_level(const Welded& w, std::vector<std::uint32_t> idx, bool crease
   std::iota(identity.begin(), identity.end(), 0u);
   cn = crease ? crease_normals(w, sorted, crease_deg) : smooth_normals(cp, identity);
   for (std::size_t c = 0; c < sorted.size(); c += 3) cm[c + 1] = cm[c + 2] = cm[c];
-  const meshopt_Stream streams[] = {{cp.data(), 12, 12}, {cn.data(), 12, 12}, {cu.data(), 8, 8}, {cm.data(), 4, 4}};
+  const meshopt_Stream streams[] = {
+      {cp.data(), 12, 12}, {cn.data(), 12, 12}, {cu.data(), 8, 8}, {cm.data(), 4, 4}};
   std::vector<unsigned> remap(sorted.size());
-  const std::size_t n = meshopt_generateVertexRemapMulti(remap.data(), nullptr, sorted.size(), sorted.size(), streams, 4);
+  const std::size_t n = meshopt_generateVertexRemapMulti(remap.data(), nullptr, sorted.size(),
+                                                         sorted.size(), streams, 4);
   lv.positions.resize(n);
   lv.normals.resize(n);
   lv.uvs.resize(n);
@@ -122,14 +129,16 @@ LodLevel make_level(const Welded& w, std::vector<std::uint32_t> idx, bool crease
   meshopt_remapIndexBuffer(lv.indices.data(), nullptr, sorted.size(), remap.data());
   for (std::size_t t = 0; t < tris; ++t) {
     const int mat = cm[3 * t];
-    if (lv.parts.empty() || lv.parts.back().material != mat) lv.parts.push_back({std::uint32_t(3 * t), 0, mat});
+    if (lv.parts.empty() || lv.parts.back().material != mat)
+      lv.parts.push_back({std::uint32_t(3 * t), 0, mat});
     lv.parts.back().index_count += 3;
   }
   for (const MeshPart& p : lv.parts)
-    meshopt_optimizeVertexCache(lv.indices.data() + p.first_index, lv.indices.data() + p.first_index,
-                                p.index_count, n);
+    meshopt_optimizeVertexCache(lv.indices.data() + p.first_index,
+                                lv.indices.data() + p.first_index, p.index_count, n);
   std::vector<unsigned> fetch(n);
-  const std::size_t used = meshopt_optimizeVertexFetchRemap(fetch.data(), lv.indices.data(), lv.indices.size(), n);
+  const std::size_t used =
+      meshopt_optimizeVertexFetchRemap(fetch.data(), lv.indices.data(), lv.indices.size(), n);
   meshopt_remapIndexBuffer(lv.indices.data(), lv.indices.data(), lv.indices.size(), fetch.data());
   auto apply = [&](auto& v) {
     auto src = v;
@@ -146,10 +155,11 @@ LodLevel make_level(const Welded& w, std::vector<std::uint32_t> idx, bool crease
 LodLevel full_level(const Model& m) {
   LodLevel lv{m.positions, m.normals, m.uvs, m.indices, m.parts, 0.0, false};
   for (const MeshPart& p : lv.parts)
-    meshopt_optimizeVertexCache(lv.indices.data() + p.first_index, lv.indices.data() + p.first_index,
-                                p.index_count, m.vertices());
+    meshopt_optimizeVertexCache(lv.indices.data() + p.first_index,
+                                lv.indices.data() + p.first_index, p.index_count, m.vertices());
   std::vector<unsigned> fetch(m.vertices());
-  const std::size_t used = meshopt_optimizeVertexFetchRemap(fetch.data(), lv.indices.data(), lv.indices.size(), m.vertices());
+  const std::size_t used = meshopt_optimizeVertexFetchRemap(fetch.data(), lv.indices.data(),
+                                                            lv.indices.size(), m.vertices());
   meshopt_remapIndexBuffer(lv.indices.data(), lv.indices.data(), lv.indices.size(), fetch.data());
   auto apply = [&](auto& v) {
     auto src = v;
@@ -178,7 +188,8 @@ glm::dvec3 closest_on_triangle(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dv
   const double vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
   const double denom = 1.0 / (va + vb + vc);
   return a + ab * (vb * denom) + ac * (vc * denom);
 }
@@ -191,11 +202,12 @@ constexpr std::size_t kMeasureMaxTriangles = 4096;
 std::vector<glm::dvec3> probes(const Model& m) {
   std::vector<glm::dvec3> out;
   const std::size_t step = std::max<std::size_t>(1, m.indices.size() / kProbes);
-  for (std::size_t i = 0; i < m.indices.size(); i += step) out.emplace_back(m.positions[m.indices[i]]);
+  for (std::size_t i = 0; i < m.indices.size(); i += step)
+    out.emplace_back(m.positions[m.indices[i]]);
   for (int k = 0; k < 3; ++k) {
-    auto [lo, hi] = std::minmax_element(m.indices.begin(), m.indices.end(), [&](std::uint32_t a, std::uint32_t b) {
-      return m.positions[a][k] < m.positions[b][k];
-    });
+    auto [lo, hi] = std::minmax_element(
+        m.indices.begin(), m.indices.end(),
+        [&](std::uint32_t a, std::uint32_t b) { return m.positions[a][k] < m.positions[b][k]; });
     out.emplace_back(m.positions[*lo]);
     out.emplace_back(m.positions[*hi]);
   }
@@ -224,9 +236,11 @@ std::vector<LodLevel> build_lod_chain(const Model& model, const LodOptions& o) {
   std::vector<LodLevel> chain;
   chain.push_back(full_level(model));
   const Welded w = weld(model);
-  const float scale = meshopt_simplifyScale(&w.positions[0].x, w.positions.size(), sizeof(glm::vec3));
+  const float scale =
+      meshopt_simplifyScale(&w.positions[0].x, w.positions.size(), sizeof(glm::vec3));
   const std::size_t full = model.triangles();
-  const std::size_t floor_tris = std::max<std::size_t>(o.min_triangles, std::size_t(std::ceil(full * o.min_fraction)));
+  const std::size_t floor_tris =
+      std::max<std::size_t>(o.min_triangles, std::size_t(std::ceil(full * o.min_fraction)));
   std::vector<std::uint32_t> current = w.indices;
   double error_m = 0.0;
   bool sloppy = false;
@@ -237,13 +251,15 @@ std::vector<LodLevel> build_lod_chain(const Model& model, const LodOptions& o) {
     float err = 0.f;
     std::size_t count = 0;
     if (!sloppy) {
-      count = meshopt_simplify(next.data(), current.data(), current.size(), &w.positions[0].x, w.positions.size(),
-                               sizeof(glm::vec3), target_tris * 3, 1.f, meshopt_SimplifyLockBorder, &err);
+      count = meshopt_simplify(next.data(), current.data(), current.size(), &w.positions[0].x,
+                               w.positions.size(), sizeof(glm::vec3), target_tris * 3, 1.f,
+                               meshopt_SimplifyLockBorder, &err);
       sloppy = count > target_tris * 3 * 3 / 2;
     }
     if (sloppy)
-      count = meshopt_simplifySloppy(next.data(), current.data(), current.size(), &w.positions[0].x,
-                                     w.positions.size(), sizeof(glm::vec3), target_tris * 3, 1.f, &err);
+      count =
+          meshopt_simplifySloppy(next.data(), current.data(), current.size(), &w.positions[0].x,
+                                 w.positions.size(), sizeof(glm::vec3), target_tris * 3, 1.f, &err);
     if (count == 0 || count >= current.size()) break;  // cannot shrink further
     next.resize(count);
     error_m += double(err) * scale;

@@ -20,7 +20,8 @@ namespace {
 
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
@@ -40,8 +41,7 @@ struct PositionHash {
 
 void validate(const objects::RawModel& raw, const std::string& path) {
   const std::size_t n = raw.positions.size();
-  if (raw.indices.size() < 3)
-    throw InputError(fmt::format("{}: the model has no triangles", path));
+  if (raw.indices.size() < 3) throw InputError(fmt::format("{}: the model has no triangles", path));
   for (const glm::vec3& p : raw.positions)
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       throw InputError(fmt::format("{}: a vertex position is not finite (NaN or infinity)", path));
@@ -165,7 +165,8 @@ Model load_model(const std::string& path, const ModelOptions& options) {
   const std::string ext = lower_extension(path);
   if (ext == ".obj") return objects::load_obj(path, options);
   if (ext == ".gltf" || ext == ".glb") return objects::load_gltf(path, options);
-  throw InputError(fmt::format("{}: unsupported model format '{}' (use .obj, .gltf or .glb)", path, ext));
+  throw InputError(
+      fmt::format("{}: unsupported model format '{}' (use .obj, .gltf or .glb)", path, ext));
 }
 
 }  // namespace terrasprite

@@ -3,14 +3,14 @@
 // distinct (position, uv, normal) triple, materials from the .mtl (Kd and
 // map_Kd), or the caller's texture / colour when the file has none.
 #include <fmt/format.h>
+#include <tiny_obj_loader.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <map>
-#include <tiny_obj_loader.h>
+#include <sstream>
 #include <tuple>
 
 #include "objects/model_builder.h"
@@ -69,7 +69,8 @@ void check_vertex_lines(const std::string& path) {
       char* end = nullptr;
       const double v = std::strtod(f.c_str(), &end);
       if (end == f.c_str() || *end != '\0' || !std::isfinite(v))
-        throw InputError(fmt::format("{}: line {}: vertex coordinate '{}' is not a finite number", path, n, f));
+        throw InputError(
+            fmt::format("{}: line {}: vertex coordinate '{}' is not a finite number", path, n, f));
     }
   }
 }

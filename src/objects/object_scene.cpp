@@ -59,11 +59,13 @@ SceneModel parse_model(const nlohmann::json& m, const std::string& name, const s
   out.options.up = parse_up_axis(m.value("up", std::string("y")), "up");
   out.options.height_m = m.value("height_m", 0.0);
   if (!(out.options.height_m >= 0) || out.options.height_m > 1e4)
-    fail(name, fmt::format("model '{}': height_m {} is not in 0..10000", out.name, out.options.height_m));
+    fail(name,
+         fmt::format("model '{}': height_m {} is not in 0..10000", out.name, out.options.height_m));
   if (m.contains("texture")) out.options.texture = resolve(base, m["texture"].get<std::string>());
   if (m.contains("color")) {
     const auto c = m["color"].get<std::vector<double>>();
-    if (c.size() != 3 && c.size() != 4) fail(name, fmt::format("model '{}': color needs 3 or 4 values", out.name));
+    if (c.size() != 3 && c.size() != 4)
+      fail(name, fmt::format("model '{}': color needs 3 or 4 values", out.name));
     out.options.color = glm::vec4(c[0], c[1], c[2], c.size() == 4 ? c[3] : 1.0);
   }
   return out;
@@ -83,10 +85,11 @@ struct Scatter {
   double max_slope_deg = 90, min_spacing_m = 0;
 };
 
-void scatter(const Scatter& s, const std::string& name, const std::string& model_name, const Heightfield& h,
-             std::vector<PlacedInstance>& placed) {
+void scatter(const Scatter& s, const std::string& name, const std::string& model_name,
+             const Heightfield& h, std::vector<PlacedInstance>& placed) {
   std::mt19937 rng(s.seed * 2654435761u + unsigned(s.model));
-  std::uniform_real_distribution<double> ux(s.region[0], s.region[2]), uy(s.region[1], s.region[3]), heading(0, 360);
+  std::uniform_real_distribution<double> ux(s.region[0], s.region[2]), uy(s.region[1], s.region[3]),
+      heading(0, 360);
   int done = 0;
   const long attempts = 200L * s.count + 1000;
   for (long a = 0; a < attempts && done < s.count; ++a) {
@@ -94,29 +97,37 @@ void scatter(const Scatter& s, const std::string& name, const std::string& model
     if (slope_deg(h, x, y) > s.max_slope_deg) continue;
     bool near = false;
     for (const PlacedInstance& p : placed)
-      near = near || std::hypot(p.instance.position.x - x, p.instance.position.y - y) < s.min_spacing_m;
+      near = near ||
+             std::hypot(p.instance.position.x - x, p.instance.position.y - y) < s.min_spacing_m;
     if (near) continue;
     placed.push_back({s.model, {{x, y, h.sample(x, y)}, hd, 1.0}});
     ++done;
   }
   if (done < s.count)
-    fail(name, fmt::format("scatter of '{}': placed only {} of {} instances (region too small, slope "
-                           "limit or spacing too strict)", model_name, done, s.count));
+    fail(name,
+         fmt::format("scatter of '{}': placed only {} of {} instances (region too small, slope "
+                     "limit or spacing too strict)",
+                     model_name, done, s.count));
 }
 
 void check_region(const std::array<double, 4>& r, const Heightfield& h, const std::string& name) {
   const double hx = h.extent_x() / 2, hy = h.extent_y() / 2;
   if (!(r[0] < r[2] && r[1] < r[3]) || r[0] < -hx || r[2] > hx || r[1] < -hy || r[3] > hy)
-    fail(name, fmt::format("scatter region [{}, {}, {}, {}] is empty or leaves the terrain ({:.0f} x {:.0f} m "
-                           "centred on 0)", r[0], r[1], r[2], r[3], h.extent_x(), h.extent_y()));
+    fail(name,
+         fmt::format(
+             "scatter region [{}, {}, {}, {}] is empty or leaves the terrain ({:.0f} x {:.0f} m "
+             "centred on 0)",
+             r[0], r[1], r[2], r[3], h.extent_x(), h.extent_y()));
 }
 
 }  // namespace
 
-const char* default_scene_json() { return kDefaultScene; }
+const char* default_scene_json() {
+  return kDefaultScene;
+}
 
-ObjectScene parse_object_scene(const std::string& text, const std::string& name, const std::string& base_dir,
-                               const Heightfield& h) {
+ObjectScene parse_object_scene(const std::string& text, const std::string& name,
+                               const std::string& base_dir, const Heightfield& h) {
   ObjectScene scene;
   try {
     const nlohmann::json j = nlohmann::json::parse(text);
@@ -134,11 +145,13 @@ ObjectScene parse_object_scene(const std::string& text, const std::string& name,
     };
     for (const auto& i : j.value("instances", nlohmann::json::array())) {
       const auto p = i.at("position").get<std::vector<double>>();
-      if (p.size() != 2 && p.size() != 3) fail(name, "an instance position needs [x, y] or [x, y, z]");
+      if (p.size() != 2 && p.size() != 3)
+        fail(name, "an instance position needs [x, y] or [x, y, z]");
       const double z = p.size() == 3 ? p[2] : h.sample(p[0], p[1]);
       const double scale = i.value("scale", 1.0);
       if (!(scale > 0)) fail(name, "an instance scale must be positive");
-      scene.instances.push_back({model_of(i.at("model")), {{p[0], p[1], z}, i.value("heading_deg", 0.0), scale}});
+      scene.instances.push_back(
+          {model_of(i.at("model")), {{p[0], p[1], z}, i.value("heading_deg", 0.0), scale}});
     }
     const nlohmann::json defaults = j.value("scatter_defaults", nlohmann::json::object());
     for (const auto& s : j.value("scatter", nlohmann::json::array())) {
@@ -148,13 +161,15 @@ ObjectScene parse_object_scene(const std::string& text, const std::string& name,
       sc.model = model_of(merged.at("model"));
       sc.count = merged.at("count").get<int>();
       sc.seed = merged.value("seed", 1u);
-      const auto r = merged.value("region", std::vector<double>{-h.extent_x() / 2, -h.extent_y() / 2,
-                                                                h.extent_x() / 2, h.extent_y() / 2});
+      const auto r =
+          merged.value("region", std::vector<double>{-h.extent_x() / 2, -h.extent_y() / 2,
+                                                     h.extent_x() / 2, h.extent_y() / 2});
       if (r.size() != 4) fail(name, "a scatter region needs [x0, y0, x1, y1]");
       sc.region = {r[0], r[1], r[2], r[3]};
       sc.max_slope_deg = merged.value("max_slope_deg", 90.0);
       sc.min_spacing_m = merged.value("min_spacing_m", 0.0);
-      if (sc.count < 0 || sc.count > 1000000) fail(name, fmt::format("scatter count {} is not in 0..1000000", sc.count));
+      if (sc.count < 0 || sc.count > 1000000)
+        fail(name, fmt::format("scatter count {} is not in 0..1000000", sc.count));
       check_region(sc.region, h, name);
       scatter(sc, name, scene.models[sc.model].name, h, scene.instances);
     }
@@ -168,7 +183,8 @@ ObjectScene load_object_scene(const std::string& path, const Heightfield& height
   std::ifstream in(path);
   if (!in) fail(path, "cannot read the scene file");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return parse_object_scene(text, path, std::filesystem::path(path).parent_path().string(), heights);
+  return parse_object_scene(text, path, std::filesystem::path(path).parent_path().string(),
+                            heights);
 }
 
 ObjectScene default_object_scene(const std::string& models_dir, const Heightfield& heights) {

@@ -13,7 +13,8 @@ struct ObjectSet::Impl {
   std::vector<std::vector<ObjectInstance>> instances;
 };
 
-ObjectSet::ObjectSet(const ObjectScene& scene, const LodOptions& lod) : impl_(std::make_unique<Impl>()) {
+ObjectSet::ObjectSet(const ObjectScene& scene, const LodOptions& lod)
+    : impl_(std::make_unique<Impl>()) {
   impl_->scene_models = scene.models;
   impl_->instances.resize(scene.models.size());
   for (const PlacedInstance& p : scene.instances) impl_->instances[p.model].push_back(p.instance);
@@ -25,10 +26,18 @@ ObjectSet::ObjectSet(const ObjectScene& scene, const LodOptions& lod) : impl_(st
 
 ObjectSet::~ObjectSet() = default;
 
-std::size_t ObjectSet::model_count() const { return impl_->models.size(); }
-const SceneModel& ObjectSet::scene_model(std::size_t i) const { return impl_->scene_models[i]; }
-GlModel& ObjectSet::model(std::size_t i) { return *impl_->models[i]; }
-std::span<const ObjectInstance> ObjectSet::instances(std::size_t i) const { return impl_->instances[i]; }
+std::size_t ObjectSet::model_count() const {
+  return impl_->models.size();
+}
+const SceneModel& ObjectSet::scene_model(std::size_t i) const {
+  return impl_->scene_models[i];
+}
+GlModel& ObjectSet::model(std::size_t i) {
+  return *impl_->models[i];
+}
+std::span<const ObjectInstance> ObjectSet::instances(std::size_t i) const {
+  return impl_->instances[i];
+}
 
 std::size_t ObjectSet::instance_count() const {
   std::size_t n = 0;

@@ -165,7 +165,8 @@ glm::mat4 view_capture(int i, int j, int views, glm::vec3 c, float r) {
   const glm::vec3 v = oct_decode(glm::vec2(i, j) / float(views - 1) * 2.f - 1.f);
   const glm::vec3 ref = std::abs(v.z) > 0.999f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
   const glm::vec3 right = glm::normalize(glm::cross(ref, v)), up = glm::cross(v, right);
-  return from_rows(glm::vec4(right / r, -glm::dot(right, c) / r), glm::vec4(up / r, -glm::dot(up, c) / r),
+  return from_rows(glm::vec4(right / r, -glm::dot(right, c) / r),
+                   glm::vec4(up / r, -glm::dot(up, c) / r),
                    glm::vec4(-v / (2.f * r), glm::dot(v, c) / (2.f * r) + 0.5f));
 }
 
@@ -225,7 +226,8 @@ objects::OctahedralImpostor& GlModel::Impl::octahedral_impostor(int res, int vie
   return o;
 }
 
-void GlModel::Impl::draw_octahedral(const objects::OctahedralImpostor& o, GLsizei count, const Camera& camera) {
+void GlModel::Impl::draw_octahedral(const objects::OctahedralImpostor& o, GLsizei count,
+                                    const Camera& camera) {
   const GLuint p = octahedral_program.id();
   glUseProgram(p);
   const glm::mat4 vp(gl::view_projection_reversed_z(camera));

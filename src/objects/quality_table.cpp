@@ -36,7 +36,9 @@ void check(const TableOptions& o) {
 }
 
 // Image side for an on-screen size: the sphere plus a margin for SSIM's windows.
-int image_side(int size_px) { return size_px + std::max(16, size_px / 4); }
+int image_side(int size_px) {
+  return size_px + std::max(16, size_px / 4);
+}
 
 /// Camera on a sphere around the model's centre at (phi, theta), far enough
 /// that the bounding sphere spans `size_px` of an image `side` pixels tall.
@@ -59,7 +61,8 @@ struct Shot {
   std::vector<std::uint8_t> covered;
 };
 
-Shot render(gl::RenderTarget& target, GlModel& model, const Representation& rep, const Camera& cam) {
+Shot render(gl::RenderTarget& target, GlModel& model, const Representation& rep,
+            const Camera& cam) {
   const ObjectInstance origin;
   target.bind_and_clear();
   model.draw(rep, std::span(&origin, 1), cam);
@@ -93,7 +96,8 @@ std::vector<Representation> representations(const GlModel& model, const TableOpt
     if (k == ObjectKind::kMesh) {
       for (int l = 0; l < int(model.chain().size()); ++l) reps.push_back({k, l, 0, 0});
     } else {
-      for (int r : o.resolutions) reps.push_back({k, 0, r, k == ObjectKind::kOctahedral ? o.views : 0});
+      for (int r : o.resolutions)
+        reps.push_back({k, 0, r, k == ObjectKind::kOctahedral ? o.views : 0});
     }
   }
   return reps;
@@ -105,7 +109,8 @@ std::vector<std::pair<double, double>> view_angles(const TableOptions& o) {
   for (double theta = 0; theta <= theta_max + 1e-9; theta += o.angle_step_deg) {
     // Straight above (or below) every azimuth is the same view turned: one sample.
     const bool pole = theta < 1e-9 || theta > 180.0 - 1e-9;
-    for (double phi = 0; phi < (pole ? 1e-9 : 360.0 - 1e-9); phi += o.angle_step_deg) v.emplace_back(phi, theta);
+    for (double phi = 0; phi < (pole ? 1e-9 : 360.0 - 1e-9); phi += o.angle_step_deg)
+      v.emplace_back(phi, theta);
   }
   return v;
 }
@@ -158,14 +163,17 @@ QualityTable measure_quality_table(GlModel& model, const TableOptions& o,
         std::vector<std::uint8_t> mask(ref.covered.size());
         for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = ref.covered[i] | s.covered[i];
         const double psnr = quality::psnr(ref.color.view(), s.color.view(), mask).rgb;
-        const double ssim = quality::ssim(ref.color.view(), s.color.view(), {quality::SsimMode::kWang, false, false}, mask).ssim;
+        const double ssim = quality::ssim(ref.color.view(), s.color.view(),
+                                          {quality::SsimMode::kWang, false, false}, mask)
+                                .ssim;
         q.samples.push_back({phi, theta, size, psnr, ssim});
       }
       if (progress) progress(++done, total);
     }
     const Camera timing_cam = view_camera(m, 30.0, 60.0, size, side);
     for (RepresentationQuality& q : t.representations)
-      q.cost.push_back({size, time_per_instance(target, model, q.rep, timing_cam, o.timing_instances)});
+      q.cost.push_back(
+          {size, time_per_instance(target, model, q.rep, timing_cam, o.timing_instances)});
   }
   const int middle = o.sizes_px[o.sizes_px.size() / 2];
   for (RepresentationQuality& q : t.representations)
@@ -187,7 +195,8 @@ std::vector<TableEntry> derive_table(const std::vector<RepresentationQuality>& r
     for (const RepresentationQuality& q : reps)
       if (q.rep.kind == kind) order.push_back(&q);
     std::sort(order.begin(), order.end(), [&](auto* a, auto* b) {
-      return kind == ObjectKind::kMesh ? a->rep.level > b->rep.level : a->rep.resolution < b->rep.resolution;
+      return kind == ObjectKind::kMesh ? a->rep.level > b->rep.level
+                                       : a->rep.resolution < b->rep.resolution;
     });
     for (int size : o.sizes_px)
       for (const auto& [metric, targets] : metrics)

@@ -6,10 +6,12 @@
 // seen orthographically through it; each fragment marches its view ray
 // (linear search, then binary refinement) and writes the hit's true depth.
 //
-// A ray point counts as solid when it lies, along each of the three axes,
-// between the surfaces the two opposite faces see (front and back) -- so all
-// six depth maps are tested, not only the face the ray entered. The hit is
-// the nearest solid point. Faces that disagree are resolved at the hit: its
+// A ray point counts as solid when it lies behind the surface recorded by
+// every face the ray can see (up to three), not only the face it entered.
+// (Also requiring it to lie before the opposite faces' surfaces carves
+// concavities better on closed objects, but breaks open shells: from below,
+// a car body's depth map sees the inside of its roof.) The hit is the
+// nearest solid point. Faces that disagree are resolved at the hit: its
 // colour and normal come from a visible face whose recorded surface passes
 // within 1.5 texels of it, the one that saw the surface most head-on; when no
 // face is that close, from the face whose surface is nearest.
@@ -68,11 +70,12 @@ float surface(vec3 q, int face) {
   float d = fetch_geometry(q, face).a;
   return (face & 1) == 0 ? 1.0 - d : d;
 }
+vec3 g_dir;  // the ray's direction (signs select the faces it can see)
 bool solid(vec3 q) {
   const float eps = 1e-4;
   for (int a = 0; a < 3; ++a) {
-    if (q[a] > surface(q, 2 * a) + eps) return false;      // before the + face's surface
-    if (q[a] < surface(q, 2 * a + 1) - eps) return false;  // beyond the - face's back surface
+    if (g_dir[a] <= 0.0 && q[a] > surface(q, 2 * a) + eps) return false;      // before the + face's surface
+    if (g_dir[a] >= 0.0 && q[a] < surface(q, 2 * a + 1) - eps) return false;  // before the - face's surface
   }
   return true;
 }
@@ -80,6 +83,7 @@ void main() {
   vec3 ext = u_hi - u_lo;
   vec3 o = (v_eye_local - u_lo) / ext;
   vec3 d = (v_local - v_eye_local) / ext;
+  g_dir = d;
   // Slabs of the unit box.
   vec3 inv = 1.0 / d;
   vec3 t0 = (vec3(0.0) - o) * inv, t1 = (vec3(1.0) - o) * inv;
@@ -141,8 +145,10 @@ glm::mat4 face_capture(int face, glm::vec3 lo, glm::vec3 hi) {
   glm::vec4 rs(0.f), rt(0.f), rd(0.f);
   rs[u] = 2.f / ext[u], rs.w = -2.f * lo[u] / ext[u] - 1.f;
   rt[v] = 2.f / ext[v], rt.w = -2.f * lo[v] / ext[v] - 1.f;
-  if (face % 2 == 0) rd[a] = -1.f / ext[a], rd.w = hi[a] / ext[a];
-  else rd[a] = 1.f / ext[a], rd.w = -lo[a] / ext[a];
+  if (face % 2 == 0)
+    rd[a] = -1.f / ext[a], rd.w = hi[a] / ext[a];
+  else
+    rd[a] = 1.f / ext[a], rd.w = -lo[a] / ext[a];
   return from_rows(rs, rt, rd);
 }
 
@@ -194,7 +200,8 @@ objects::ReliefImpostor& GlModel::Impl::relief_impostor(int res) {
   return r;
 }
 
-void GlModel::Impl::draw_relief(const objects::ReliefImpostor& r, GLsizei count, const Camera& camera) {
+void GlModel::Impl::draw_relief(const objects::ReliefImpostor& r, GLsizei count,
+                                const Camera& camera) {
   const GLuint p = relief_program.id();
   glUseProgram(p);
   glm::vec3 lo, hi;

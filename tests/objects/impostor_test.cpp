@@ -29,13 +29,15 @@ Shot shoot(ts::gl::RenderTarget& target, const ts::Camera& cam, Draw draw, const
   draw();
   glFinish();
   Shot s{target.read_color(), target.read_depth(cam.near_m, cam.far_m)};
-  if (const char* dir = std::getenv("TS_OBJECT_PNG")) ts::save_png(s.color, std::string(dir) + "/" + name + ".png");
+  if (const char* dir = std::getenv("TS_OBJECT_PNG"))
+    ts::save_png(s.color, std::string(dir) + "/" + name + ".png");
   return s;
 }
 
 std::vector<std::uint8_t> coverage(const Shot& a, const Shot& b) {
   std::vector<std::uint8_t> m(a.depth.size());
-  for (std::size_t i = 0; i < m.size(); ++i) m[i] = std::isfinite(a.depth[i]) || std::isfinite(b.depth[i]);
+  for (std::size_t i = 0; i < m.size(); ++i)
+    m[i] = std::isfinite(a.depth[i]) || std::isfinite(b.depth[i]);
   return m;
 }
 
@@ -54,8 +56,10 @@ TEST_F(ImpostorTest, ReliefMatchesMeshThroughAFace) {
   const ts::Camera cam = tstest::orbit({0, 0, 0.5}, 4.0, 0, 0);  // looking north at the -y face
   const ts::Representation mesh{ts::ObjectKind::kMesh}, relief{ts::ObjectKind::kRelief, 0, 64};
   gl_box.prepare(relief);
-  const Shot a = shoot(target, cam, [&] { gl_box.draw(mesh, std::span(&at_origin, 1), cam); }, "face_mesh");
-  const Shot b = shoot(target, cam, [&] { gl_box.draw(relief, std::span(&at_origin, 1), cam); }, "face_relief");
+  const Shot a = shoot(
+      target, cam, [&] { gl_box.draw(mesh, std::span(&at_origin, 1), cam); }, "face_mesh");
+  const Shot b = shoot(
+      target, cam, [&] { gl_box.draw(relief, std::span(&at_origin, 1), cam); }, "face_relief");
   const auto mask = coverage(a, b);
   EXPECT_GT(ts::quality::ssim(a.color.view(), b.color.view(), {}, mask).ssim, 0.99);
   // Depth within one texel's depth step of the box (1.01 m / 64).
@@ -73,8 +77,10 @@ TEST_F(ImpostorTest, ReliefBetweenTwoFaces) {
   const ts::Camera cam = tstest::orbit({0, 0, 0.5}, 4.0, 45, 20);
   const ts::Representation mesh{ts::ObjectKind::kMesh}, relief{ts::ObjectKind::kRelief, 0, 64};
   gl_box.prepare(relief);
-  const Shot a = shoot(target, cam, [&] { gl_box.draw(mesh, std::span(&at_origin, 1), cam); }, "diag_mesh");
-  const Shot b = shoot(target, cam, [&] { gl_box.draw(relief, std::span(&at_origin, 1), cam); }, "diag_relief");
+  const Shot a = shoot(
+      target, cam, [&] { gl_box.draw(mesh, std::span(&at_origin, 1), cam); }, "diag_mesh");
+  const Shot b = shoot(
+      target, cam, [&] { gl_box.draw(relief, std::span(&at_origin, 1), cam); }, "diag_relief");
   const auto mask = coverage(a, b);
   const double s = ts::quality::ssim(a.color.view(), b.color.view(), {}, mask).ssim;
   RecordProperty("ssim_45deg", std::to_string(s));
@@ -85,8 +91,10 @@ TEST_F(ImpostorTest, OctahedralMatchesMesh) {
   const ts::Camera cam = tstest::orbit({0, 0, 0.5}, 4.0, 30, 25);
   const ts::Representation mesh{ts::ObjectKind::kMesh}, oct{ts::ObjectKind::kOctahedral, 0, 64, 12};
   gl_box.prepare(oct);
-  const Shot a = shoot(target, cam, [&] { gl_box.draw(mesh, std::span(&at_origin, 1), cam); }, "oct_mesh");
-  const Shot b = shoot(target, cam, [&] { gl_box.draw(oct, std::span(&at_origin, 1), cam); }, "oct_impostor");
+  const Shot a = shoot(
+      target, cam, [&] { gl_box.draw(mesh, std::span(&at_origin, 1), cam); }, "oct_mesh");
+  const Shot b = shoot(
+      target, cam, [&] { gl_box.draw(oct, std::span(&at_origin, 1), cam); }, "oct_impostor");
   const auto mask = coverage(a, b);
   const double s = ts::quality::ssim(a.color.view(), b.color.view(), {}, mask).ssim;
   EXPECT_GT(s, 0.75);  // measured 0.79: three blended views soften the edges

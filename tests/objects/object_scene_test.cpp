@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
 // Scene files: listed and scattered instances on the terrain, bad scenes,
 // and the default 400-instance scene.
+#include "terrasprite/object_scene.h"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 
 #include "terrasprite/error.h"
-#include "terrasprite/object_scene.h"
 #include "terrasprite/terrain.h"
 #include "test_util.h"
 
@@ -61,13 +62,14 @@ TEST(ObjectScene, ListedAndScatteredInstancesStandOnTheGround) {
 
 TEST(ObjectScene, BadScenesNameTheFile) {
   const ts::Heightfield h = ramp();
-  for (const char* text : {
-           "{",  // not JSON
-           R"({"models": []})",
-           R"({"models": [{"name": "b", "file": "x.obj"}], "instances": [{"model": "c", "position": [0, 0]}]})",
-           R"({"models": [{"name": "b", "file": "x.obj"}], "scatter": [{"model": "b", "count": 5, "region": [0, 0, 9000, 10]}]})",
-           R"({"models": [{"name": "b", "file": "x.obj"}], "scatter": [{"model": "b", "count": 500, "region": [0, 0, 50, 50], "min_spacing_m": 20}]})",
-       }) {
+  for (
+      const char* text : {
+          "{",  // not JSON
+          R"({"models": []})",
+          R"({"models": [{"name": "b", "file": "x.obj"}], "instances": [{"model": "c", "position": [0, 0]}]})",
+          R"({"models": [{"name": "b", "file": "x.obj"}], "scatter": [{"model": "b", "count": 5, "region": [0, 0, 9000, 10]}]})",
+          R"({"models": [{"name": "b", "file": "x.obj"}], "scatter": [{"model": "b", "count": 500, "region": [0, 0, 50, 50], "min_spacing_m": 20}]})",
+      }) {
     try {
       ts::parse_object_scene(text, "bad.json", ".", h);
       ADD_FAILURE() << text;
@@ -86,7 +88,8 @@ TEST(ObjectScene, DefaultSceneHas400InstancesOf8Models) {
   EXPECT_EQ(s.models.size(), 8u);
   EXPECT_EQ(s.instances.size(), 400u);
   std::vector<long long> tris;
-  for (const ts::SceneModel& m : s.models) tris.push_back((long long)ts::load_model(m.file, m.options).triangles());
+  for (const ts::SceneModel& m : s.models)
+    tris.push_back((long long)ts::load_model(m.file, m.options).triangles());
   long long total = 0;
   std::vector<int> count(s.models.size());
   for (const ts::PlacedInstance& p : s.instances) {

@@ -54,8 +54,8 @@ inline terrasprite::Model colored_box(float sx = 1.f, float sy = 1.f, float sz =
 inline terrasprite::Camera orbit(glm::dvec3 target, double dist, double phi_deg, double elev_deg,
                                  double fov_deg = 30.0, double aspect = 1.0) {
   const double p = phi_deg * M_PI / 180, e = elev_deg * M_PI / 180;
-  const glm::dvec3 eye =
-      target + dist * glm::dvec3(-std::sin(p) * std::cos(e), -std::cos(p) * std::cos(e), std::sin(e));
+  const glm::dvec3 eye = target + dist * glm::dvec3(-std::sin(p) * std::cos(e),
+                                                    -std::cos(p) * std::cos(e), std::sin(e));
   terrasprite::Camera c = terrasprite::Camera::look_at(eye, target, fov_deg, aspect);
   c.near_m = dist * 0.1;
   c.far_m = dist * 10;

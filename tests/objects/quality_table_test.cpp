@@ -2,13 +2,14 @@
 // Quality tables on small sampling: identical renders score 1, quality does
 // not fall as the object shrinks on screen, Table 1 picks the cheapest, the
 // CLI writes the JSON contract and reuses its cache only for equal inputs.
+#include "terrasprite/quality_table.h"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "terrasprite/gl_context.h"
-#include "terrasprite/quality_table.h"
 #include "test_util.h"
 
 namespace ts = terrasprite;
@@ -49,8 +50,8 @@ TEST(QualityTable, IdenticalScoresOneAndQualityHoldsAsSizeShrinks) {
   // A fixed representation does not get worse when drawn smaller (tolerance
   // 0.03 SSIM: nearest-texel impostors alias a little at small sizes).
   for (const ts::RepresentationQuality& q : t.representations) {
-    EXPECT_GE(q.mean("ssim", 50), q.mean("ssim", 100) - 0.03) << ts::object_kind_name(q.rep.kind) << " "
-                                                                << q.rep.level << " " << q.rep.resolution;
+    EXPECT_GE(q.mean("ssim", 50), q.mean("ssim", 100) - 0.03)
+        << ts::object_kind_name(q.rep.kind) << " " << q.rep.level << " " << q.rep.resolution;
     EXPECT_GT(q.ms_per_instance, 0.0);
     EXPECT_GT(q.bytes, 0u);
   }
@@ -74,24 +75,31 @@ TEST(QualityTable, CliJsonContractAndCache) {
   const std::string data = tstest::shared_data();
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
   tstest::TempDir dir;
-  const std::string args = "objects table --model " + data +
-                           "/models_kenney_nature/tree_oak_fall.glb --height-m 3 --kinds pm,relief,octahedral "
-                           "--resolutions 16 --sizes-px 64 --angle-step 120 --cache " + (dir / "cache");
-  const tstest::CliResult first = tstest::run_cli(args + " --json " + (dir / "a.json") + " --out " + (dir / "a"));
+  const std::string args =
+      "objects table --model " + data +
+      "/models_kenney_nature/tree_oak_fall.glb --height-m 3 --kinds pm,relief,octahedral "
+      "--resolutions 16 --sizes-px 64 --angle-step 120 --cache " +
+      (dir / "cache");
+  const tstest::CliResult first =
+      tstest::run_cli(args + " --json " + (dir / "a.json") + " --out " + (dir / "a"));
   ASSERT_EQ(first.status, 0) << first.output;
   nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "a.json"));
-  for (const char* k : {"model", "triangles", "representations", "table"}) EXPECT_TRUE(j.contains(k)) << k;
+  for (const char* k : {"model", "triangles", "representations", "table"})
+    EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_FALSE(j["cached"].get<bool>());
   for (const auto& r : j["representations"]) {
-    for (const char* k : {"kind", "triangles", "bytes", "ms_per_instance", "samples"}) EXPECT_TRUE(r.contains(k)) << k;
+    for (const char* k : {"kind", "triangles", "bytes", "ms_per_instance", "samples"})
+      EXPECT_TRUE(r.contains(k)) << k;
     EXPECT_TRUE(r.contains(r["kind"] == "pm" ? "level" : "resolution"));
   }
   EXPECT_TRUE(std::filesystem::exists(dir / "a/table1.md"));
   // Same inputs: read from the cache. Another parameter: measured again.
-  const tstest::CliResult second = tstest::run_cli(args + " --json " + (dir / "b.json") + " --out " + (dir / "b"));
+  const tstest::CliResult second =
+      tstest::run_cli(args + " --json " + (dir / "b.json") + " --out " + (dir / "b"));
   ASSERT_EQ(second.status, 0) << second.output;
   EXPECT_TRUE(nlohmann::json::parse(std::ifstream(dir / "b.json"))["cached"].get<bool>());
-  const tstest::CliResult third = tstest::run_cli(args + " --views 6 --json " + (dir / "c.json") + " --out " + (dir / "c"));
+  const tstest::CliResult third =
+      tstest::run_cli(args + " --views 6 --json " + (dir / "c.json") + " --out " + (dir / "c"));
   ASSERT_EQ(third.status, 0) << third.output;
   EXPECT_FALSE(nlohmann::json::parse(std::ifstream(dir / "c.json"))["cached"].get<bool>());
   // Bad option values: exit 2 with one line.

@@ -84,7 +84,8 @@ void write_plot(const OutputDir& out, const std::vector<std::string>& names,
   gp << '\n';
   gp.close();
   const std::string error = run_gnuplot(out.partial().string(), "frame_times.gp");
-  if (!error.empty()) fmt::print(stderr, "warning: {}; frame_times.dat kept without a plot\n", error);
+  if (!error.empty())
+    fmt::print(stderr, "warning: {}; frame_times.dat kept without a plot\n", error);
 }
 
 void run(const BenchVoxelOpts& o) {
@@ -207,7 +208,8 @@ void run(const BenchVoxelOpts& o) {
   for (std::size_t v = 0; v < variants.size(); ++v)
     for (const FrameResult& f : result.run(run_name(v, ti_max)).frames) {
       per_frame[f.frame][std::string(to_string(variants[v])) + "_ms"] = f.ms;
-      if (f.quality) per_frame[f.frame][std::string(to_string(variants[v])) + "_ssim"] = f.quality->ssim;
+      if (f.quality)
+        per_frame[f.frame][std::string(to_string(variants[v])) + "_ssim"] = f.quality->ssim;
     }
   for (const FrameResult& f : ref_run.frames) per_frame[f.frame]["reference_ms"] = f.ms;
   auto quality_of = [&](std::size_t v, const std::string& metric) {
@@ -225,27 +227,26 @@ void run(const BenchVoxelOpts& o) {
   nlohmann::json jv = nlohmann::json::array();
   for (std::size_t v = 0; v < variants.size(); ++v) {
     const double med = median(ms[v][ti_max]);
-    jv.push_back(
-        {{"name", to_string(variants[v])},
-         {"threads", tmax},
-         {"frames_timed", ms[v][ti_max].size()},
-         {"median_ms", med},
-         {"p95_ms", percentile(ms[v][ti_max], 95)},
-         {"ns_per_pixel", med * 1e6 / (double(w) * h)},
-         {"speedup_vs_naive", naive_scored / std::max(median(scored_ms[v]), 1e-9)},
-         {"scaling_2v1", num_or_null(scaling(v))},
-         {"median_ms_by_threads",
-          [&] {
-            nlohmann::json m = nlohmann::json::object();
-            for (std::size_t t = 0; t < threads.size(); ++t)
-              m[std::to_string(threads[t])] = median(ms[v][t]);
-            return m;
-          }()},
-         {"mean_ssim", quality_of(v, "ssim").mean},
-         {"min_ssim", quality_of(v, "ssim").min},
-         {"mean_ssim_terrain", quality_of(v, "ssim_terrain").mean},
-         {"mean_psnr", quality_of(v, "psnr").mean},
-         {"mean_flip", quality_of(v, "flip").mean}});
+    jv.push_back({{"name", to_string(variants[v])},
+                  {"threads", tmax},
+                  {"frames_timed", ms[v][ti_max].size()},
+                  {"median_ms", med},
+                  {"p95_ms", percentile(ms[v][ti_max], 95)},
+                  {"ns_per_pixel", med * 1e6 / (double(w) * h)},
+                  {"speedup_vs_naive", naive_scored / std::max(median(scored_ms[v]), 1e-9)},
+                  {"scaling_2v1", num_or_null(scaling(v))},
+                  {"median_ms_by_threads",
+                   [&] {
+                     nlohmann::json m = nlohmann::json::object();
+                     for (std::size_t t = 0; t < threads.size(); ++t)
+                       m[std::to_string(threads[t])] = median(ms[v][t]);
+                     return m;
+                   }()},
+                  {"mean_ssim", quality_of(v, "ssim").mean},
+                  {"min_ssim", quality_of(v, "ssim").min},
+                  {"mean_ssim_terrain", quality_of(v, "ssim_terrain").mean},
+                  {"mean_psnr", quality_of(v, "psnr").mean},
+                  {"mean_flip", quality_of(v, "flip").mean}});
   }
 
   // Static pitch sweep (paper Table 1): the default variant at each thread count.

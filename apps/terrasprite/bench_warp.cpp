@@ -221,8 +221,8 @@ void run(const BenchWarpOpts& o) {
     }
   write_plot(out, runs, o.k_max);
   nlohmann::json j = {
-      {"device", fmt::format("{} ({} hardware threads)", stack.device,
-                             std::thread::hardware_concurrency())},
+      {"device",
+       fmt::format("{} ({} hardware threads)", stack.device, std::thread::hardware_concurrency())},
       {"terrain", terrain_json(terrain)},
       {"size", {w, h}},
       {"renderer", o.renderer},
@@ -251,13 +251,15 @@ void add_bench_warp(CLI::App& bench) {
   cmd->add_option("--renderer", o->renderer, "renderer of the real frames: voxel (default) or full")
       ->check(CLI::IsMember({"voxel", "full"}));
   cmd->add_option("--size", o->size, "output image size WxH (default 1920x1080)");
-  cmd->add_option("--path", o->path, "'paper', 'low-fast' or a JSON path file (default: both shipped)");
+  cmd->add_option("--path", o->path,
+                  "'paper', 'low-fast' or a JSON path file (default: both shipped)");
   cmd->add_option("--frames", o->frames, "frames along each path (default 460)");
   cmd->add_option("--k-max", o->k_max, "warp up to this many frames past a real one (default 8)");
   cmd->add_option("--margin", o->margin,
                   "real frames drawn this fraction wider on each side (default 0.05)");
-  cmd->add_option("--real-every", o->real_every,
-                  "K for the flythrough cost figure: one real frame per K output frames (default 4)");
+  cmd->add_option(
+      "--real-every", o->real_every,
+      "K for the flythrough cost figure: one real frame per K output frames (default 4)");
   cmd->add_option("--json", o->json, "also write the JSON here");
   cmd->add_option("--out", o->out, "output directory: plot, JSON (default out/bench_warp)");
   cmd->callback([o] { run(*o); });

@@ -54,8 +54,8 @@ std::pair<int, int> parse_frame_range(const std::string& text, int frames) {
   if (std::sscanf(text.c_str(), "%d%c%d%c", &a, &colon, &b, &extra) != 3 || colon != ':')
     throw InputError(fmt::format("--frame-range {}: expected A:B (frames A to B-1)", text));
   if (a < 0 || b <= a || b > frames)
-    throw InputError(fmt::format(
-        "--frame-range {}: need 0 <= A < B <= --frames ({})", text, frames));
+    throw InputError(
+        fmt::format("--frame-range {}: need 0 <= A < B <= --frames ({})", text, frames));
   return {a, b};
 }
 
@@ -65,8 +65,8 @@ void check_video_target(const RenderOpts& o) {
   if (o.video.empty()) return;
   validate_video_options(o.video_opts);
   if (std::filesystem::exists(o.video) && !output_policy().overwrite)
-    throw InputError(fmt::format("--video {}: file exists (pass --overwrite to replace it)",
-                                 o.video));
+    throw InputError(
+        fmt::format("--video {}: file exists (pass --overwrite to replace it)", o.video));
   check_output_file(o.video, output_policy());
 }
 

@@ -46,8 +46,8 @@ class StackRenderer : public viewer::ViewRenderer {
 /// highest point, looking north at the terrain centre's lowest level.
 Camera start_camera(const Heightfield& h, double aspect) {
   const double e = h.extent();
-  Camera c = Camera::look_at({0, -0.5 * e, h.max_height() + 0.1 * e}, {0, 0, h.min_height()},
-                             60.0, aspect);
+  Camera c = Camera::look_at({0, -0.5 * e, h.max_height() + 0.1 * e}, {0, 0, h.min_height()}, 60.0,
+                             aspect);
   fit_clip_planes(c, h);
   return c;
 }
@@ -65,8 +65,8 @@ void run(ViewOpts& o) {
     v.script = viewer::load_input_script(o.script);
     v.scripted = true;
   }
-  if (!o.stats.empty() && !std::filesystem::is_directory(
-                              std::filesystem::absolute(o.stats).parent_path()))
+  if (!o.stats.empty() &&
+      !std::filesystem::is_directory(std::filesystem::absolute(o.stats).parent_path()))
     throw InputError(fmt::format("--stats {}: its directory does not exist", o.stats));
   Terrain terrain = load_terrain_verbose(o.terrain);
   if (!o.play.empty()) load_path_file(o.play, terrain.heights, 2, double(w) / h);  // validate

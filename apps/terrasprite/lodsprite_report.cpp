@@ -134,7 +134,8 @@ void write_lodsprite_report(const nlohmann::json& j, OutputDir& out) {
   write_text(out.file("plots.gp"), gp);
   const std::string plot_error = run_gnuplot(out.partial().string(), "plots.gp");
   const bool plotted = plot_error.empty();
-  if (!plotted) fmt::print(stderr, "warning: {}; the .dat and plots.gp files are kept\n", plot_error);
+  if (!plotted)
+    fmt::print(stderr, "warning: {}; the .dat and plots.gp files are kept\n", plot_error);
 
   const auto& s = j["sprite"];
   const auto& l = j["lod"];
@@ -201,7 +202,8 @@ void write_lodsprite_report(const nlohmann::json& j, OutputDir& out) {
       "<p>Keyframes are the full-resolution frame itself (PSNR capped at {} dB, SSIM 1, FLIP "
       "0).</p>\n",
       num(j["psnr_cap_db"]));
-  h << "<h2>Targets: the paper's keyframe budget, speed-up and quality against plain LOD</h2><table>\n";
+  h << "<h2>Targets: the paper's keyframe budget, speed-up and quality against plain "
+       "LOD</h2><table>\n";
   h << row("keyframes at most 28", pass(t["keyframes_at_most_28"]));
   h << row("speed-up at least 90% of the bound", pass(t["efficiency_at_least_0_9"]));
   h << row(fmt::format("SSIM above plain LOD on at least 95% of frames ({:.1f}%)",
@@ -219,9 +221,10 @@ void write_lodsprite_report(const nlohmann::json& j, OutputDir& out) {
           "quality_psnr.png", "quality_flip.png", "lod_sweep.png"})
       h << fmt::format("<p><img src='{}' alt='{}'></p>\n", p, p);
   } else {
-    h << fmt::format("<p><b>Plots not drawn:</b> {} (see gnuplot.log); the .dat and plots.gp "
-                     "files are here.</p>\n",
-                     plot_error);
+    h << fmt::format(
+        "<p><b>Plots not drawn:</b> {} (see gnuplot.log); the .dat and plots.gp "
+        "files are here.</p>\n",
+        plot_error);
   }
   h << "<h2>Sweeps</h2><table><tr><th>threshold "
        "(px)</th><th>keyframes</th><th>fraction</th><th>speed-up (totals)</th><th>speed-up "

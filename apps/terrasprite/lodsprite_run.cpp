@@ -48,8 +48,8 @@ struct PassResult {
 // One timed LOD-sprite pass over `path`; the kept frames are SSIM-scored
 // against the references after the whole pass, so scoring threads never
 // overlap a timed frame.
-PassResult sprite_pass(Scene& scene, std::span<const Camera> path, int w, int h,
-                       SpriteOptions o, const std::vector<Image>& refs, int every) {
+PassResult sprite_pass(Scene& scene, std::span<const Camera> path, int w, int h, SpriteOptions o,
+                       const std::vector<Image>& refs, int every) {
   SpriteRenderer r(scene, w, h, o);
   r.render_keyframe(path[0]);  // warm-up, then start afresh
   r.render_sprite(path[0]);
@@ -82,8 +82,7 @@ double median_speedup(int n, int keys, double full_median, double key_median,
 
 // Keyframe count only: the metric decides, keyframes are rendered (their depth
 // buffer feeds the visibility), sprite frames are not drawn.
-int simulate_keyframes(Scene& scene, std::span<const Camera> path, int w, int h,
-                       SpriteOptions o) {
+int simulate_keyframes(Scene& scene, std::span<const Camera> path, int w, int h, SpriteOptions o) {
   SpriteRenderer r(scene, w, h, o);
   int keys = 0;
   for (const Camera& c : path) {
@@ -154,15 +153,17 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
                   .name = "sprite",
                   .score = true,
                   .after_warmup = [&] { sprite.reset(); },
-                  .annotate = [&](const Frame&, FrameResult& r) {
-                    const SpriteError& e = sprite.last_error();
-                    r.counters = {{"error_px", e.paper_px},
-                                  {"error_px_exact", e.exact_px},
-                                  {"error_samples", double(e.samples)},
-                                  {"fallback_fraction", e.fallback_fraction()},
-                                  {"resample_scale", e.resample_scale}};
-                    if (sprite.last_trigger()) r.tags["trigger"] = to_string(*sprite.last_trigger());
-                  }});
+                  .annotate =
+                      [&](const Frame&, FrameResult& r) {
+                        const SpriteError& e = sprite.last_error();
+                        r.counters = {{"error_px", e.paper_px},
+                                      {"error_px_exact", e.exact_px},
+                                      {"error_samples", double(e.samples)},
+                                      {"fallback_fraction", e.fallback_fraction()},
+                                      {"resample_scale", e.resample_scale}};
+                        if (sprite.last_trigger())
+                          r.tags["trigger"] = to_string(*sprite.last_trigger());
+                      }});
   std::vector<Image> refs;
   ExperimentOptions eo;
   eo.warmup_draws = 2;  // the sprite's first draw is a keyframe, its second a sprite frame

@@ -38,7 +38,8 @@ struct LodspriteConfig {
 };
 
 /// Runs everything; writes figures (PNG) and plots into `out`, returns the
-/// JSON document (the keys DESIGN.md's bench lodsprite contract names). `label` prefixes the progress bar.
+/// JSON document (the keys DESIGN.md's bench lodsprite contract names). `label` prefixes the
+/// progress bar.
 nlohmann::json run_lodsprite(const LodspriteConfig& config, const Terrain& terrain, OutputDir& out,
                              const std::string& label);
 

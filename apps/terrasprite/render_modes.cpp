@@ -18,8 +18,8 @@ std::vector<std::string> render_modes() {
 }
 
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
-                              int height, int lod_quads, bool lighting,
-                              double sprite_threshold_px, GlContext* context) {
+                              int height, int lod_quads, bool lighting, double sprite_threshold_px,
+                              GlContext* context) {
   RenderStack s;
   // GL modes: the caller's current context, else one of our own.
   auto use_gl = [&] {

@@ -60,8 +60,8 @@ struct QualityScore {
 /// One renderer's figures for one frame.
 struct FrameResult {
   int frame = 0;
-  std::string cls;  ///< the renderer's frame class: full, lod, key, sprite, voxel, warp, ...
-  double ms = 0;    ///< the draw's time, pipeline drained
+  std::string cls;     ///< the renderer's frame class: full, lod, key, sprite, voxel, warp, ...
+  double ms = 0;       ///< the draw's time, pipeline drained
   double gpu_ms = -1;  ///< GL timer query, -1 = no result
   long long triangles = 0;
   std::optional<QualityScore> quality;  ///< against the reference frame, when scored
@@ -104,11 +104,11 @@ Scorer default_scorer(bool with_flip);
 
 /// One renderer in an experiment.
 struct Participant {
-  Renderer* renderer = nullptr;  ///< not owned; must outlive run()
-  std::string name;              ///< defaults to renderer->name()
-  bool score = false;            ///< score against the reference on scored frames
-  int every = 1;                 ///< draw only every n-th frame (a slow baseline)
-  int warmup_draws = -1;         ///< untimed draws before the run; -1: the options' count
+  Renderer* renderer = nullptr;     ///< not owned; must outlive run()
+  std::string name;                 ///< defaults to renderer->name()
+  bool score = false;               ///< score against the reference on scored frames
+  int every = 1;                    ///< draw only every n-th frame (a slow baseline)
+  int warmup_draws = -1;            ///< untimed draws before the run; -1: the options' count
   ReadBack read = ReadBack::kNone;  ///< read back even when not scoring (e.g. to save frames)
   /// Called once the warm-up draws are done (e.g. to forget a warm-up keyframe).
   std::function<void()> after_warmup;
@@ -136,8 +136,7 @@ class Experiment {
   /// The renderer the scored participants are compared with, drawn (and
   /// timed, and recorded as the first run) on scored frames and read back as
   /// `read` (colour at least). Optional: without it nothing is scored.
-  void set_reference(Renderer& renderer, std::string name = "",
-                     ReadBack read = ReadBack::kColor);
+  void set_reference(Renderer& renderer, std::string name = "", ReadBack read = ReadBack::kColor);
   /// The same with every participant setting (score and every are ignored).
   void set_reference(Participant participant);
   void add(Participant participant);

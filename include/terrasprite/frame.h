@@ -32,10 +32,10 @@ struct Frame {
   std::vector<float>
       depth;        ///< width*height, metres along the view axis; +inf = sky; empty if not read
   double ms = 0.0;  ///< rendering work, wall clock, pipeline drained (read-back excluded)
-  double gpu_ms = -1.0;     ///< GL timer-query time, or -1 when unavailable
-  long long triangles = 0;  ///< triangles submitted (0 for non-raster renderers)
+  double gpu_ms = -1.0;             ///< GL timer-query time, or -1 when unavailable
+  long long triangles = 0;          ///< triangles submitted (0 for non-raster renderers)
   int width_px = 0, height_px = 0;  ///< the drawn image's size, also before read-back
-  std::string cls;          ///< frame class: full, lod, key, sprite, voxel, warp
+  std::string cls;                  ///< frame class: full, lod, key, sprite, voxel, warp
   /// The camera the frame was rendered with (its view() and projection(),
   /// near/far included), so a later stage (warp, quality) can reproject it.
   Camera camera;

@@ -23,7 +23,9 @@ void run_unless_interrupted(const std::function<void()>& step);
 /// exit with 128 + signal); returns at once otherwise. main() calls it before
 /// reporting an error, so a failure caused by the clean-up is not reported
 /// in place of the interrupt.
-inline void hold_if_interrupted() { run_unless_interrupted([] {}); }
+inline void hold_if_interrupted() {
+  run_unless_interrupted([] {});
+}
 
 /// Registers a file or directory that this process created and that must not
 /// survive an interrupt (a `.partial` output, a temporary file beside a

@@ -16,7 +16,8 @@ struct Summary {
   double total = 0, mean = 0, median = 0;
   double min = 0, max = 0;
   double p90 = 0, p95 = 0, p99 = 0;
-  double trimmed_mean = 0;  ///< mean of the values between the 10th and 90th percentiles (inclusive)
+  double trimmed_mean =
+      0;  ///< mean of the values between the 10th and 90th percentiles (inclusive)
 };
 
 /// Summarises `values`. Values that are not finite are skipped.

@@ -18,8 +18,8 @@ namespace terrasprite {
 /// level-0 samples (the last one repeats the edge). Levels below 0 are finer
 /// than the source (high-resolution insets): level -1 has twice the density.
 struct TerrainGrid {
-  int width = 0, height = 0;                ///< level-0 samples
-  double spacing_x = 1.0, spacing_y = 1.0;  ///< metres between level-0 samples
+  int width = 0, height = 0;                 ///< level-0 samples
+  double spacing_x = 1.0, spacing_y = 1.0;   ///< metres between level-0 samples
   float min_height = 0.f, max_height = 0.f;  ///< metres, over the whole terrain
   int finest_level = 0;    ///< <= 0; levels finer than 0 exist only where tiles say so
   int coarsest_level = 0;  ///< the coarsest level with samples (>= 0), always resident

@@ -11,10 +11,10 @@
 namespace terrasprite {
 
 struct VideoOptions {
-  double fps = 30.0;                 ///< frames per second of the stream, > 0
-  int crf = 18;                      ///< x264 constant rate factor, 0..51 (lower: better)
-  std::string preset = "veryfast";   ///< x264 preset (ultrafast .. placebo)
-  int queue_frames = 4;              ///< frames buffered between caller and writer thread
+  double fps = 30.0;                ///< frames per second of the stream, > 0
+  int crf = 18;                     ///< x264 constant rate factor, 0..51 (lower: better)
+  std::string preset = "veryfast";  ///< x264 preset (ultrafast .. placebo)
+  int queue_frames = 4;             ///< frames buffered between caller and writer thread
   /// The ffmpeg executable; empty: $TERRASPRITE_FFMPEG, else "ffmpeg" on PATH.
   std::string ffmpeg;
 };

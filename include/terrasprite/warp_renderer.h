@@ -20,8 +20,8 @@ struct WarpScheduleOptions {
 
 /// Wraps `real`, which must render (width + 2 margin_x) x (height + 2
 /// margin_y) frames and outlive this (its colour and depth are read back for
-/// every real frame). Frame i of the calls to draw() (counted from 0) is real when i % real_every == 0: drawn with the
-/// margin camera, returned cropped (class of the real renderer, ms = render +
+/// every real frame). Frame i of the calls to draw() (counted from 0) is real when i % real_every
+/// == 0: drawn with the margin camera, returned cropped (class of the real renderer, ms = render +
 /// crop); the others are warped from the last real frame (class "warp",
 /// ms = warp). draw() returns colour and depth on the CPU already (read_back
 /// does nothing). Deterministic. Throws InputError for real_every < 1, negative

@@ -91,7 +91,8 @@ std::vector<Key> parse(std::string_view text, const std::string& path, double as
     Key key;
     key.t = k["t"].get<double>();
     if (!(std::abs(key.t) <= kMaxTimeS))
-      throw InputError(fmt::format("{}.t {}: must be finite and within {:g} s", where, key.t, kMaxTimeS));
+      throw InputError(
+          fmt::format("{}.t {}: must be finite and within {:g} s", where, key.t, kMaxTimeS));
     key.pos = vec3_of(k["position"], where + ".position");
     key.fov = number_of(k, "fov_deg", 60.0, where);
     if (!(key.fov > 0 && key.fov < 180)) throw InputError(where + ".fov_deg must be in (0, 180)");

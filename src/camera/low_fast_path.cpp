@@ -13,15 +13,16 @@
 namespace terrasprite {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kSpeed = 200.0;     // m/s
-constexpr double kRate = 60.0;       // frames per second
+constexpr double kSpeed = 200.0;      // m/s
+constexpr double kRate = 60.0;        // frames per second
 constexpr double kClearance = 150.0;  // m above the highest ground near the eye
 
 // Ground clearance: the highest ground within 300 m ahead and 100 m behind
 // along the track, so the flight climbs before a ridge rather than into it.
 double ground_ahead(const Heightfield& h, double x0, double y0, double dx, double dy) {
   double g = -1e30;
-  for (double s = -100.0; s <= 300.0; s += 25.0) g = std::max(g, double(h.sample(x0 + s * dx, y0 + s * dy)));
+  for (double s = -100.0; s <= 300.0; s += 25.0)
+    g = std::max(g, double(h.sample(x0 + s * dx, y0 + s * dy)));
   return g;
 }
 }  // namespace

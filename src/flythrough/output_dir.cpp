@@ -16,7 +16,8 @@ namespace fs = std::filesystem;
 
 fs::path normalised(const std::string& dir) {
   fs::path p(dir);
-  if (p.filename().empty() && p.has_parent_path()) p = p.parent_path();  // "out/demo/" -> "out/demo"
+  if (p.filename().empty() && p.has_parent_path())
+    p = p.parent_path();  // "out/demo/" -> "out/demo"
   return p;
 }
 
@@ -39,8 +40,8 @@ bool is_ancestor_or_self(const fs::path& a, const fs::path& b) {
 void check_location(const std::string& dir, const fs::path& p) {
   const fs::path leaf = p.filename();
   if (leaf == "." || leaf == ".." || p.empty())
-    throw InputError(fmt::format("{}: refusing to write output to '.' or '..'; name a new directory",
-                                 dir));
+    throw InputError(
+        fmt::format("{}: refusing to write output to '.' or '..'; name a new directory", dir));
   std::error_code ec;
   const fs::path canon = fs::weakly_canonical(fs::absolute(p, ec), ec);
   if (ec) throw InputError(fmt::format("{}: cannot resolve the path ({})", dir, ec.message()));

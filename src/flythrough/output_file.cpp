@@ -40,7 +40,8 @@ fs::path parent_of(const fs::path& p) {
 
 // A fresh, exclusively created file beside `target`; its path, or "" with errno set.
 std::string create_temp_beside(const fs::path& target) {
-  std::string tmpl = (parent_of(target) / ("." + target.filename().string() + ".tmp-XXXXXX")).string();
+  std::string tmpl =
+      (parent_of(target) / ("." + target.filename().string() + ".tmp-XXXXXX")).string();
   int fd = mkstemp(tmpl.data());
   if (fd < 0) return {};
   close(fd);
@@ -49,7 +50,9 @@ std::string create_temp_beside(const fs::path& target) {
 
 }  // namespace
 
-std::string generator_name() { return std::string("terrasprite ") + TERRASPRITE_VERSION; }
+std::string generator_name() {
+  return std::string("terrasprite ") + TERRASPRITE_VERSION;
+}
 
 void check_output_file(const std::string& path, OutputPolicy policy) {
   if (path.empty()) throw InputError("output file: empty name");
@@ -64,7 +67,8 @@ void check_output_file(const std::string& path, OutputPolicy policy) {
     if (fs::is_symlink(st))
       throw InputError(fmt::format("{}: is a symbolic link; refusing to replace it", path));
     if (!fs::is_regular_file(st))
-      throw InputError(fmt::format("{}: is a device, FIFO or socket; refusing to replace it", path));
+      throw InputError(
+          fmt::format("{}: is a device, FIFO or socket; refusing to replace it", path));
     if (!policy.overwrite && !written_by_terrasprite(p))
       throw InputError(fmt::format(
           "{}: exists and was not written by terrasprite; pass --overwrite to replace it", path));
@@ -74,8 +78,8 @@ void check_output_file(const std::string& path, OutputPolicy policy) {
     throw InputError(fmt::format("{}: directory {} does not exist", path, dir.string()));
   const std::string probe = create_temp_beside(p);
   if (probe.empty())
-    throw InputError(fmt::format("{}: cannot write in {} ({})", path, dir.string(),
-                                 std::strerror(errno)));
+    throw InputError(
+        fmt::format("{}: cannot write in {} ({})", path, dir.string(), std::strerror(errno)));
   fs::remove(probe, ec);
 }
 

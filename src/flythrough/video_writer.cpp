@@ -37,7 +37,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr std::array kPresets = {"ultrafast", "superfast", "veryfast", "faster", "fast",
+constexpr std::array kPresets = {"ultrafast", "superfast", "veryfast", "faster",   "fast",
                                  "medium",    "slow",      "slower",   "veryslow", "placebo"};
 
 std::string ffmpeg_program(const VideoOptions& o) {
@@ -63,8 +63,8 @@ void validate_video_options(const VideoOptions& o, const std::string& option) {
   if (o.crf < 0 || o.crf > 51)
     throw InputError(fmt::format("{} --crf {}: must be between 0 and 51", option, o.crf));
   if (std::find(kPresets.begin(), kPresets.end(), o.preset) == kPresets.end())
-    throw InputError(fmt::format("{} --preset {}: not an x264 preset (ultrafast .. placebo)",
-                                 option, o.preset));
+    throw InputError(
+        fmt::format("{} --preset {}: not an x264 preset (ultrafast .. placebo)", option, o.preset));
 }
 
 struct VideoWriter::Impl {
@@ -128,8 +128,8 @@ void VideoWriter::Impl::spawn(const VideoOptions& o) {
 
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0)
-    throw InputError(fmt::format("{}: cannot create a pipe to ffmpeg ({})", file,
-                                 std::strerror(errno)));
+    throw InputError(
+        fmt::format("{}: cannot create a pipe to ffmpeg ({})", file, std::strerror(errno)));
   std::string log_tmpl = (fs::temp_directory_path() / "terrasprite_ffmpeg_XXXXXX").string();
   int log_fd = mkstemp(log_tmpl.data());
   log = log_fd >= 0 ? log_tmpl : "";
@@ -296,12 +296,20 @@ void VideoWriter::finish() {
   s.finished = true;
 }
 
-int VideoWriter::frames() const { return impl_->frames; }
+int VideoWriter::frames() const {
+  return impl_->frames;
+}
 bool VideoWriter::padded() const {
   return impl_->enc_w != impl_->width || impl_->enc_h != impl_->height;
 }
-int VideoWriter::encoded_width() const { return impl_->enc_w; }
-int VideoWriter::encoded_height() const { return impl_->enc_h; }
-const std::string& VideoWriter::file() const { return impl_->file; }
+int VideoWriter::encoded_width() const {
+  return impl_->enc_w;
+}
+int VideoWriter::encoded_height() const {
+  return impl_->enc_h;
+}
+const std::string& VideoWriter::file() const {
+  return impl_->file;
+}
 
 }  // namespace terrasprite

@@ -12,7 +12,8 @@ FrameTime FrameTimer::end() {
   glEndQuery(GL_TIME_ELAPSED);
   glFinish();
   FrameTime t;
-  t.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+  t.ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
   GLuint64 ns = 0;
   glGetQueryObjectui64v(query_.id(), GL_QUERY_RESULT, &ns);
   // GPU time inside the span cannot exceed its wall time; llvmpipe reports

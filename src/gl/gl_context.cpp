@@ -112,9 +112,10 @@ GlContext::~GlContext() {
 std::unique_ptr<GlContext> GlContext::adopt(External external) {
   if (!external.make_current) throw std::logic_error("GlContext::adopt: make_current is required");
   if (epoxy_gl_version() < 45)
-    throw DeviceError(fmt::format("no usable GL device: the window's context is OpenGL {}.{}, "
-                                  "4.5 core is needed",
-                                  epoxy_gl_version() / 10, epoxy_gl_version() % 10));
+    throw DeviceError(
+        fmt::format("no usable GL device: the window's context is OpenGL {}.{}, "
+                    "4.5 core is needed",
+                    epoxy_gl_version() / 10, epoxy_gl_version() % 10));
   auto impl = std::make_unique<Impl>();
   impl->external = std::move(external);
   return std::unique_ptr<GlContext>(new GlContext(std::move(impl)));
@@ -126,12 +127,12 @@ std::unique_ptr<GlContext> GlContext::create_shared() const {
       throw DeviceError("no usable GL device: this window's context offers no shared context");
     return impl_->external.create_shared();
   }
-  EGLContext ctx =
-      eglCreateContext(impl_->display, impl_->config, impl_->context, kContextAttribs);
+  EGLContext ctx = eglCreateContext(impl_->display, impl_->config, impl_->context, kContextAttribs);
   if (ctx == EGL_NO_CONTEXT)
-    throw DeviceError(fmt::format("no usable GL device: EGL could not create a shared context "
-                                  "(error 0x{:x})",
-                                  eglGetError()));
+    throw DeviceError(
+        fmt::format("no usable GL device: EGL could not create a shared context "
+                    "(error 0x{:x})",
+                    eglGetError()));
   auto impl = std::make_unique<Impl>();
   impl->display = impl_->display;
   impl->context = ctx;

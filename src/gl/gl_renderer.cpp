@@ -68,7 +68,8 @@ gl::FrameTimer& GlRenderer::timer() {
 void GlRenderer::read_framebuffer(unsigned fbo, int w, int h, const Camera& camera, Frame& frame,
                                   ReadBack what) {
   if (has(what, ReadBack::kColor)) frame.color = gl::read_color(fbo, w, h);
-  if (has(what, ReadBack::kDepth)) frame.depth = gl::read_depth(fbo, w, h, camera.near_m, camera.far_m);
+  if (has(what, ReadBack::kDepth))
+    frame.depth = gl::read_depth(fbo, w, h, camera.near_m, camera.far_m);
 }
 
 void GlRenderer::read_back(Frame& frame, ReadBack what) {

@@ -52,9 +52,9 @@ class TerrainGpu {
  private:
   const Terrain& terrain_;
   gl::Texture drape_{GL_TEXTURE_2D};
-  gl::Program program_;           // the plain textured terrain shader, hardware filtering
-  gl::Program program_hand_;      // the same, drape filtered by hand
-  GLuint trilinear_ = 0;          // sampler object: trilinear, no hardware anisotropy
+  gl::Program program_;            // the plain textured terrain shader, hardware filtering
+  gl::Program program_hand_;       // the same, drape filtered by hand
+  GLuint trilinear_ = 0;           // sampler object: trilinear, no hardware anisotropy
   std::map<int, GpuMesh> meshes_;  // by quads per side; 0 = full resolution
 };
 

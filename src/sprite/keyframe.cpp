@@ -13,8 +13,7 @@ Keyframe::Keyframe(int width, int height, const CoarseGrid& grid) : target(width
   fallback.assign(static_cast<std::size_t>(grid.quad_count()), 1);
 }
 
-void Keyframe::capture(TerrainGpu& scene, const CoarseGrid& grid, const Camera& c,
-                       bool lighting) {
+void Keyframe::capture(TerrainGpu& scene, const CoarseGrid& grid, const Camera& c, bool lighting) {
   camera = c;
   view_projection = glm::mat4(gl::view_projection_reversed_z(c));
   target.bind_and_clear();

@@ -89,8 +89,8 @@ void main() {
 }  // namespace
 
 SpritePass::SpritePass()
-    : program_(gl::link_program(kVertex,
-                                std::string("#version 450 core\n") + kDrapeUvGlsl + kHandFilterGlsl + kFragment)) {
+    : program_(gl::link_program(kVertex, std::string("#version 450 core\n") + kDrapeUvGlsl +
+                                             kHandFilterGlsl + kFragment)) {
   const GLuint p = program_.id();
   u_vp_ = glGetUniformLocation(p, "u_vp");
   u_key_vp_ = glGetUniformLocation(p, "u_key_vp");
@@ -118,8 +118,8 @@ void SpritePass::composite_keyframe(const Keyframe& key) {
   glDepthFunc(GL_GREATER);
 }
 
-void SpritePass::draw(TerrainGpu& scene, const GpuMesh& coarse, int quads_x,
-                      const Keyframe& key, const glm::mat4& vp, bool lighting) {
+void SpritePass::draw(TerrainGpu& scene, const GpuMesh& coarse, int quads_x, const Keyframe& key,
+                      const glm::mat4& vp, bool lighting) {
   const GLuint p = program_.id();
   glUseProgram(p);
   glUniformMatrix4fv(u_vp_, 1, GL_FALSE, glm::value_ptr(vp));

@@ -15,11 +15,16 @@ namespace terrasprite {
 
 const char* to_string(Trigger t) {
   switch (t) {
-    case Trigger::kFirst: return "first";
-    case Trigger::kError: return "error";
-    case Trigger::kFallback: return "fallback";
-    case Trigger::kScale: return "scale";
-    case Trigger::kForced: return "forced";
+    case Trigger::kFirst:
+      return "first";
+    case Trigger::kError:
+      return "error";
+    case Trigger::kFallback:
+      return "fallback";
+    case Trigger::kScale:
+      return "scale";
+    case Trigger::kForced:
+      return "forced";
   }
   return "?";
 }
@@ -36,7 +41,10 @@ struct SpriteRenderer::State {
   std::vector<std::uint8_t> flags;  // this frame's per-quad drape flags
 
   State(Scene& s, int w, int h, const SpriteOptions& o)
-      : scene(s), options(o), grid(make_coarse_grid(s.terrain().heights, o.lod_quads)), key(w, h, grid) {}
+      : scene(s),
+        options(o),
+        grid(make_coarse_grid(s.terrain().heights, o.lod_quads)),
+        key(w, h, grid) {}
 };
 
 namespace {
@@ -164,7 +172,8 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
 
 void SpriteRenderer::read_back(Frame& f, ReadBack what) {
   State& s = *s_;
-  if (!s.last_was_key || output().framebuffer != own_target().framebuffer() || s.scene.has_objects()) {
+  if (!s.last_was_key || output().framebuffer != own_target().framebuffer() ||
+      s.scene.has_objects()) {
     GlRenderer::read_back(f, what);
     return;
   }

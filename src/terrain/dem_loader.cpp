@@ -109,7 +109,8 @@ Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings
   std::error_code ec;
   // GDAL's virtual files (/vsimem/, /vsizip/...) are not on the filesystem.
   const bool gdal_virtual = path.rfind("/vsi", 0) == 0;
-  if (!gdal_virtual && !std::filesystem::exists(path, ec)) throw InputError(fmt::format("{}: no such file", path));
+  if (!gdal_virtual && !std::filesystem::exists(path, ec))
+    throw InputError(fmt::format("{}: no such file", path));
   if (std::filesystem::is_directory(path, ec))
     throw InputError(fmt::format("{}: is a directory, not a height raster", path));
   detail::GdalErrorCapture capture;

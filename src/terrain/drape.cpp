@@ -91,7 +91,8 @@ long long fill_transparent_texels(Image& texture, const std::array<double, 4>& r
       const double u = (x + 0.5) / texture.width, v = (y + 0.5) / texture.height;
       const double s = std::clamp((u - rect[0]) / rect[2], 0.0, 1.0),
                    t = std::clamp((v - rect[1]) / rect[3], 0.0, 1.0);
-      const std::uint8_t* d = derived.px(std::min(int(s * dw), dw - 1), std::min(int(t * dh), dh - 1));
+      const std::uint8_t* d =
+          derived.px(std::min(int(s * dw), dw - 1), std::min(int(t * dh), dh - 1));
       std::copy(d, d + 3, px);
       px[3] = 255;
     }

@@ -21,9 +21,10 @@ namespace {
 constexpr int kMaxImageSide = 16384;
 
 std::string too_large(int w, int h) {
-  return fmt::format("image is {}x{}; more than {} pixels a side is not supported (downsample it, "
-                     "e.g. gdal_translate -outsize)",
-                     w, h, kMaxImageSide);
+  return fmt::format(
+      "image is {}x{}; more than {} pixels a side is not supported (downsample it, "
+      "e.g. gdal_translate -outsize)",
+      w, h, kMaxImageSide);
 }
 
 Image from_channels(const std::vector<std::uint16_t>& v, int w, int h, int n, bool sixteen) {
@@ -106,7 +107,8 @@ Image load_image(const std::string& path) {
   std::error_code ec;
   // GDAL's virtual files (/vsimem/, /vsizip/...) are not on the filesystem.
   const bool gdal_virtual = path.rfind("/vsi", 0) == 0;
-  if (!gdal_virtual && !std::filesystem::exists(path, ec)) throw InputError(fmt::format("{}: no such file", path));
+  if (!gdal_virtual && !std::filesystem::exists(path, ec))
+    throw InputError(fmt::format("{}: no such file", path));
   if (std::filesystem::is_directory(path, ec))
     throw InputError(fmt::format("{}: is a directory, not an image", path));
   std::string gdal_error;

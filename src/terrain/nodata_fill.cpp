@@ -22,11 +22,11 @@
 namespace terrasprite {
 namespace {
 
-constexpr int kCoarsestSide = 16;        // a level no larger a side is solved directly
-constexpr double kOmega = 1.0;           // relaxation factor (AMLE is nonlinear: no over-relaxation)
-constexpr int kSweepsPerLevel = 200;     // most relaxations on a level with a coarse guess
-constexpr int kCoarsestSweeps = 4000;    // on the coarsest level (no guess)
-constexpr double kTolerance = 1e-5;      // stop when no cell moves more than this x relief
+constexpr int kCoarsestSide = 16;      // a level no larger a side is solved directly
+constexpr double kOmega = 1.0;         // relaxation factor (AMLE is nonlinear: no over-relaxation)
+constexpr int kSweepsPerLevel = 200;   // most relaxations on a level with a coarse guess
+constexpr int kCoarsestSweeps = 4000;  // on the coarsest level (no guess)
+constexpr double kTolerance = 1e-5;    // stop when no cell moves more than this x relief
 
 struct Level {
   int w, h;

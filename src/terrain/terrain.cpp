@@ -26,9 +26,9 @@ void register_drape(Terrain& t, const Heightfield& source, const std::string& de
                                                tex.width, tex.height)) {
       const double covered = detail::covered_fraction(*rect);
       if (covered <= 0)
-        throw InputError(fmt::format(
-            "{}: its georeferenced footprint does not overlap the heights of {} at all",
-            t.texture_name, dem));
+        throw InputError(
+            fmt::format("{}: its georeferenced footprint does not overlap the heights of {} at all",
+                        t.texture_name, dem));
       if (covered < 0.5 && warnings)
         warnings->push_back(fmt::format(
             "{}: covers only {:.0f}% of the heights of {}; the rest is drawn with its edge colours",
@@ -59,8 +59,8 @@ void check_options(const TerrainOptions& o) {
     throw InputError(fmt::format("synthetic_size {}: must be between 2 and {} samples",
                                  o.synthetic_size, kMaxSyntheticSize));
   if (o.erosion_passes < 0 || o.erosion_passes > kMaxErosionPasses)
-    throw InputError(fmt::format("erosion_passes {}: must be between 0 and {} passes", o.erosion_passes,
-                                 kMaxErosionPasses));
+    throw InputError(fmt::format("erosion_passes {}: must be between 0 and {} passes",
+                                 o.erosion_passes, kMaxErosionPasses));
   if (!(o.z_scale != 0) || !std::isfinite(o.z_scale))
     throw InputError(fmt::format("z_scale {}: must be a non-zero number", o.z_scale));
   if (!(o.exaggeration > 0) || o.exaggeration > 1000)
@@ -76,9 +76,9 @@ void check_options(const TerrainOptions& o) {
 void check_heights(const Heightfield& h) {
   if (!(h.spacing_x >= kMinSpacingM && h.spacing_x <= kMaxSpacingM && h.spacing_y >= kMinSpacingM &&
         h.spacing_y <= kMaxSpacingM))
-    throw InputError(fmt::format(
-        "{}: sample spacing {:g} x {:g} m is outside {:g} .. {:g} m (give --spacing)", h.name,
-        h.spacing_x, h.spacing_y, kMinSpacingM, kMaxSpacingM));
+    throw InputError(
+        fmt::format("{}: sample spacing {:g} x {:g} m is outside {:g} .. {:g} m (give --spacing)",
+                    h.name, h.spacing_x, h.spacing_y, kMinSpacingM, kMaxSpacingM));
   for (std::size_t p = 0; p < h.heights.size(); ++p)
     if (!(std::abs(h.heights[p]) <= kMaxAbsHeightM))
       throw InputError(fmt::format(

@@ -45,7 +45,8 @@ void FlyController::handle(const InputEvent& e) {
       return;
     case InputKind::kMouse:
       camera_.yaw_deg = std::fmod(camera_.yaw_deg + e.dx * options_.look_deg_per_px + 360, 360);
-      camera_.pitch_deg = std::clamp(camera_.pitch_deg - e.dy * options_.look_deg_per_px, -89.0, 89.0);
+      camera_.pitch_deg =
+          std::clamp(camera_.pitch_deg - e.dy * options_.look_deg_per_px, -89.0, 89.0);
       if (orbit_) {  // keep the pivot at the centre: move the eye around it
         const double d = glm::length(camera_.position - pivot_);
         camera_.position = pivot_ - camera_.forward() * d;
@@ -71,9 +72,8 @@ void FlyController::update(double dt_s) {
   if (orbit_) {
     // Circle the pivot (A/D, LEFT/RIGHT), move in and out (W/S).
     const double d = std::max(clearance_, glm::length(camera_.position - pivot_) - fwd * step);
-    camera_.yaw_deg = std::fmod(camera_.yaw_deg - (side + turn) * options_.turn_deg_per_s * dt_s +
-                                    360.0,
-                                360.0);
+    camera_.yaw_deg =
+        std::fmod(camera_.yaw_deg - (side + turn) * options_.turn_deg_per_s * dt_s + 360.0, 360.0);
     camera_.position = pivot_ - camera_.forward() * d;
   } else {
     camera_.yaw_deg = std::fmod(camera_.yaw_deg + turn * options_.turn_deg_per_s * dt_s + 360, 360);
@@ -105,8 +105,8 @@ glm::dvec3 FlyController::pick_centre() const {
   // March the centre ray in steps of a sample spacing up to the terrain's extent x 3.
   const glm::dvec3 d = camera_.forward();
   const double step = std::min(heights_.spacing_x, heights_.spacing_y);
-  const double reach = 3 * std::max(1.0, heights_.extent()) +
-                       std::abs(camera_.position.z - min_height_);
+  const double reach =
+      3 * std::max(1.0, heights_.extent()) + std::abs(camera_.position.z - min_height_);
   for (double s = 0; s < reach; s += step) {
     const glm::dvec3 p = camera_.position + d * s;
     if (p.z <= heights_.sample(p.x, p.y)) return p;

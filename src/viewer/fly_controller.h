@@ -13,11 +13,11 @@
 namespace terrasprite::viewer {
 
 struct FlyOptions {
-  double speed_mps = 0;            ///< flying speed; 0: a tenth of the terrain extent per second
-  double look_deg_per_px = 0.15;   ///< mouse look sensitivity
-  double turn_deg_per_s = 60;      ///< arrow-key turn rate
-  double clearance_m = 0;          ///< minimum height above ground; 0: 0.005 x extent
-  bool bounded = true;             ///< keep over the terrain's extent x 1.5 and below 2 extents above its top
+  double speed_mps = 0;           ///< flying speed; 0: a tenth of the terrain extent per second
+  double look_deg_per_px = 0.15;  ///< mouse look sensitivity
+  double turn_deg_per_s = 60;     ///< arrow-key turn rate
+  double clearance_m = 0;         ///< minimum height above ground; 0: 0.005 x extent
+  bool bounded = true;  ///< keep over the terrain's extent x 1.5 and below 2 extents above its top
 };
 
 /// Turns events into camera motion. Key bindings (GLFW codes): W/S or UP/DOWN

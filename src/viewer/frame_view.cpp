@@ -53,12 +53,14 @@ void FrameView::upload(const Image& color) {
     s.height = color.height;
   }
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  glTextureSubImage2D(s.texture.id(), 0, 0, 0, color.width, color.height, GL_RGBA,
-                      GL_UNSIGNED_BYTE, color.rgba.data());
+  glTextureSubImage2D(s.texture.id(), 0, 0, 0, color.width, color.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                      color.rgba.data());
   s.shown = s.texture.id();
 }
 
-void FrameView::show(unsigned texture) { impl_->shown = texture; }
+void FrameView::show(unsigned texture) {
+  impl_->shown = texture;
+}
 
 void FrameView::draw(int width, int height) const {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);

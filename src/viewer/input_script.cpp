@@ -22,13 +22,17 @@ int key_code(const std::string& name) {
         name == fmt::format("F{}", n))
       return GLFW_KEY_F1 + n - 1;
   }
-  static const std::pair<const char*, int> named[] = {
-      {"UP", GLFW_KEY_UP},         {"DOWN", GLFW_KEY_DOWN},
-      {"LEFT", GLFW_KEY_LEFT},     {"RIGHT", GLFW_KEY_RIGHT},
-      {"SPACE", GLFW_KEY_SPACE},   {"SHIFT", GLFW_KEY_LEFT_SHIFT},
-      {"CTRL", GLFW_KEY_LEFT_CONTROL}, {"ESCAPE", GLFW_KEY_ESCAPE},
-      {"TAB", GLFW_KEY_TAB},       {"PLUS", GLFW_KEY_EQUAL},
-      {"MINUS", GLFW_KEY_MINUS}};
+  static const std::pair<const char*, int> named[] = {{"UP", GLFW_KEY_UP},
+                                                      {"DOWN", GLFW_KEY_DOWN},
+                                                      {"LEFT", GLFW_KEY_LEFT},
+                                                      {"RIGHT", GLFW_KEY_RIGHT},
+                                                      {"SPACE", GLFW_KEY_SPACE},
+                                                      {"SHIFT", GLFW_KEY_LEFT_SHIFT},
+                                                      {"CTRL", GLFW_KEY_LEFT_CONTROL},
+                                                      {"ESCAPE", GLFW_KEY_ESCAPE},
+                                                      {"TAB", GLFW_KEY_TAB},
+                                                      {"PLUS", GLFW_KEY_EQUAL},
+                                                      {"MINUS", GLFW_KEY_MINUS}};
   for (const auto& [n, code] : named)
     if (name == n) return code;
   return -1;
@@ -65,8 +69,8 @@ InputEvent parse_event(const nlohmann::json& e, const std::string& where) {
   } else if (type == "button") {
     ev.kind = InputKind::kButton;
     const std::string b = e.value("button", "left");
-    ev.button = b == "left" ? GLFW_MOUSE_BUTTON_LEFT
-                : b == "right" ? GLFW_MOUSE_BUTTON_RIGHT
+    ev.button = b == "left"     ? GLFW_MOUSE_BUTTON_LEFT
+                : b == "right"  ? GLFW_MOUSE_BUTTON_RIGHT
                 : b == "middle" ? GLFW_MOUSE_BUTTON_MIDDLE
                                 : -1;
     if (ev.button < 0) throw InputError(fmt::format("{}: unknown button \"{}\"", where, b));
@@ -81,8 +85,8 @@ InputEvent parse_event(const nlohmann::json& e, const std::string& where) {
     if (f.empty()) throw InputError(fmt::format("{}: screenshot needs a \"file\"", where));
     ev.file = f;
   } else {
-    throw InputError(fmt::format(
-        "{}: \"type\" must be key, mouse, button, wheel or screenshot", where));
+    throw InputError(
+        fmt::format("{}: \"type\" must be key, mouse, button, wheel or screenshot", where));
   }
   return ev;
 }

@@ -29,7 +29,8 @@ void frame_graph(const std::deque<GraphSample>& history) {
     x += bar;
   }
   for (float ms : {33.3f, 100.f})
-    dl->AddLine(ImVec2(p.x, y_of(ms)), ImVec2(p.x + size.x, y_of(ms)), IM_COL32(200, 200, 200, 120));
+    dl->AddLine(ImVec2(p.x, y_of(ms)), ImVec2(p.x + size.x, y_of(ms)),
+                IM_COL32(200, 200, 200, 120));
   ImGui::Dummy(size);
   ImGui::TextDisabled("frame ms, top %.0f (lines: 33, 100; orange: keyframe)", top_ms);
 }
@@ -44,7 +45,8 @@ PanelActions draw_panel(const PanelInfo& info, LiveSettings& settings) {
   ImGui::Text("%.1f fps   render %.1f ms   %s", info.fps, info.render_ms, info.cls.c_str());
   ImGui::Text("%lld triangles", info.triangles);
   if (info.building)
-    ImGui::TextColored(ImVec4(1, .8f, .3f, 1), "building the %s renderer...", settings.mode.c_str());
+    ImGui::TextColored(ImVec4(1, .8f, .3f, 1), "building the %s renderer...",
+                       settings.mode.c_str());
   else if (info.stale_ms > 100)
     ImGui::TextColored(ImVec4(1, .8f, .3f, 1), "rendering: showing the last frame (%.0f ms old)",
                        info.stale_ms);
@@ -84,14 +86,20 @@ void draw_help() {
   ImGui::SetNextWindowBgAlpha(0.8f);
   ImGui::Begin("keys (F1)", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   static const char* lines[] = {
-      "W / S, UP / DOWN   forward / back",  "A / D              strafe left / right",
-      "LEFT / RIGHT       turn",            "Q / E              up / down",
+      "W / S, UP / DOWN   forward / back",
+      "A / D              strafe left / right",
+      "LEFT / RIGHT       turn",
+      "Q / E              up / down",
       "mouse              look (TAB frees the cursor; then drag with the left button)",
-      "wheel, + / -       speed x / / 1.25", "SHIFT              fast (x4)",
+      "wheel, + / -       speed x / / 1.25",
+      "SHIFT              fast (x4)",
       "O                  orbit the ground point at the centre (again: fly)",
-      "R                  reset the view",  "1 2 3 4            mode full / lod / sprite / voxel",
-      "F2                 screenshot (PNG)", "F5                 record the flight (path JSON)",
-      "F6                 play the recorded path", "ESCAPE             quit"};
+      "R                  reset the view",
+      "1 2 3 4            mode full / lod / sprite / voxel",
+      "F2                 screenshot (PNG)",
+      "F5                 record the flight (path JSON)",
+      "F6                 play the recorded path",
+      "ESCAPE             quit"};
   for (const char* l : lines) ImGui::TextUnformatted(l);
   ImGui::End();
 }

@@ -13,8 +13,8 @@ namespace terrasprite::viewer {
 
 /// One displayed frame in the graph.
 struct GraphSample {
-  float ms = 0;     ///< interval since the previous new frame
-  bool key = false; ///< a keyframe (LOD-sprite "key") or a real frame (voxel)
+  float ms = 0;      ///< interval since the previous new frame
+  bool key = false;  ///< a keyframe (LOD-sprite "key") or a real frame (voxel)
 };
 
 /// What the panel shows; filled by the event loop.
@@ -25,12 +25,12 @@ struct PanelInfo {
   long long triangles = 0;
   std::string cls, device;
   double error_px = -1;
-  double stale_ms = 0;              ///< age of the frame on screen while the worker is busy
+  double stale_ms = 0;  ///< age of the frame on screen while the worker is busy
   bool building = false;
   Camera camera;
   double speed_mps = 0, clearance_m = 0;
   bool orbit = false, recording = false, playing = false, captured = true;
-  std::string message;              ///< last action's result (screenshot written, ...)
+  std::string message;  ///< last action's result (screenshot written, ...)
 };
 
 struct PanelActions {

@@ -46,8 +46,8 @@ PathPlayer::PathPlayer(const std::string& file, const Heightfield& heights, doub
   std::ifstream in(file);
   nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
   double t0 = 0, t1 = 0;
-  if (!j.is_discarded() && j.is_object() && j.contains("keyframes") &&
-      j["keyframes"].is_array() && !j["keyframes"].empty()) {
+  if (!j.is_discarded() && j.is_object() && j.contains("keyframes") && j["keyframes"].is_array() &&
+      !j["keyframes"].empty()) {
     const auto t_of = [](const nlohmann::json& k) {
       return k.is_object() && k.contains("t") && k["t"].is_number() ? k["t"].get<double>() : 0.0;
     };

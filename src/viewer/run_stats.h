@@ -10,8 +10,9 @@
 namespace terrasprite::viewer {
 
 struct EventLatency {
-  double t = 0;           ///< the event's time in the script, seconds
-  double latency_ms = -1; ///< injection to the swap of the first frame rendered with it; -1: never shown
+  double t = 0;  ///< the event's time in the script, seconds
+  double latency_ms =
+      -1;  ///< injection to the swap of the first frame rendered with it; -1: never shown
 };
 
 struct RunStats {
@@ -25,8 +26,8 @@ struct RunStats {
 };
 
 /// The stats file: mode, size, frames, fps_median, fps_low_1pct (the rate of
-/// the 99th-percentile frame time), frames (displayed new frames), frame_ms_p50, frame_ms_p99, render_ms_p50,
-/// latency_ms_p95, latency_ms_max, events [{t, latency_ms}], camera_start and
+/// the 99th-percentile frame time), frames (displayed new frames), frame_ms_p50, frame_ms_p99,
+/// render_ms_p50, latency_ms_p95, latency_ms_max, events [{t, latency_ms}], camera_start and
 /// camera_end ({position, yaw_deg, pitch_deg}).
 nlohmann::json stats_json(const RunStats& s);
 

@@ -23,14 +23,16 @@ namespace terrasprite::viewer {
 
 namespace {
 
-double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+double seconds(Clock::duration d) {
+  return std::chrono::duration<double>(d).count();
+}
 
 /// A scripted event waiting for the first frame that shows it.
 struct Pending {
-  std::size_t index;        // into RunStats::events
-  std::uint64_t generation; // input generation after it arrived
+  std::size_t index;         // into RunStats::events
+  std::uint64_t generation;  // input generation after it arrived
   Clock::time_point at;
-  std::string screenshot;   // non-empty: write the window to this PNG on that frame
+  std::string screenshot;  // non-empty: write the window to this PNG on that frame
 };
 
 /// Reads the window's back buffer (panel included) into a PNG.
@@ -49,7 +51,8 @@ void save_window(int w, int h, const std::string& file) {
 
 std::string free_name(const std::string& dir, const char* stem, const char* ext) {
   for (int i = 0;; ++i) {
-    std::string f = (std::filesystem::path(dir) / fmt::format("{}_{:03d}.{}", stem, i, ext)).string();
+    std::string f =
+        (std::filesystem::path(dir) / fmt::format("{}_{:03d}.{}", stem, i, ext)).string();
     if (!std::filesystem::exists(f)) return f;
   }
 }
@@ -58,7 +61,9 @@ class Loop {
  public:
   Loop(const Heightfield& h, const Camera& start, const ViewerOptions& o,
        const ViewRendererFactory& factory)
-      : o_(o), heights_(h), win_(o.width, o.height, "terrasprite view"),
+      : o_(o),
+        heights_(h),
+        win_(o.width, o.height, "terrasprite view"),
         fly_(h, start, o.fly),
         worker_(factory, o.share_context && win_.has_shared_context()
                              ? ContextFactory([this] { return win_.adopt_shared_context(); })
@@ -159,16 +164,35 @@ void Loop::handle(const ArrivedEvent& a) {
   const InputEvent& e = a.event;
   if (e.kind == InputKind::kKey && e.action == GLFW_PRESS) {
     switch (e.key) {
-      case GLFW_KEY_ESCAPE: quit_ = true; return;
-      case GLFW_KEY_F1: help_ = !help_; return;
-      case GLFW_KEY_F2: screenshot_request_ = free_name(o_.screenshot_dir, "view", "png"); return;
-      case GLFW_KEY_F5: act({false, true, false}); return;
-      case GLFW_KEY_F6: act({false, false, true}); return;
-      case GLFW_KEY_1: settings_.mode = "full"; return;
-      case GLFW_KEY_2: settings_.mode = "lod"; return;
-      case GLFW_KEY_3: settings_.mode = "sprite"; return;
-      case GLFW_KEY_4: settings_.mode = "voxel"; return;
-      default: break;
+      case GLFW_KEY_ESCAPE:
+        quit_ = true;
+        return;
+      case GLFW_KEY_F1:
+        help_ = !help_;
+        return;
+      case GLFW_KEY_F2:
+        screenshot_request_ = free_name(o_.screenshot_dir, "view", "png");
+        return;
+      case GLFW_KEY_F5:
+        act({false, true, false});
+        return;
+      case GLFW_KEY_F6:
+        act({false, false, true});
+        return;
+      case GLFW_KEY_1:
+        settings_.mode = "full";
+        return;
+      case GLFW_KEY_2:
+        settings_.mode = "lod";
+        return;
+      case GLFW_KEY_3:
+        settings_.mode = "sprite";
+        return;
+      case GLFW_KEY_4:
+        settings_.mode = "voxel";
+        return;
+      default:
+        break;
     }
   }
   if (player_ && e.kind == InputKind::kKey) return;  // the path flies; ESCAPE still quits
@@ -178,9 +202,11 @@ void Loop::handle(const ArrivedEvent& a) {
 void Loop::act(const PanelActions& a) {
   if (a.screenshot) screenshot_request_ = free_name(o_.screenshot_dir, "view", "png");
   if (a.toggle_record) {
-    if (recorder_) stop_recording();
-    else start_recording(record_file_.empty() ? free_name(o_.screenshot_dir, "view_path", "json")
-                                              : record_file_);
+    if (recorder_)
+      stop_recording();
+    else
+      start_recording(record_file_.empty() ? free_name(o_.screenshot_dir, "view_path", "json")
+                                           : record_file_);
   }
   if (a.play && !record_file_.empty() && std::filesystem::exists(record_file_)) {
     if (recorder_) stop_recording();

@@ -16,7 +16,7 @@
 namespace terrasprite::viewer {
 
 struct ViewerOptions {
-  int width = 1280, height = 720;   ///< window and render size, pixels
+  int width = 1280, height = 720;  ///< window and render size, pixels
   LiveSettings settings;
   std::vector<ScriptEvent> script;  ///< replayed at their times; the run ends 1 s after the last
   bool scripted = false;            ///< a script was given (even an empty one)
@@ -25,7 +25,7 @@ struct ViewerOptions {
   double record_every_s = 0.5;      ///< keyframe interval of recordings
   std::string play;                 ///< fly this path file from the start
   FlyOptions fly;
-  std::string screenshot_dir = "."; ///< where F2 screenshots go
+  std::string screenshot_dir = ".";  ///< where F2 screenshots go
   /// GL renderers draw in a context sharing objects with the window's and the
   /// window shows their target's texture, nothing read back. Off (default):
   /// they draw in their own contexts and each frame's colour is read back and

@@ -17,7 +17,9 @@ namespace terrasprite::viewer {
 
 namespace {
 
-Window* owner(GLFWwindow* w) { return static_cast<Window*>(glfwGetWindowUserPointer(w)); }
+Window* owner(GLFWwindow* w) {
+  return static_cast<Window*>(glfwGetWindowUserPointer(w));
+}
 
 void key_cb(GLFWwindow* w, int key, int scancode, int action, int mods) {
   ImGui_ImplGlfw_KeyCallback(w, key, scancode, action, mods);
@@ -34,7 +36,9 @@ void scroll_cb(GLFWwindow* w, double dx, double dy) {
   ImGui_ImplGlfw_ScrollCallback(w, dx, dy);
   owner(w)->on_scroll(dx, dy);
 }
-void char_cb(GLFWwindow* w, unsigned int c) { ImGui_ImplGlfw_CharCallback(w, c); }
+void char_cb(GLFWwindow* w, unsigned int c) {
+  ImGui_ImplGlfw_CharCallback(w, c);
+}
 
 std::string glfw_error() {
   const char* d = nullptr;
@@ -46,8 +50,8 @@ std::string glfw_error() {
 
 Window::Window(int width, int height, const std::string& title) {
   if (!glfwInit())
-    throw DeviceError(fmt::format("view: no display ({}); run under xvfb-run -a without one",
-                                  glfw_error()));
+    throw DeviceError(
+        fmt::format("view: no display ({}); run under xvfb-run -a without one", glfw_error()));
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -102,9 +106,15 @@ std::unique_ptr<GlContext> Window::adopt_shared_context() {
   return GlContext::adopt(std::move(e));
 }
 
-bool Window::should_close() const { return glfwWindowShouldClose(window_); }
-void Window::poll() { glfwPollEvents(); }
-void Window::swap() { glfwSwapBuffers(window_); }
+bool Window::should_close() const {
+  return glfwWindowShouldClose(window_);
+}
+void Window::poll() {
+  glfwPollEvents();
+}
+void Window::swap() {
+  glfwSwapBuffers(window_);
+}
 
 std::pair<int, int> Window::framebuffer_size() const {
   int w = 0, h = 0;
@@ -138,9 +148,13 @@ void Window::inject(const InputEvent& e) {
   }
 }
 
-std::vector<ArrivedEvent> Window::drain() { return std::exchange(pending_, {}); }
+std::vector<ArrivedEvent> Window::drain() {
+  return std::exchange(pending_, {});
+}
 
-void Window::push(InputEvent e) { pending_.push_back({std::move(e), next_seq_++, Clock::now()}); }
+void Window::push(InputEvent e) {
+  pending_.push_back({std::move(e), next_seq_++, Clock::now()});
+}
 
 void Window::on_key(int key, int action) {
   if (ImGui::GetIO().WantCaptureKeyboard && !captured_) return;

@@ -26,7 +26,7 @@ class TileReader {
     }
   }
   const TerrainGrid& grid() const { return g_; }
-  int width(int level) const { return w_[level]; }    ///< samples of `level` (>= 2)
+  int width(int level) const { return w_[level]; }  ///< samples of `level` (>= 2)
   int height(int level) const { return h_[level]; }
 
   /// A resident tile's views, offset so level indices address them directly.

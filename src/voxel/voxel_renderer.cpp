@@ -85,8 +85,8 @@ VoxelRenderer::VoxelRenderer(const TerrainTiles& terrain, int width, int height,
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
     throw InputError(fmt::format("voxel renderer: image size {}x{} out of range", width, height));
   if (!(options.pixel_voxel_ratio > 0) || !std::isfinite(options.pixel_voxel_ratio))
-    throw InputError(fmt::format("pixel_voxel_ratio {}: must be a positive number",
-                                 options.pixel_voxel_ratio));
+    throw InputError(
+        fmt::format("pixel_voxel_ratio {}: must be a positive number", options.pixel_voxel_ratio));
   if (!(options.plane_oversample >= 0.25 && options.plane_oversample <= 8))
     throw InputError(
         fmt::format("plane oversampling {}: must be within 0.25..8", options.plane_oversample));

@@ -33,7 +33,7 @@ constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
 // q = z (row_base(j) + i step) + offset, in the new camera's (right, up, forward).
 struct SplatMap {
   glm::vec3 rr, ru, rf, step, offset;
-  float mx, my, fx, fy;     // new camera
+  float mx, my, fx, fy;      // new camera
   float smx, smy, sfx, sfy;  // real camera
   SplatMap(const Pinhole& s, const Pinhole& t) {
     auto in_t = [&](const glm::dvec3& v) {
@@ -67,28 +67,30 @@ std::uint64_t pack(float depth, std::uint32_t index) {
   return (std::uint64_t(std::bit_cast<std::uint32_t>(depth)) << 32) | index;
 }
 
-void splat(const Reference& ref, const SplatMap& map, int w, int h, std::vector<std::uint64_t>& win) {
+void splat(const Reference& ref, const SplatMap& map, int w, int h,
+           std::vector<std::uint64_t>& win) {
   const int sw = ref.cam.w;
-  tbb::parallel_for(tbb::blocked_range<int>(0, ref.cam.h, 8), [&](const tbb::blocked_range<int>& rows) {
-    for (int j = rows.begin(); j < rows.end(); ++j) {
-      const glm::vec3 base = map.row_base(j);
-      const float* depth = ref.frame.depth.data() + std::size_t(j) * sw;
-      for (int i = 0; i < sw; ++i) {
-        const float z = depth[i];
-        if (!(z < Frame::kSky)) continue;
-        const glm::vec3 q = z * (base + float(i) * map.step) + map.offset;
-        if (!(q.z > 1e-3f)) continue;
-        const float inv = 1.0f / q.z;
-        const float x = map.mx + map.fx * q.x * inv, y = map.my - map.fy * q.y * inv;
-        if (!(x >= 0.f && y >= 0.f && x < float(w) && y < float(h))) continue;
-        const std::uint64_t key = pack(q.z, std::uint32_t(std::size_t(j) * sw + i));
-        std::atomic_ref<std::uint64_t> slot(win[std::size_t(int(y)) * w + int(x)]);
-        std::uint64_t cur = slot.load(std::memory_order_relaxed);
-        while (key < cur && !slot.compare_exchange_weak(cur, key, std::memory_order_relaxed)) {
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, ref.cam.h, 8), [&](const tbb::blocked_range<int>& rows) {
+        for (int j = rows.begin(); j < rows.end(); ++j) {
+          const glm::vec3 base = map.row_base(j);
+          const float* depth = ref.frame.depth.data() + std::size_t(j) * sw;
+          for (int i = 0; i < sw; ++i) {
+            const float z = depth[i];
+            if (!(z < Frame::kSky)) continue;
+            const glm::vec3 q = z * (base + float(i) * map.step) + map.offset;
+            if (!(q.z > 1e-3f)) continue;
+            const float inv = 1.0f / q.z;
+            const float x = map.mx + map.fx * q.x * inv, y = map.my - map.fy * q.y * inv;
+            if (!(x >= 0.f && y >= 0.f && x < float(w) && y < float(h))) continue;
+            const std::uint64_t key = pack(q.z, std::uint32_t(std::size_t(j) * sw + i));
+            std::atomic_ref<std::uint64_t> slot(win[std::size_t(int(y)) * w + int(x)]);
+            std::uint64_t cur = slot.load(std::memory_order_relaxed);
+            while (key < cur && !slot.compare_exchange_weak(cur, key, std::memory_order_relaxed)) {
+            }
+          }
         }
-      }
-    }
-  });
+      });
 }
 
 // Fixed point: the reference position whose surface point lands on new pixel
@@ -172,7 +174,8 @@ struct Resolver {
       zt = zf;
     } else {
       const std::uint64_t nb = farthest_neighbour(px, py);
-      ok = nb != kEmpty && from_winner(nb, x, y, sx, sy, zf) && converge(ref, out, x, y, sx, sy, zt);
+      ok =
+          nb != kEmpty && from_winner(nb, x, y, sx, sy, zf) && converge(ref, out, x, y, sx, sy, zt);
       if (!ok && sees_sky(ref, out, x, y, sx, sy)) {
         ok = true;
         zt = Frame::kSky;

@@ -66,7 +66,8 @@ struct Reference {
   float depth_at(double x, double y) const {
     const double sx = std::clamp(x - 0.5, 0.0, double(cam.w - 1));
     const double sy = std::clamp(y - 0.5, 0.0, double(cam.h - 1));
-    const int i0 = std::min(int(sx), std::max(cam.w - 2, 0)), j0 = std::min(int(sy), std::max(cam.h - 2, 0));
+    const int i0 = std::min(int(sx), std::max(cam.w - 2, 0)),
+              j0 = std::min(int(sy), std::max(cam.h - 2, 0));
     const int i1 = std::min(i0 + 1, cam.w - 1), j1 = std::min(j0 + 1, cam.h - 1);
     const float* d = frame.depth.data();
     const float a = d[std::size_t(j0) * cam.w + i0], b = d[std::size_t(j0) * cam.w + i1];

@@ -29,7 +29,8 @@ namespace {
 void check_reference(const Frame& f, const char* what) {
   const std::size_t n = std::size_t(std::max(f.width(), 0)) * std::max(f.height(), 0);
   if (f.width() < 1 || f.height() < 1 || f.width() > 16384 || f.height() > 16384)
-    throw InputError(fmt::format("warp: {} frame size {}x{} out of range", what, f.width(), f.height()));
+    throw InputError(
+        fmt::format("warp: {} frame size {}x{} out of range", what, f.width(), f.height()));
   if (f.depth.size() != n)
     throw InputError(fmt::format("warp: {} frame has no depth ({} values for {}x{} pixels)", what,
                                  f.depth.size(), f.width(), f.height()));

@@ -13,7 +13,8 @@ WarpScheduler::WarpScheduler(Renderer& real, int width, int height, WarpSchedule
   if (o_.real_every < 1)
     throw InputError(fmt::format("real_every {}: must be at least 1", o_.real_every));
   if (o_.margin_x < 0 || o_.margin_y < 0)
-    throw InputError(fmt::format("warp margin {}x{}: must not be negative", o_.margin_x, o_.margin_y));
+    throw InputError(
+        fmt::format("warp margin {}x{}: must not be negative", o_.margin_x, o_.margin_y));
   if (width < 1 || height < 1)
     throw InputError(fmt::format("warp output size {}x{}: out of range", width, height));
 }
@@ -27,8 +28,8 @@ std::string WarpScheduler::name() const {
 Frame WarpScheduler::draw(const Camera& camera) {
   const bool real = count_++ % o_.real_every == 0;
   if (real) {
-    Frame f = real_.render(with_margin(camera, w_, h_, o_.margin_x, o_.margin_y),
-                           ReadBack::kColorDepth);
+    Frame f =
+        real_.render(with_margin(camera, w_, h_, o_.margin_x, o_.margin_y), ReadBack::kColorDepth);
     if (f.width() != w_ + 2 * o_.margin_x || f.height() != h_ + 2 * o_.margin_y)
       throw InputError(fmt::format("warp: real renderer gave {}x{}, expected {}x{}", f.width(),
                                    f.height(), w_ + 2 * o_.margin_x, h_ + 2 * o_.margin_y));

@@ -15,14 +15,16 @@ namespace fs = std::filesystem;
 namespace {
 
 // A small, fast render; `extra` adds or overrides options.
-const std::string kRender = "render --synthetic-size 33 --mode lod --lod-quads 4 --frames 1 --size 16x16 ";
+const std::string kRender =
+    "render --synthetic-size 33 --mode lod --lod-quads 4 --frames 1 --size 16x16 ";
 
 // Runs the CLI with `dir` as the working directory.
 tstest::CliResult run_in(const fs::path& dir, const std::string& args) {
   return tstest::run_cli_in(dir.string(), args);
 }
 
-void expect_refused(const tstest::CliResult& r, const std::string& args, const std::string& fragment) {
+void expect_refused(const tstest::CliResult& r, const std::string& args,
+                    const std::string& fragment) {
   EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
   EXPECT_NE(r.output.find(fragment), std::string::npos) << args << "\n" << r.output;
   EXPECT_LE(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << "\n" << r.output;
@@ -52,9 +54,9 @@ TEST(CliOutputs, RefusesTheWorkingDirectoryAndItsAncestors) {
   tstest::TempDir tmp;
   const fs::path work = user_folder(tmp.path / "work");
   user_folder(work / "sub" / "inner");
-  for (const std::string& out : std::vector<std::string>{".", "./", "..", "sub/inner/..",
-                                                         "sub/inner/../..", "/", work.string(),
-                                                         tmp.path.string()}) {
+  for (const std::string& out :
+       std::vector<std::string>{".", "./", "..", "sub/inner/..", "sub/inner/../..", "/",
+                                work.string(), tmp.path.string()}) {
     const std::string args = kRender + "--out " + out;
     expect_refused(run_in(work, args), args, out == "/" ? "root" : out);
     expect_intact(work);
@@ -92,7 +94,8 @@ TEST(CliOutputs, ReplacesItsOwnOutputsAndEmptyFolders) {
   tstest::TempDir tmp;
   fs::create_directory(tmp.path / "empty");
   for (int run = 0; run < 2; ++run) {
-    tstest::CliResult r = tstest::run_cli(kRender + "--out " + (tmp / "empty") + " --json " + (tmp / "s.json"));
+    tstest::CliResult r =
+        tstest::run_cli(kRender + "--out " + (tmp / "empty") + " --json " + (tmp / "s.json"));
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_TRUE(fs::exists(tmp.path / "empty" / ".terrasprite-output"));
     EXPECT_NE(read(tmp.path / "s.json").find("\"generator\": \"terrasprite "), std::string::npos);
@@ -107,8 +110,9 @@ TEST(CliOutputs, SingleFileOutputsAreCheckedBeforeTheWork) {
   fs::create_directory(tmp.path / "adir");
   std::ofstream(tmp / "theirs.json") << "{\"mine\": true}\n";
   const std::string out = " --out " + (tmp / "r");
-  for (const std::string& json : {tmp / "adir", std::string("/proc/x/y.json"), tmp / "no/such/dir/s.json",
-                                 std::string("/dev/null"), tmp / "theirs.json"}) {
+  for (const std::string& json :
+       {tmp / "adir", std::string("/proc/x/y.json"), tmp / "no/such/dir/s.json",
+        std::string("/dev/null"), tmp / "theirs.json"}) {
     const std::string args = kRender + "--json " + json + out;
     expect_refused(tstest::run_cli(args), args, json);
     EXPECT_FALSE(fs::exists(tmp / "r")) << args;
@@ -117,7 +121,9 @@ TEST(CliOutputs, SingleFileOutputsAreCheckedBeforeTheWork) {
   EXPECT_EQ(read(tmp.path / "theirs.json"), "{\"mine\": true}\n");
   expect_refused(tstest::run_cli("info --synthetic-size 33 --json " + (tmp / "theirs.json")),
                  "info --json theirs.json", "theirs.json");
-  ASSERT_EQ(tstest::run_cli("info --synthetic-size 33 --overwrite --json " + (tmp / "theirs.json")).status, 0);
+  ASSERT_EQ(tstest::run_cli("info --synthetic-size 33 --overwrite --json " + (tmp / "theirs.json"))
+                .status,
+            0);
   EXPECT_NE(read(tmp.path / "theirs.json").find("\"generator\""), std::string::npos);
   // No temporary file left beside the target.
   for (const auto& e : fs::directory_iterator(tmp.path))

@@ -39,12 +39,14 @@ const Row kRows[] = {
     {RENDER "--out link", "link: it is a symbolic link"},
     {RENDER "--out busy", "busy.partial already exists"},
     {RENDER "--out afile/sub", "afile/sub"},
-    {"demo " SMALL "--frames 2 --size 16x16 --out mydata", "mydata: it exists and is not a terrasprite"},
+    {"demo " SMALL "--frames 2 --size 16x16 --out mydata",
+     "mydata: it exists and is not a terrasprite"},
     // Single-file outputs, checked before the work.
     {RENDER "--out o --json adir", "adir: is a directory"},
     {RENDER "--out o --json /proc/x/y.json", "/proc/x/y.json"},
     {RENDER "--out o --json theirs.json", "theirs.json: exists and was not written by terrasprite"},
-    {RENDER "--out o --json nosuchdir/s.json", "nosuchdir/s.json: directory nosuchdir does not exist"},
+    {RENDER "--out o --json nosuchdir/s.json",
+     "nosuchdir/s.json: directory nosuchdir does not exist"},
     {"info " SMALL "--json /dev/null", "/dev/null: is a device"},
     {"info " SMALL "--json theirs.json", "theirs.json: exists and was not written"},
     {"compare img.png img.png --diff afile", "afile: exists and was not written"},
@@ -74,11 +76,13 @@ const Row kRows[] = {
     {"info " SMALL "--resample 1", "--resample 1"},
     {"info " SMALL "--exaggeration 0", "--exaggeration 0"},
     {RENDER "--out o --mode lod --lod-quads 0", "--lod-quads 0"},
-    {RENDER "--out o --mode lod --lod-quads 100000", "--lod-quads 100000: must be between 1 and 32"},
+    {RENDER "--out o --mode lod --lod-quads 100000",
+     "--lod-quads 100000: must be between 1 and 32"},
     {RENDER "--out o --mode sprite --lod-quads 100000", "--lod-quads 100000"},
     {"bench render " SMALL "--frames 1 --size 16x16 --lod-quads 0", "--lod-quads 0"},
     {"bench voxel " SMALL "--frames 1 --size 16x16 --threads 999 --out o", "--threads 999"},
-    {"bench voxel " SMALL "--frames 1 --size 16x16 --terrain-sizes 8194 --out o", "--terrain-sizes 8194: sizes must be whole, 2..8193"},
+    {"bench voxel " SMALL "--frames 1 --size 16x16 --terrain-sizes 8194 --out o",
+     "--terrain-sizes 8194: sizes must be whole, 2..8193"},
     // Heights that are not finite after scaling, degenerate spacing.
     {"info --dem small.asc --z-scale 1e300", "after scale, offset and --z-scale is not a finite"},
     {"info --dem small.asc --z-scale nan", "--z-scale nan"},
@@ -103,9 +107,13 @@ const Row kRows[] = {
     {"info --nodata abc", "--nodata"},
 };
 
-void write_file(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+void write_file(const fs::path& p, const std::string& text) {
+  std::ofstream(p) << text;
+}
 
-std::string path_json(const std::string& keyframes) { return "{\"keyframes\": [" + keyframes + "]}"; }
+std::string path_json(const std::string& keyframes) {
+  return "{\"keyframes\": [" + keyframes + "]}";
+}
 
 // A single-band GeoTIFF of `type` with every sample `value`, `scale` as band scale.
 void write_tif(const fs::path& p, GDALDataType type, double value, double scale) {
@@ -205,7 +213,8 @@ TEST(HostileInputs, EachFailsInOneLineAndTouchesNothing) {
     const tstest::CliResult r = tstest::run_cli_in(work.string(), row.args);
     EXPECT_EQ(r.status, 2) << row.args << "\n" << r.output;
     EXPECT_NE(r.output.find(row.fragment), std::string::npos) << row.args << "\n" << r.output;
-    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << row.args << "\n" << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << row.args << "\n"
+                                                                     << r.output;
     EXPECT_EQ(snapshot(work), before) << row.args << ": the working directory changed";
   }
   EXPECT_TRUE(fs::is_character_file("/dev/null"));

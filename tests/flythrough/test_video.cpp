@@ -87,7 +87,7 @@ Image gradient(int w, int h, int t) {
   return img;
 }
 
-#define REQUIRE_FFMPEG()                                                 \
+#define REQUIRE_FFMPEG() \
   if (!have("ffmpeg") || !have("ffprobe")) GTEST_SKIP() << "no ffmpeg"
 
 }  // namespace

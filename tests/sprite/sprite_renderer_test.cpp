@@ -156,10 +156,8 @@ TEST(SpriteRenderer, KeyframeTriggerFiresWhenTheThresholdIsExceededAndNotBefore)
   t.texture = derived_texture(t.heights, 256, 256);
   Scene scene(t);
   for (ErrorMetric m : {ErrorMetric::kPaper, ErrorMetric::kExact}) {
-    SpriteOptions o{.lod_quads = 16,
-                    .threshold_px = 0.5,
-                    .metric = m,
-                    .max_resample_scale = INFINITY};
+    SpriteOptions o{
+        .lod_quads = 16, .threshold_px = 0.5, .metric = m, .max_resample_scale = INFINITY};
     SpriteRenderer r(scene, 128, 128, o);
     auto path = paper_path(t.heights, 120, 1.0);
     int keys = 0;

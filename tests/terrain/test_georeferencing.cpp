@@ -20,7 +20,8 @@ template <class T>
 void write_tif(const std::string& path, int w, int h, int bands, GDALDataType type,
                const std::vector<T>& v, const double gt[6]) {
   GDALAllRegister();
-  GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), path.c_str(), w, h, bands, type, nullptr);
+  GDALDatasetH ds =
+      GDALCreate(GDALGetDriverByName("GTiff"), path.c_str(), w, h, bands, type, nullptr);
   ASSERT_NE(ds, nullptr);
   GDALSetGeoTransform(ds, const_cast<double*>(gt));
   OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
@@ -50,11 +51,13 @@ const std::vector<std::int16_t> kNorthUp = {1, 2, 3, 4, 5, 6};
 TEST(Georeferencing, SouthUpAndMirroredRastersLoadNorthUp) {
   tstest::TempDir tmp;
   const double north_up[6] = {500000, 10, 0, 5000020, 0, -10};
-  const double south_up[6] = {500000, 10, 0, 5000000, 0, 10};     // row 0 is the south edge
+  const double south_up[6] = {500000, 10, 0, 5000000, 0, 10};    // row 0 is the south edge
   const double mirrored[6] = {500030, -10, 0, 5000020, 0, -10};  // column 0 is the east edge
   write_tif(tmp / "n.tif", 3, 2, 1, GDT_Int16, kNorthUp, north_up);
-  write_tif(tmp / "s.tif", 3, 2, 1, GDT_Int16, std::vector<std::int16_t>{4, 5, 6, 1, 2, 3}, south_up);
-  write_tif(tmp / "m.tif", 3, 2, 1, GDT_Int16, std::vector<std::int16_t>{3, 2, 1, 6, 5, 4}, mirrored);
+  write_tif(tmp / "s.tif", 3, 2, 1, GDT_Int16, std::vector<std::int16_t>{4, 5, 6, 1, 2, 3},
+            south_up);
+  write_tif(tmp / "m.tif", 3, 2, 1, GDT_Int16, std::vector<std::int16_t>{3, 2, 1, 6, 5, 4},
+            mirrored);
   const Heightfield n = load_dem(dem(tmp / "n.tif"));
   for (const char* f : {"s.tif", "m.tif"}) {
     const Heightfield h = load_dem(dem(tmp / f));

@@ -83,8 +83,8 @@ TEST(NodataFill, ConeWithItsApexCutOut) {
   auto cone = [](double x, double y) { return 1000.0 - 0.5 * std::hypot(x - 64, y - 64); };
   Holed r = fill_disc(cone, 64, 64, 20);
   expect_no_cliffs(r, 64, 64, 20, 5);
-  // No fill that is never steeper than its rim can rebuild a peak: it caps it flat. The RMS error of a
-  // flat cap over a disc is s R / sqrt(6) = 4.08 m; allow 10% over that.
+  // No fill that is never steeper than its rim can rebuild a peak: it caps it flat. The RMS error
+  // of a flat cap over a disc is s R / sqrt(6) = 4.08 m; allow 10% over that.
   EXPECT_LE(rms_in_hole(r), 0.5 * 20 / std::sqrt(6.0) * 1.1);
 }
 

@@ -42,9 +42,13 @@ InputEvent key(int k, int action) {
   return e;
 }
 
-nlohmann::json read_json(const std::string& f) { return nlohmann::json::parse(std::ifstream(f)); }
+nlohmann::json read_json(const std::string& f) {
+  return nlohmann::json::parse(std::ifstream(f));
+}
 
-bool have_xvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
+bool have_xvfb() {
+  return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
+}
 
 /// `view` under Xvfb on a small synthetic terrain.
 tstest::CliResult view(const std::string& args) {
@@ -205,7 +209,8 @@ TEST(ViewCli, ScriptedRunUnderXvfbMovesRecordsAndReplays) {
     {"t": 1.3, "type": "key", "key": "W", "action": "release"},
     {"t": 1.4, "type": "mouse", "dx": 60, "dy": 0},
     {"t": 1.5, "type": "key", "key": "F1", "action": "press"},
-    {"t": 1.6, "type": "screenshot", "file": ")" << (tmp / "shot.png") << R"("}]})";
+    {"t": 1.6, "type": "screenshot", "file": ")"
+                                  << (tmp / "shot.png") << R"("}]})";
   auto r = view("--mode lod --script " + (tmp / "fly.json") + " --stats " + (tmp / "a.json") +
                 " --record " + (tmp / "rec.json") + " --record-every 0.25");
   ASSERT_EQ(r.status, 0) << r.output;

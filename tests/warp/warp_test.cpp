@@ -128,7 +128,8 @@ TEST(Warp, StaticCameraReturnsTheRealFrame) {
       for (int x = 0; x < W; ++x)
         differ += std::memcmp(wf.frame.color.px(x, y), real.color.px(x + M, y + M), 4) != 0;
     EXPECT_EQ(differ, 0) << to_string(m);
-    EXPECT_GT(psnr(wf.frame.color, truth.color), 60.0) << "the margin camera registers with the plain one";
+    EXPECT_GT(psnr(wf.frame.color, truth.color), 60.0)
+        << "the margin camera registers with the plain one";
   }
 }
 
@@ -140,8 +141,8 @@ TEST(Warp, PureRotationIsExactUnderDepthAndNearlySoUnderPoly2) {
   const glm::dvec3 eye(0, -800, 300);
   const Camera c0 = camera(eye, 0, -45, 0, W, H);
   const Frame real = scene.render(with_margin(c0, W, H, M, M), W + 2 * M, H + 2 * M);
-  for (auto [dyaw, dpitch, droll] : {std::tuple{3.0, 0.0, 0.0}, std::tuple{0.0, 2.5, 0.0},
-                                      std::tuple{2.0, -1.5, 4.0}}) {
+  for (auto [dyaw, dpitch, droll] :
+       {std::tuple{3.0, 0.0, 0.0}, std::tuple{0.0, 2.5, 0.0}, std::tuple{2.0, -1.5, 4.0}}) {
     const Camera c1 = camera(eye, dyaw, -45 + dpitch, droll, W, H);
     const Frame truth = scene.render(c1, W, H);
     WarpOptions o;

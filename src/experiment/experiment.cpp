@@ -141,7 +141,8 @@ ExperimentResult Experiment::run(CameraSource& cameras, const ExperimentOptions&
       if (p.annotate) p.annotate(f, r);
       const bool score = !is_ref && scored && p.score;
       const ReadBack read = score ? (p.read | ReadBack::kColor) : p.read;
-      if (read != ReadBack::kNone || is_ref) p.renderer->read_back(f, is_ref ? p.read : read);
+      // The reference's read always holds colour (set_reference adds it).
+      if (read != ReadBack::kNone) p.renderer->read_back(f, read);
       if (score) r.quality = scorer(ref, f);
       if (o.on_frame) o.on_frame(i, p.name, f);
       result.runs[k].frames.push_back(std::move(r));

@@ -84,6 +84,15 @@ class TerrainTiles {
   /// the level's tile grid), or nullptr when it is not resident: use a
   /// coarser level. Levels coarsest_level.. are always resident.
   virtual const TileBlock* tile(int level, int tx, int ty) const = 0;
+  /// The whole of `level` as one block (x0 = y0 = 0, w x h = the level's
+  /// samples), when the source holds that level resident and contiguous for
+  /// as long as its tiles stay valid; nullptr otherwise (the default). A
+  /// reader that gets one for every level reads without per-tile checks
+  /// (the in-memory pyramid); the answer is the same data tile() gives.
+  virtual const TileBlock* level_block(int level) const {
+    (void)level;
+    return nullptr;
+  }
 };
 
 }  // namespace terrasprite

@@ -32,6 +32,7 @@ class VoxelTerrain : public TerrainTiles {
   int levels() const;  ///< pyramid levels, >= 1 (level 0 = full resolution)
   const TerrainGrid& grid() const override;
   const TileBlock* tile(int level, int tx, int ty) const override;
+  const TileBlock* level_block(int level) const override;  ///< every level: one block
   struct Data;
   const Data& data() const { return *d_; }
 

@@ -38,6 +38,11 @@ class ColumnMarcher {
   void march(double dx, double dy, std::span<const double> slopes, std::span<MarchHit> hits) const;
 
  private:
+  // The march over either reader (tiled, or whole levels without checks).
+  template <class Reader>
+  void march_with(double dx, double dy, std::span<const double> slopes,
+                  std::span<MarchHit> hits) const;
+
   const TerrainTiles& src_;
   const TerrainGrid& d_;
   MarchSettings s_;
@@ -45,6 +50,7 @@ class ColumnMarcher {
   double lift_;          // eye height above the highest terrain (>= 0): bounds 3D distance
   double t1_;            // distance where level 0 ends (level L starts at t1 * 2^(L-1))
   int lmax_;             // coarsest usable level
+  bool whole_;           // the source hands out every level whole (in memory)
 };
 
 }  // namespace terrasprite

@@ -14,16 +14,29 @@ namespace terrasprite {
 
 /// Per-thread, per-march cursor over a TerrainTiles (levels 0..31). Cheap to
 /// construct; not shared between threads.
-class TileReader {
+///
+/// kWholeLevels: every level comes from `level_block()` (the caller checked
+/// `has_whole_levels`), so a read never checks or changes tiles. The march is
+/// instantiated for both so an in-memory pyramid pays nothing for the tiles.
+template <bool kWholeLevels>
+class BasicTileReader {
  public:
   static constexpr int kMaxLevels = 32;
 
-  explicit TileReader(const TerrainTiles& src) : src_(src), g_(src.grid()) {
+  explicit BasicTileReader(const TerrainTiles& src) : src_(src), g_(src.grid()) {
     nlev_ = std::min(g_.bound_levels, kMaxLevels);
     for (int L = 0; L < nlev_; ++L) {
       w_[L] = g_.level_width(L);
       h_[L] = g_.level_height(L);
+      if constexpr (kWholeLevels) load(slots_[L], src.level_block(L));
     }
+  }
+  /// Whether `src` hands out every level 0..min(bound_levels, 32)-1 whole.
+  static bool has_whole_levels(const TerrainTiles& src) {
+    const int n = std::min(src.grid().bound_levels, kMaxLevels);
+    for (int L = 0; L < n; ++L)
+      if (!src.level_block(L)) return false;
+    return true;
   }
   const TerrainGrid& grid() const { return g_; }
   int width(int level) const { return w_[level]; }  ///< samples of `level` (>= 2)
@@ -48,6 +61,7 @@ class TileReader {
   /// 0 <= b < height - 1), or null.
   const Slot* cell(int level, int a, int b) {
     const Slot& s = slots_[level];
+    if constexpr (kWholeLevels) return &s;
     if (unsigned(a - s.x0) < s.cw && unsigned(b - s.y0) < s.ch) [[likely]]
       return &s;
     return refill(level, a, b);
@@ -110,8 +124,11 @@ class TileReader {
 
   [[gnu::noinline]] const Slot* refill(int level, int a, int b) {
     const int lg = g_.tile_log2;
-    const TileBlock* t = src_.tile(level, a >> lg, b >> lg);
     Slot& s = slots_[level];
+    return load(s, src_.tile(level, a >> lg, b >> lg));
+  }
+
+  static const Slot* load(Slot& s, const TileBlock* t) {
     s = Slot{};
     if (!t) return nullptr;
     s.x0 = t->x0;
@@ -134,5 +151,7 @@ class TileReader {
   int w_[kMaxLevels] = {}, h_[kMaxLevels] = {};
   Slot slots_[kMaxLevels];
 };
+
+using TileReader = BasicTileReader<false>;
 
 }  // namespace terrasprite

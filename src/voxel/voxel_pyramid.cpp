@@ -43,6 +43,17 @@ void build_tiles(VoxelTerrain::Data& d) {
     lt.nx = (ml.w + T - 1) / T;
     lt.ny = (ml.h + T - 1) / T;
     lt.tiles.resize(std::size_t(lt.nx) * lt.ny);
+    TileBlock& all = lt.whole;
+    all.max_height = -std::numeric_limits<float>::infinity();
+    all.w = ml.w + 1;
+    all.h = ml.h + 1;
+    all.bound = ml.bound.data();
+    all.bound_stride = ml.w;
+    if (lev) {
+      all.height = lev->height.data();
+      all.color = lev->color.data();
+      all.stride = lev->w;
+    }
     for (int ty = 0; ty < lt.ny; ++ty)
       for (int tx = 0; tx < lt.nx; ++tx) {
         TileBlock& b = lt.tiles[std::size_t(ty) * lt.nx + tx];
@@ -62,6 +73,7 @@ void build_tiles(VoxelTerrain::Data& d) {
         for (int y = 0; y < b.h - 1; ++y)
           for (int x = 0; x < b.w - 1; ++x)
             b.max_height = std::max(b.max_height, b.bound[y * b.bound_stride + x]);
+        all.max_height = std::max(all.max_height, b.max_height);
       }
   }
 }
@@ -225,6 +237,11 @@ const TileBlock* VoxelTerrain::tile(int level, int tx, int ty) const {
   const auto& lt = d_->tiles[std::size_t(level)];
   if (tx < 0 || ty < 0 || tx >= lt.nx || ty >= lt.ny) return nullptr;
   return &lt.tiles[std::size_t(ty) * lt.nx + tx];
+}
+
+const TileBlock* VoxelTerrain::level_block(int level) const {
+  if (level < 0 || level >= int(d_->tiles.size())) return nullptr;
+  return &d_->tiles[std::size_t(level)].whole;
 }
 
 int VoxelTerrain::levels() const {

@@ -42,6 +42,7 @@ struct VoxelTerrain::Data {
   struct LevelTiles {
     int nx = 0, ny = 0;
     std::vector<TileBlock> tiles;
+    TileBlock whole;  // the level as one block (level_block)
   };
   std::vector<LevelTiles> tiles;
 

@@ -4,7 +4,9 @@
 // falls back to coarser levels where tiles are not resident.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <tuple>
 
@@ -57,7 +59,25 @@ TEST(TerrainTiles, InMemoryTilesViewTheHeightFieldAndBoundIt) {
         }
       }
     EXPECT_EQ(vt.tile(L, (cw + T - 1) / T, 0), nullptr) << "past the level's tiles";
+    // The whole level as one block views the same samples and bounds as its tiles.
+    const TileBlock* all = vt.level_block(L);
+    ASSERT_NE(all, nullptr) << "level " << L;
+    EXPECT_EQ(all->x0, 0);
+    EXPECT_EQ(all->w, cw + 1);
+    EXPECT_EQ(all->h, ch + 1);
+    float tiles_max = -std::numeric_limits<float>::infinity();
+    for (int ty = 0; ty * T < ch; ++ty)
+      for (int tx = 0; tx * T < cw; ++tx) {
+        const TileBlock* b = vt.tile(L, tx, ty);
+        tiles_max = std::max(tiles_max, b->max_height);
+        ASSERT_EQ(b->bound, all->bound + std::ptrdiff_t(b->y0) * all->bound_stride + b->x0);
+        if (b->height)
+          ASSERT_EQ(b->height, all->height + std::ptrdiff_t(b->y0) * all->stride + b->x0);
+      }
+    EXPECT_EQ(all->max_height, tiles_max);
   }
+  EXPECT_EQ(vt.level_block(-1), nullptr);
+  EXPECT_EQ(vt.level_block(g.bound_levels), nullptr);
   EXPECT_EQ(vt.tile(-1, 0, 0), nullptr) << "no finer level in memory";
   EXPECT_EQ(vt.tile(g.bound_levels, 0, 0), nullptr);
 }
@@ -98,7 +118,8 @@ TEST(TerrainTiles, MissingTilesFallBackToCoarserLevels) {
   c.aspect = double(W) / H;
   for (VoxelVariant v : {VoxelVariant::kCoherent, VoxelVariant::kMultires}) {
     const Frame full = render_with(vt, v, c, W, H);
-    // Everything resident through the interface: the very same image.
+    // Everything resident through tile() alone (no level_block, so the
+    // tiled reader, where vt takes the whole-level one): the very same image.
     const Frame same = render_with(PartlyResident(vt, 0, false), v, c, W, H);
     EXPECT_EQ(full.color.rgba, same.color.rgba);
     // Half the level-0 tiles missing, or all of levels 0 and 1: the image

@@ -75,6 +75,10 @@ class StreamingTiles final : public TerrainTiles {
   /// previous call), evicting least-recently-used tiles far from the camera
   /// to stay within the budget. Returns the last frame's figures.
   StreamFrameStats update(const Camera& camera);
+  /// Adds the renderer's lookups and misses since the last update() or
+  /// collect_reads() to `stats` (degraded_samples = misses): call after a
+  /// frame to have its own reads in the stats update() returned before it.
+  void collect_reads(StreamFrameStats& stats) const;
   /// Waits until every queued read is done and installs them (tests; the
   /// bench's "once resident" check). Returns the tiles installed.
   int settle();

@@ -317,14 +317,18 @@ const TileBlock* StreamingTiles::tile(int level, int tx, int ty) const {
   return nullptr;
 }
 
-StreamFrameStats StreamingTiles::update(const Camera& camera) {
-  Impl& p = *p_;
-  StreamFrameStats st;
-  for (Shard& s : p.shards) {
+void StreamingTiles::collect_reads(StreamFrameStats& st) const {
+  for (Shard& s : p_->shards) {
     st.lookups += s.lookups.exchange(0, std::memory_order_relaxed);
     st.misses += s.misses.exchange(0, std::memory_order_relaxed);
   }
   st.degraded_samples = st.misses;
+}
+
+StreamFrameStats StreamingTiles::update(const Camera& camera) {
+  Impl& p = *p_;
+  StreamFrameStats st;
+  collect_reads(st);
   p.install();
   st.loaded = std::exchange(p.loaded_since, 0);
   st.bytes_read = std::exchange(p.bytes_since, 0);

@@ -66,21 +66,19 @@ std::uint64_t image_hash(const Image& im) {
   return h;
 }
 
-// The path is planned over a coarse level of the tiled terrain (at most 2049
+// The path is planned over a coarse level of the tiled terrain (at most 1025
 // samples a side), read once: the full-resolution grid never loads.
 Heightfield path_proxy(const TileSetInfo& set) {
   int L = 0;
-  while (L < set.grid.coarsest_level && std::max(set.level_w(L), set.level_h(L)) > 2049) ++L;
-  TileFile file(set);
-  TileData d;
-  std::string error;
-  if (!file.read_level(L, d, error)) throw InputError(fmt::format("{}: {}", set.dir, error));
+  while (L < set.grid.coarsest_level && std::max(set.level_w(L), set.level_h(L)) > 1025) ++L;
   Heightfield h;
-  h.width = d.block.w;
-  h.height = d.block.h;
+  std::string error;
+  if (!TileFile(set).read_level_heights(L, h.heights, error))
+    throw InputError(fmt::format("{}: {}", set.dir, error));
+  h.width = set.level_w(L);
+  h.height = set.level_h(L);
   h.spacing_x = set.grid.spacing_x * (set.grid.width - 1) / double(h.width - 1);
   h.spacing_y = set.grid.spacing_y * (set.grid.height - 1) / double(h.height - 1);
-  h.heights = std::move(d.height);
   h.name = set.dir;
   return h;
 }
@@ -241,11 +239,16 @@ nlohmann::json summary_json(const BenchStreamOpts& o, const TileSetInfo& set, co
                             const nlohmann::json& mem, int w, int h) {
   std::vector<double> ms, mem_ms;
   long long degraded = 0, degraded_late = 0, lookups = 0, misses = 0, bytes = 0;
+  long long lookups_late = 0, misses_late = 0;
   for (std::size_t i = 0; i < run.frames.size(); ++i) {
     const PerFrame& f = run.frames[i];
     ms.push_back(f.ms);
     degraded += f.st.degraded_samples;
-    if (i >= 30) degraded_late += f.st.degraded_samples;
+    if (i >= 30) {
+      degraded_late += f.st.degraded_samples;
+      lookups_late += f.st.lookups;
+      misses_late += f.st.misses;
+    }
     lookups += f.st.lookups;
     misses += f.st.misses;
     bytes += f.st.bytes_read;
@@ -282,6 +285,7 @@ nlohmann::json summary_json(const BenchStreamOpts& o, const TileSetInfo& set, co
         {"degraded_samples_total", degraded},
         {"degraded_fraction_after_warmup", double(degraded_late) / late_pixels},
         {"hit_rate", lookups ? 1.0 - double(misses) / double(lookups) : 1.0},
+        {"hit_rate_after_warmup", lookups_late ? 1.0 - double(misses_late) / double(lookups_late) : 1.0},
         {"io_mb_s", double(bytes) / 1e6 / std::max(run.wall_ms / 1e3, 1e-9)},
         {"bytes_read_mb", double(bytes) / 1e6},
         {"peak_rss_mb", run.peak_rss_mb},

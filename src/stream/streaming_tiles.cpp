@@ -5,6 +5,9 @@
 // least recently wanted tiles, farthest first.
 #include <fmt/format.h>
 #include <gdal.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -96,7 +99,38 @@ struct StreamingTiles::Impl {
   int install();
   void evict(int L, std::size_t i);
   void plan(const Camera& cam, StreamFrameStats& st);
+  void load_pinned(std::vector<std::unique_ptr<TileFile>>& files);
 };
+
+// Reads the pinned levels, one share of the tiles per loader handle in
+// parallel; throws InputError on the first failure (a broken file at start).
+void StreamingTiles::Impl::load_pinned(std::vector<std::unique_ptr<TileFile>>& files) {
+  std::vector<Job> jobs;
+  for (int L = pin_from; L < int(table.size()); ++L)
+    for (int ty = 0; ty < set.tiles_y[std::size_t(L)]; ++ty)
+      for (int tx = 0; tx < set.tiles_x[std::size_t(L)]; ++tx) jobs.push_back({L, tx, ty, 0});
+  std::vector<std::unique_ptr<TileData>> data(jobs.size());
+  std::vector<std::string> errors(files.size());
+  {
+    std::vector<std::jthread> workers;
+    for (std::size_t t = 0; t < files.size(); ++t)
+      workers.emplace_back([&, t] {
+        for (std::size_t k = t; k < jobs.size() && errors[t].empty(); k += files.size()) {
+          data[k] = std::make_unique<TileData>();
+          if (!files[t]->read(jobs[k].level, jobs[k].tx, jobs[k].ty, *data[k], errors[t])) data[k].reset();
+        }
+      });
+  }
+  for (const std::string& e : errors)
+    if (!e.empty()) throw InputError(fmt::format("{}: {}", set.dir, e));
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    const std::size_t i = idx(jobs[k].level, jobs[k].tx, jobs[k].ty);
+    resident += data[k]->bytes();
+    table[std::size_t(jobs[k].level)][i] = std::move(data[k]);
+    state[std::size_t(jobs[k].level)][i] = State::kResident;
+  }
+  pinned = resident;
+}
 
 bool StreamingTiles::Impl::read_one(TileFile& file, const Job& j, Done& d) {
   if (o.before_read) o.before_read(j.level, j.tx, j.ty);
@@ -113,6 +147,9 @@ bool StreamingTiles::Impl::read_one(TileFile& file, const Job& j, Done& d) {
 }
 
 void StreamingTiles::Impl::load_loop(std::stop_token stop, std::unique_ptr<TileFile> file) {
+  // Below the renderer's threads: on a machine with few cores, decoding ahead
+  // of need should not slow the frame being drawn.
+  setpriority(PRIO_PROCESS, pid_t(syscall(SYS_gettid)), 10);
   for (;;) {
     Job j;
     {
@@ -274,17 +311,7 @@ StreamingTiles::StreamingTiles(const TileSetInfo& set, StreamOptions options)
                                  double(p.o.cache_bytes) / (1 << 20), double(pinned) / (1 << 20)));
   std::vector<std::unique_ptr<TileFile>> files;
   for (int t = 0; t < p.o.io_threads; ++t) files.push_back(std::make_unique<TileFile>(p.set));
-  for (int L = p.pin_from; L < nl; ++L)
-    for (int ty = 0; ty < p.set.tiles_y[std::size_t(L)]; ++ty)
-      for (int tx = 0; tx < p.set.tiles_x[std::size_t(L)]; ++tx) {
-        auto d = std::make_unique<TileData>();
-        std::string error;
-        if (!files[0]->read(L, tx, ty, *d, error)) throw InputError(fmt::format("{}: {}", p.set.dir, error));
-        p.resident += d->bytes();
-        p.table[std::size_t(L)][p.idx(L, tx, ty)] = std::move(d);
-        p.state[std::size_t(L)][p.idx(L, tx, ty)] = State::kResident;
-      }
-  p.pinned = p.resident;
+  p.load_pinned(files);
   for (auto& f : files)
     p.threads.emplace_back([&p, file = std::move(f)](std::stop_token st) mutable {
       p.load_loop(st, std::move(file));
@@ -313,7 +340,8 @@ const TileBlock* StreamingTiles::tile(int level, int tx, int ty) const {
   if (d) [[likely]]
     return &d->block;
   s.misses.fetch_add(1, std::memory_order_relaxed);
-  p.demand[std::size_t(level)][i].store(1, std::memory_order_relaxed);
+  auto& flag = p.demand[std::size_t(level)][i];
+  if (!flag.load(std::memory_order_relaxed)) flag.store(1, std::memory_order_relaxed);  // no line ping-pong
   return nullptr;
 }
 

@@ -70,6 +70,18 @@ bool TileFile::read_level(int level, TileData& out, std::string& error) {
   return read_window(level, 0, 0, set_.level_w(level), set_.level_h(level), out, error);
 }
 
+bool TileFile::read_level_heights(int level, std::vector<float>& out, std::string& error) {
+  detail::GdalErrorCapture capture;
+  const int w = set_.level_w(level), h = set_.level_h(level);
+  out.resize(std::size_t(w) * h);
+  GDALRasterBandH hb = level <= set_.grid.coarsest_level ? level_band(height_, 1, level) : nullptr;
+  if (!hb || GDALRasterIO(hb, GF_Read, 0, 0, w, h, out.data(), w, h, GDT_Float32, 0, 0) != CE_None) {
+    error = fmt::format("heights of level {}: {}", level, capture.last());
+    return false;
+  }
+  return true;
+}
+
 bool TileFile::read_window(int level, int x0, int y0, int w, int h, TileData& out, std::string& error) {
   detail::GdalErrorCapture capture;
   const bool samples = level <= set_.grid.coarsest_level;

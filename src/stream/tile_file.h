@@ -42,6 +42,8 @@ class TileFile {
   bool read(int level, int tx, int ty, TileData& out, std::string& error);
   /// A whole level (height, colour where it has samples, bound) as one tile.
   bool read_level(int level, TileData& out, std::string& error);
+  /// The heights of a whole sample level (row-major, level_w x level_h).
+  bool read_level_heights(int level, std::vector<float>& out, std::string& error);
 
  private:
   bool read_window(int level, int x0, int y0, int w, int h, TileData& out, std::string& error);

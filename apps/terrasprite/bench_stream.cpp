@@ -122,6 +122,7 @@ struct StreamRun {
   double first_frame_ms = 0, wall_ms = 0, peak_rss_mb = 0;
   int faults_injected = 0, faults_survived = 0;
   std::size_t pinned_bytes = 0;
+  double open_ms = 0, path_ms = 0, pinned_ms = 0;  // before the first frame
 };
 
 StreamRun run_streamed(const BenchStreamOpts& o, const TileSetInfo& set, Clock::time_point t_start,
@@ -130,12 +131,15 @@ StreamRun run_streamed(const BenchStreamOpts& o, const TileSetInfo& set, Clock::
   so.cache_bytes = std::size_t(o.cache_mb) << 20;
   so.io_threads = o.io_threads;
   so.image_height = h;
+  const auto t0 = Clock::now();
   StreamingTiles tiles(set, so);
+  const double pinned_ms = ms_since(t0);
   VoxelOptions vo;
   vo.threads = o.threads;
   StreamedVoxel renderer(tiles, w, h, vo);
   StreamRun run;
   run.pinned_bytes = tiles.pinned_bytes();
+  run.pinned_ms = pinned_ms;
   Experiment ex;
   ex.add({.renderer = &renderer,
           .name = "stream",
@@ -152,9 +156,9 @@ StreamRun run_streamed(const BenchStreamOpts& o, const TileSetInfo& set, Clock::
   Progress progress("bench stream");
   eo.progress = std::ref(progress);
   PathSource cameras(path);
-  const auto t0 = Clock::now();
+  const auto t_run = Clock::now();
   ex.run(cameras, eo);
-  run.wall_ms = ms_since(t0);
+  run.wall_ms = ms_since(t_run);
   run.peak_rss_mb = peak_rss_mb();
   run.faults_injected = tiles.injected_faults();
   run.faults_survived = tiles.failed_tiles();  // the run went on past every one
@@ -290,7 +294,9 @@ nlohmann::json summary_json(const BenchStreamOpts& o, const TileSetInfo& set, co
         {"bytes_read_mb", double(bytes) / 1e6},
         {"peak_rss_mb", run.peak_rss_mb},
         {"pinned_mb", double(run.pinned_bytes) / (1 << 20)},
-        {"first_frame_ms", run.first_frame_ms}}},
+        {"first_frame_ms", run.first_frame_ms},
+        {"first_frame_parts_ms",
+         {{"open", run.open_ms}, {"path", run.path_ms}, {"pinned_levels", run.pinned_ms}}}}},
       {"in_memory", in_memory},
       {"ratio_median", mem.is_null() ? nlohmann::json(nullptr)
                                      : nlohmann::json(s.median / std::max(in_memory["median_ms"].get<double>(), 1e-9))},
@@ -342,10 +348,14 @@ void run(const BenchStreamOpts& o) {
   const std::string out_dir = o.out.empty() ? std::string("out/bench_stream") : o.out;
   if (!child) check_outputs(out_dir, {o.json});
   const TileSetInfo set = read_tile_set(o.tiles);
+  const double open_ms = ms_since(t_start);
   const std::vector<Camera> path = make_path(o.path, path_proxy(set), o.frames, double(w) / h);
+  const double path_ms = ms_since(t_start) - open_ms;
   if (child) return run_in_memory_child(o, set, w, h, path);
   OutputDir out(out_dir, output_policy());
-  const StreamRun run = run_streamed(o, set, t_start, w, h, path);
+  StreamRun run = run_streamed(o, set, t_start, w, h, path);
+  run.open_ms = open_ms;
+  run.path_ms = path_ms;
   const nlohmann::json mem = want_in_memory(o, set) ? spawn_in_memory(o, out.file("in_memory.json")) : nullptr;
   std::vector<double> mem_ms;
   if (!mem.is_null()) mem_ms = mem["ms"].get<std::vector<double>>();

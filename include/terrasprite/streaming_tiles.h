@@ -20,7 +20,8 @@ namespace terrasprite {
 struct StreamOptions {
   std::size_t cache_bytes = std::size_t(256) << 20;  ///< resident + in-flight tiles, bytes
   int io_threads = 2;                                ///< loader threads (each its own GDAL handles)
-  std::size_t gdal_cache_bytes = std::size_t(32) << 20;  ///< GDAL's block cache (GDAL_CACHEMAX)
+  /// GDAL's block cache (GDAL_CACHEMAX), set process-wide at construction.
+  std::size_t gdal_cache_bytes = std::size_t(32) << 20;
   /// Pinned coarse levels (loaded at start, never evicted) may take this
   /// share of the budget; the coarsest sample level and every bound-only
   /// level are pinned whatever it says.

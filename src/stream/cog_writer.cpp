@@ -8,11 +8,8 @@
 #include <fmt/format.h>
 #include <gdal_priv.h>
 
-#include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <limits>
-#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "stream/tile_set_json.h"
 #include "terrain/gdal_util.h"

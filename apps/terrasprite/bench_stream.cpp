@@ -232,8 +232,9 @@ void write_plot(const OutputDir& out, const StreamRun& run, const std::vector<do
   gp << "set terminal pngcairo size 1000,700\nset output 'stream_frames.png'\nset multiplot layout 2,1\n"
      << "set grid\nset ylabel 'ms per frame'\nplot 'stream_frames.dat' using 1:2 with lines title "
         "'streamed', '' using 1:3 with lines title 'in memory'\n"
-     << "set xlabel 'frame along the path'\nset ylabel 'degraded reads'\n"
-        "plot 'stream_frames.dat' using 1:4 with impulses title 'degraded reads'\nunset multiplot\n";
+     << "set xlabel 'frame along the path'\nset ylabel 'log10(1 + degraded reads)'\n"
+        "plot 'stream_frames.dat' using 1:(log10(1 + $4)) with impulses title 'degraded reads'\n"
+        "unset multiplot\n";
   gp.close();
   const std::string error = run_gnuplot(out.partial().string(), "stream_frames.gp");
   if (!error.empty()) fmt::print(stderr, "warning: {}; stream_frames.dat kept without a plot\n", error);

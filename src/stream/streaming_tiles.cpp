@@ -319,7 +319,10 @@ StreamingTiles::StreamingTiles(const TileSetInfo& set, StreamOptions options)
 }
 
 StreamingTiles::~StreamingTiles() {
-  for (auto& t : p_->threads) t.request_stop();
+  {
+    std::lock_guard lk(p_->m);  // a loader between its check and its wait must not miss this
+    for (auto& t : p_->threads) t.request_stop();
+  }
   p_->cv.notify_all();
   p_->threads.clear();  // joins
 }

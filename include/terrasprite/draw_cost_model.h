@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: MIT
+// Expected draw time of a frame's objects: per representation kind a
+// per-instance, a per-triangle and a per-pixel term, plus a fixed per-frame
+// term (the terrain). Calibrated from measured draws, refit online from
+// measured frame times.
+#pragma once
+#include <array>
+#include <span>
+
+#include "terrasprite/object_renderer.h"
+
+namespace terrasprite {
+
+/// ms = per_instance + per_triangle * triangles + per_pixel * pixels.
+struct DrawCostTerms {
+  double per_instance_ms = 0;
+  double per_triangle_ms = 0;
+  double per_pixel_ms = 0;
+};
+
+/// One measured draw: `instances` instances of one kind, their triangles and
+/// covered pixels (sums), and the time it took.
+struct DrawSample {
+  double instances = 0;
+  double triangles = 0;
+  double pixels = 0;
+  double ms = 0;
+};
+
+/// What a frame draws, per kind (sums over its instances).
+struct FrameLoad {
+  std::array<DrawSample, 3> kinds{};  ///< indexed by ObjectKind; `ms` unused
+};
+
+struct CostModelOptions {
+  /// Online refit: recursive least squares with this forgetting factor per
+  /// observed frame (1 = never forget).
+  double forgetting = 0.95;
+  /// Prior standard deviation of each term as a fraction of its calibrated
+  /// value: how far one frame's evidence may move it.
+  double prior_fraction = 0.5;
+};
+
+class DrawCostModel {
+ public:
+  explicit DrawCostModel(const CostModelOptions& options = {});
+
+  /// Least-squares fit of one kind's terms to measured draws (terms that come
+  /// out negative are dropped and the rest refit). Fewer than one sample
+  /// leaves the terms as they were.
+  void calibrate(ObjectKind kind, std::span<const DrawSample> samples);
+  void set_terms(ObjectKind kind, const DrawCostTerms& terms);
+  void set_frame_ms(double ms) {
+    frame_ms_ = ms;
+    prior_set_ = false;
+  }
+  const DrawCostTerms& terms(ObjectKind kind) const { return terms_[std::size_t(kind)]; }
+  double frame_ms() const { return frame_ms_; }
+
+  /// Expected time of one instance drawn as `kind`.
+  double instance_ms(ObjectKind kind, double triangles, double pixels) const;
+  /// Expected time of a frame: the fixed term plus every kind's load.
+  double predict(const FrameLoad& load) const;
+
+  /// Moves every term towards explaining `measured_ms` for `load` (RLS over
+  /// the ten terms, starting from the calibration as the prior).
+  void observe(const FrameLoad& load, double measured_ms);
+
+ private:
+  static constexpr int kTerms = 10;
+  void reset_prior();
+  CostModelOptions options_;
+  std::array<DrawCostTerms, 3> terms_{};
+  double frame_ms_ = 0;
+  std::array<double, kTerms * kTerms> covariance_{};
+  double prior_trace_ = 0;
+  bool prior_set_ = false;
+};
+
+}  // namespace terrasprite

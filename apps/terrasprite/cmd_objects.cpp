@@ -126,33 +126,6 @@ TableOptions table_options(const TableArgs& a) {
   return o;
 }
 
-// The cached table for `key`, if one is there and readable.
-std::optional<QualityTable> read_cache(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) return std::nullopt;
-  try {
-    return table_from_json(nlohmann::json::parse(in));
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "warning: ignoring unreadable cache file {}: {}\n", file.string(), e.what());
-    return std::nullopt;
-  }
-}
-
-void write_cache(const std::filesystem::path& file, const nlohmann::json& j) {
-  std::error_code ec;
-  std::filesystem::create_directories(file.parent_path(), ec);
-  const std::filesystem::path tmp = file.string() + ".tmp";
-  {
-    std::ofstream f(tmp);
-    f << j.dump();
-    if (!f) {
-      fmt::print(stderr, "warning: cannot write the cache file {}\n", file.string());
-      return;
-    }
-  }
-  std::filesystem::rename(tmp, file, ec);
-}
-
 QualityTable measure(const Model& model, const TableOptions& o) {
   GlContext ctx;
   GlModel gl_model(model, build_lod_chain(model));
@@ -187,14 +160,12 @@ void add_objects_table(CLI::App& objects) {
     check_outputs(out_dir, {a->json});
     const Model model = load_model(a->model.file, mo);
     OutputDir out(out_dir, output_policy());
-    const std::filesystem::path cache_file =
-        std::filesystem::path(a->cache.empty() ? default_cache_dir() : a->cache) /
-        (stem + "-" + table_cache_key(a->model.file, mo, o) + ".json");
-    std::optional<QualityTable> t = a->no_cache ? std::nullopt : read_cache(cache_file);
+    const std::filesystem::path cache_file = table_cache_file(a->cache, a->model.file, mo, o);
+    std::optional<QualityTable> t = a->no_cache ? std::nullopt : read_table_cache(cache_file);
     const bool cached = t.has_value();
     if (!cached) t = measure(model, o);
     nlohmann::json j = table_json(*t, o);
-    if (!cached && !a->no_cache) write_cache(cache_file, j);
+    if (!cached && !a->no_cache) write_table_cache(cache_file, j);
     j["cached"] = cached;
     write_objects_report(*t, o, out);
     write_json(j, out.file("table.json"));

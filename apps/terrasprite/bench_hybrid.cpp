@@ -155,7 +155,7 @@ Scorer hybrid_scorer(std::shared_ptr<ScoringState> state) {
 
 void annotate(const HybridObjects& objects, FrameResult& r) {
   const HybridFrameStats& s = objects.last();
-  r.counters = {{"selection_ms", s.selection_ms},         {"predicted_ms", s.predicted_ms},
+  r.counters = {{"selection_ms", s.selection_ms},         {"policy_ms", s.policy_ms},         {"predicted_ms", s.predicted_ms},
                 {"budget_ms", s.budget_ms},               {"target_quality", s.target_quality},
                 {"expected_ssim", s.expected_ssim},       {"switches", s.switches},
                 {"visible", s.visible},                   {"triangles_min", double(s.triangles_min)},

@@ -37,8 +37,11 @@ struct CostModelOptions {
   /// observed frame (1 = never forget).
   double forgetting = 0.95;
   /// Prior standard deviation of each term as a fraction of its calibrated
-  /// value: how far one frame's evidence may move it.
+  /// value: how far the evidence may move it.
   double prior_fraction = 0.5;
+  /// Measurement noise of one frame time, as a fraction of the frame: how
+  /// much one frame is trusted.
+  double noise_fraction = 0.15;
 };
 
 class DrawCostModel {
@@ -62,13 +65,17 @@ class DrawCostModel {
   /// Expected time of a frame: the fixed term plus every kind's load.
   double predict(const FrameLoad& load) const;
 
-  /// Moves every term towards explaining `measured_ms` for `load` (RLS over
-  /// the ten terms, starting from the calibration as the prior).
+  /// Moves every term towards explaining `measured_ms` for `load`: recursive
+  /// least squares on a multiplier per term (prior 1 +- prior_fraction, each
+  /// clamped to [0.05, 20]) over the ten terms' calibrated contributions.
   void observe(const FrameLoad& load, double measured_ms);
 
  private:
   static constexpr int kTerms = 10;
   void reset_prior();
+  std::array<double, kTerms> theta() const;
+  std::array<double, kTerms> calibrated_{};
+  std::array<double, kTerms> multipliers_{};
   CostModelOptions options_;
   std::array<DrawCostTerms, 3> terms_{};
   double frame_ms_ = 0;

@@ -49,7 +49,7 @@ struct OptimalOptions {
   /// their hull steps to the break ratio) searched exactly; the others keep
   /// their LP choice. All items when there are at most this many.
   int core_items = 24;
-  long long node_limit = 200000;  ///< branch-and-bound nodes; best found so far after
+  long long node_limit = 4000;  ///< branch-and-bound nodes; best found so far after
 };
 
 /// Lagrangian (LP) relaxation for the bound and the break item, then a

@@ -106,52 +106,59 @@ double DrawCostModel::predict(const FrameLoad& load) const {
   return ms;
 }
 
+std::array<double, 10> DrawCostModel::theta() const {
+  return {frame_ms_,
+          terms_[0].per_instance_ms, terms_[0].per_triangle_ms, terms_[0].per_pixel_ms,
+          terms_[1].per_instance_ms, terms_[1].per_triangle_ms, terms_[1].per_pixel_ms,
+          terms_[2].per_instance_ms, terms_[2].per_triangle_ms, terms_[2].per_pixel_ms};
+}
+
 void DrawCostModel::reset_prior() {
+  // The unknowns are multipliers on the calibrated terms (1 = as calibrated),
+  // so every unknown has the same scale whatever its unit.
+  calibrated_ = theta();
+  multipliers_.fill(1.0);
   covariance_.fill(0);
-  prior_trace_ = 0;
-  const std::array<double, kTerms> theta{frame_ms_,
-                                         terms_[0].per_instance_ms, terms_[0].per_triangle_ms, terms_[0].per_pixel_ms,
-                                         terms_[1].per_instance_ms, terms_[1].per_triangle_ms, terms_[1].per_pixel_ms,
-                                         terms_[2].per_instance_ms, terms_[2].per_triangle_ms, terms_[2].per_pixel_ms};
-  for (int i = 0; i < kTerms; ++i) {
-    const double sd = options_.prior_fraction * theta[std::size_t(i)];
-    covariance_[std::size_t(i * kTerms + i)] = sd * sd;
-    prior_trace_ += sd * sd;
-  }
+  for (int i = 0; i < kTerms; ++i)
+    covariance_[std::size_t(i * kTerms + i)] = options_.prior_fraction * options_.prior_fraction;
+  prior_trace_ = kTerms * options_.prior_fraction * options_.prior_fraction;
   prior_set_ = true;
 }
 
 void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
   if (!prior_set_) reset_prior();
   const std::array<double, kTerms> x = features(load);
-  std::array<double, kTerms> theta{frame_ms_,
-                                   terms_[0].per_instance_ms, terms_[0].per_triangle_ms, terms_[0].per_pixel_ms,
-                                   terms_[1].per_instance_ms, terms_[1].per_triangle_ms, terms_[1].per_pixel_ms,
-                                   terms_[2].per_instance_ms, terms_[2].per_triangle_ms, terms_[2].per_pixel_ms};
+  std::array<double, kTerms> z{};  // each term's calibrated contribution, ms
+  for (int i = 0; i < kTerms; ++i) z[std::size_t(i)] = calibrated_[std::size_t(i)] * x[std::size_t(i)];
   auto P = [&](int i, int j) -> double& { return covariance_[std::size_t(i * kTerms + j)]; };
-  std::array<double, kTerms> px{};
-  double xpx = 0, predicted = 0;
+  std::array<double, kTerms> pz{};
+  double zpz = 0, predicted = 0;
   for (int i = 0; i < kTerms; ++i) {
-    for (int j = 0; j < kTerms; ++j) px[std::size_t(i)] += P(i, j) * x[std::size_t(j)];
-    xpx += x[std::size_t(i)] * px[std::size_t(i)];
-    predicted += x[std::size_t(i)] * theta[std::size_t(i)];
+    for (int j = 0; j < kTerms; ++j) pz[std::size_t(i)] += P(i, j) * z[std::size_t(j)];
+    zpz += z[std::size_t(i)] * pz[std::size_t(i)];
+    predicted += z[std::size_t(i)] * multipliers_[std::size_t(i)];
   }
+  if (!(predicted > 0) || !(measured_ms > 0)) return;
+  // Relative residual, so one frame weighs the same at 10 ms and at 1 s.
+  const double noise = predicted * predicted * options_.noise_fraction * options_.noise_fraction;
   const double lambda = options_.forgetting;
-  const double denom = lambda + xpx;
-  if (!(denom > 0)) return;
+  const double denom = lambda * noise + zpz;
   const double residual = measured_ms - predicted;
-  double trace_after = 0;
-  for (int i = 0; i < kTerms; ++i) {
-    theta[std::size_t(i)] = std::max(0.0, theta[std::size_t(i)] + px[std::size_t(i)] / denom * residual);
-    for (int j = 0; j < kTerms; ++j) P(i, j) = (P(i, j) - px[std::size_t(i)] * px[std::size_t(j)] / denom) / lambda;
-  }
+  for (int i = 0; i < kTerms; ++i)
+    multipliers_[std::size_t(i)] =
+        std::clamp(multipliers_[std::size_t(i)] + pz[std::size_t(i)] / denom * residual, 0.05, 20.0);
+  double trace = 0;
+  for (int i = 0; i < kTerms; ++i)
+    for (int j = 0; j < kTerms; ++j) {
+      P(i, j) = (P(i, j) - pz[std::size_t(i)] * pz[std::size_t(j)] / denom) / lambda;
+      if (i == j) trace += P(i, i);
+    }
   // Forgetting inflates directions no frame excites; never past the prior's size.
-  for (int i = 0; i < kTerms; ++i) trace_after += P(i, i);
-  if (trace_after > prior_trace_ && trace_after > 0)
-    for (double& v : covariance_) v *= prior_trace_ / trace_after;
-  frame_ms_ = theta[0];
-  for (int k = 0; k < 3; ++k)
-    terms_[std::size_t(k)] = {theta[std::size_t(1 + 3 * k)], theta[std::size_t(2 + 3 * k)], theta[std::size_t(3 + 3 * k)]};
+  if (trace > prior_trace_)
+    for (double& v : covariance_) v *= prior_trace_ / trace;
+  const auto m = [&](int i) { return calibrated_[std::size_t(i)] * multipliers_[std::size_t(i)]; };
+  frame_ms_ = m(0);
+  for (int k = 0; k < 3; ++k) terms_[std::size_t(k)] = {m(1 + 3 * k), m(2 + 3 * k), m(3 + 3 * k)};
 }
 
 }  // namespace terrasprite

@@ -119,6 +119,7 @@ long long HybridObjects::draw(const Camera& camera) {
     }
   }
   st.visible = int(frame.size());
+  const auto t1 = std::chrono::steady_clock::now();
 
   // The budget the policy spends on objects: the whole frame's, less the terrain.
   double budget = INFINITY;
@@ -142,7 +143,9 @@ long long HybridObjects::draw(const Camera& camera) {
   double wsum = 0;
   for (const InstanceOptions& inst : frame) wsum += inst.weight;
   st.expected_ssim = wsum > 0 ? sel.benefit / wsum : 1.0;
-  st.selection_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  const auto t2 = std::chrono::steady_clock::now();
+  st.selection_ms = std::chrono::duration<double, std::milli>(t2 - t0).count();
+  st.policy_ms = std::chrono::duration<double, std::milli>(t2 - t1).count();
 
   // Group by (model, representation); one instanced draw per group.
   std::map<GroupKey, std::pair<Representation, std::vector<ObjectInstance>>> groups;

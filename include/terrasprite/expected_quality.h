@@ -3,6 +3,8 @@
 // a given on-screen size, interpolated from its measured quality table
 // (QualityTable samples over phi x theta x size_px).
 #pragma once
+#include <array>
+#include <utility>
 #include <vector>
 
 #include "terrasprite/quality_table.h"
@@ -29,6 +31,20 @@ class QualityInterpolator {
   /// in pixels (> 0).
   ExpectedQuality at(double phi_deg, double theta_deg, double size_px) const;
 
+  /// Where a view falls in the table: which samples, with which weights.
+  /// Computed once per instance and view, applied to every representation
+  /// measured on the same views and sizes (same_layout).
+  struct Weights {
+    int slices = 0;  ///< 0: no samples (perfect quality)
+    std::array<int, 2> slice{0, 0};
+    double t = 0;  ///< blend of slice[1] over slice[0]
+    std::array<std::array<std::pair<int, double>, 4>, 2> nearest{};  ///< (sample, weight), weights sum to 1
+  };
+  Weights weights(double phi_deg, double theta_deg, double size_px) const;
+  ExpectedQuality at(const Weights& w) const;
+  /// Whether `other` has the same sizes and views in the same order.
+  bool same_layout(const QualityInterpolator& other) const;
+
  private:
   struct Direction {
     double x, y, z;  ///< unit view direction of the sample
@@ -38,7 +54,7 @@ class QualityInterpolator {
     double size_px = 0;
     std::vector<Direction> samples;
   };
-  ExpectedQuality at_size(const SizeSlice& slice, double x, double y, double z) const;
+  std::array<std::pair<int, double>, 4> nearest(const SizeSlice& slice, double x, double y, double z) const;
   std::vector<SizeSlice> slices_;  ///< rising size
   double theta_max_ = 180.0;
 };

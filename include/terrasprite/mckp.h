@@ -29,6 +29,9 @@ struct KnapsackSolution {
   /// proven optimal. Only the optimal solver sets it; 0 otherwise.
   double upper_bound = 0;
   bool proven_optimal = false;
+  /// The optimal solver's greedy solution's benefit on the same items (it
+  /// solves both); 0 from the other solvers.
+  double greedy_benefit = 0;
 };
 
 /// Cost and benefit of `choice` (one index per item).
@@ -48,8 +51,8 @@ struct OptimalOptions {
   /// Items around the LP relaxation's fractional break (by the ratio of
   /// their hull steps to the break ratio) searched exactly; the others keep
   /// their LP choice. All items when there are at most this many.
-  int core_items = 24;
-  long long node_limit = 4000;  ///< branch-and-bound nodes; best found so far after
+  int core_items = 16;
+  long long node_limit = 1500;  ///< branch-and-bound nodes; best found so far after
 };
 
 /// Lagrangian (LP) relaxation for the bound and the break item, then a

@@ -53,7 +53,7 @@ struct FrameSelection {
   double cost_ms = 0;       ///< expected draw time of the choice
   double benefit = 0;       ///< sum of weight x expected SSIM
   /// Greedy's and optimal's objective on the same instances and budget
-  /// (both policies solve both; others: -1).
+  /// (optimal solves both; greedy sets its own only; others: -1).
   double objective_greedy = -1, objective_optimal = -1;
 };
 

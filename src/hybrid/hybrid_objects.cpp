@@ -21,6 +21,7 @@ struct Offer {
   QualityInterpolator quality;
   long long triangles = 0;
   double error_m = 0;
+  bool shared_layout = false;  ///< measured on the model's common views: reuse its weights
 };
 
 bool offered(const HybridScenario& s, ObjectKind k) {
@@ -73,6 +74,7 @@ HybridObjects::HybridObjects(ObjectSet& set, const std::vector<QualityTable>& ta
     if ((scenario_.full || offered(scenario_, ObjectKind::kMesh)) && !has_full)
       impl_->offers[m].push_back({Representation{}, QualityInterpolator(RepresentationQuality{}),
                                   model.triangles(Representation{}), 0.0});
+    for (Offer& f : impl_->offers[m]) f.shared_layout = f.quality.same_layout(impl_->offers[m].front().quality);
   }
 }
 
@@ -103,9 +105,12 @@ long long HybridObjects::draw(const Camera& camera) {
       if (!v.visible || s.offers[m].empty()) continue;
       InstanceOptions inst{id, v.size_px, std::min(1.0, v.size_px * v.size_px / image_px), {}};
       const double pixels = std::min(image_px, M_PI / 4 * v.size_px * v.size_px);
+      // One table lookup per instance; every representation on the same views reuses it.
+      const QualityInterpolator::Weights w = s.offers[m].front().quality.weights(v.phi_deg, v.theta_deg, v.size_px);
       for (const Offer& f : s.offers[m]) {
         if (scenario_.full && !(f.rep.kind == ObjectKind::kMesh && f.rep.level == 0)) continue;
-        const ExpectedQuality q = f.quality.at(v.phi_deg, v.theta_deg, v.size_px);
+        const ExpectedQuality q =
+            f.shared_layout ? f.quality.at(w) : f.quality.at(v.phi_deg, v.theta_deg, v.size_px);
         const double err_px = f.error_m * instances[i].scale * px_per_m / std::max(v.distance_m, 1e-6);
         inst.options.push_back({f.rep, s.cost.instance_ms(f.rep.kind, double(f.triangles), pixels), q.ssim,
                                 q.psnr, f.triangles, err_px});

@@ -28,22 +28,31 @@ KnapsackSolution cheapest(std::span<const KnapsackItem> items) {
   return evaluate(items, std::move(choice));
 }
 
-KnapsackSolution greedy_knapsack(std::span<const KnapsackItem> items, double budget) {
-  std::vector<std::vector<int>> hulls;
-  hulls.reserve(items.size());
-  for (const KnapsackItem& item : items) hulls.push_back(knapsack::hull(item, knapsack::undominated(item)));
-  KnapsackSolution s = cheapest(items);
-  for (std::size_t i = 0; i < items.size(); ++i) s.choice[i] = hulls[i].front();
-  s = evaluate(items, std::move(s.choice));
-  if (s.cost > budget) return s;
-  double left = budget - s.cost;
-  for (const knapsack::Step& step : knapsack::sorted_steps(items, hulls)) {
-    // An item whose step did not fit stays where it is: its later steps start elsewhere.
-    if (s.choice[std::size_t(step.item)] != step.from || step.cost > left) continue;
-    s.choice[std::size_t(step.item)] = step.to;
-    left -= step.cost;
+namespace knapsack {
+
+KnapsackSolution greedy(std::span<const KnapsackItem> items, const Prepared& p, double budget) {
+  std::vector<int> choice;
+  choice.reserve(items.size());
+  double cost = 0;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    choice.push_back(p.hulls[i].front());
+    cost += items[i].choices[std::size_t(choice.back())].cost;
   }
-  return evaluate(items, std::move(s.choice));
+  double left = budget - cost;
+  if (left >= 0)
+    for (const Step& step : p.steps) {
+      // An item whose step did not fit stays where it is: its later steps start elsewhere.
+      if (choice[std::size_t(step.item)] != step.from || step.cost > left) continue;
+      choice[std::size_t(step.item)] = step.to;
+      left -= step.cost;
+    }
+  return evaluate(items, std::move(choice));
+}
+
+}  // namespace knapsack
+
+KnapsackSolution greedy_knapsack(std::span<const KnapsackItem> items, double budget) {
+  return knapsack::greedy(items, knapsack::prepare(items), budget);
 }
 
 KnapsackSolution brute_force_knapsack(std::span<const KnapsackItem> items, double budget) {

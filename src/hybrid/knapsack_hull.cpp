@@ -56,4 +56,16 @@ std::vector<Step> sorted_steps(std::span<const KnapsackItem> items,
   return steps;
 }
 
+Prepared prepare(std::span<const KnapsackItem> items) {
+  Prepared p;
+  p.undominated.reserve(items.size());
+  p.hulls.reserve(items.size());
+  for (const KnapsackItem& item : items) {
+    p.undominated.push_back(undominated(item));
+    p.hulls.push_back(hull(item, p.undominated.back()));
+  }
+  p.steps = sorted_steps(items, p.hulls);
+  return p;
+}
+
 }  // namespace terrasprite::knapsack

@@ -31,4 +31,15 @@ struct Step {
 std::vector<Step> sorted_steps(std::span<const KnapsackItem> items,
                                const std::vector<std::vector<int>>& hulls);
 
+/// Everything the solvers derive from the items once: per item its
+/// undominated choices and hull, and all hull steps in falling ratio order.
+struct Prepared {
+  std::vector<std::vector<int>> undominated, hulls;
+  std::vector<Step> steps;
+};
+Prepared prepare(std::span<const KnapsackItem> items);
+
+/// greedy_knapsack on prepared items.
+KnapsackSolution greedy(std::span<const KnapsackItem> items, const Prepared& p, double budget);
+
 }  // namespace terrasprite::knapsack

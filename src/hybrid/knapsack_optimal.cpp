@@ -54,19 +54,24 @@ Relaxation relax(std::span<const KnapsackItem> items, const std::vector<std::vec
 /// Depth-first branch and bound over the core items; the rest stay fixed.
 class CoreSearch {
  public:
-  CoreSearch(std::span<const KnapsackItem> items, std::vector<int> core, long long node_limit)
+  CoreSearch(std::span<const KnapsackItem> items, const knapsack::Prepared& p, std::vector<int> core,
+             long long node_limit)
       : items_(items), core_(std::move(core)), node_limit_(node_limit) {
-    for (int i : core_) {
-      const KnapsackItem& item = items[std::size_t(i)];
-      options_.push_back(knapsack::undominated(item));
+    std::vector<int> depth_of(items.size(), -1);
+    for (std::size_t d = 0; d < core_.size(); ++d) {
+      const std::size_t i = std::size_t(core_[d]);
+      depth_of[i] = int(d);
       // Best benefit first: the incumbent improves early.
-      std::reverse(options_.back().begin(), options_.back().end());
-      hulls_.push_back(knapsack::hull(item, knapsack::undominated(item)));
+      options_.emplace_back(p.undominated[i].rbegin(), p.undominated[i].rend());
+      hulls_.push_back(p.hulls[i]);
     }
-    // Steps of the core's hulls, per depth: an LP over the items from depth d on.
-    std::vector<KnapsackItem> core_items;
-    for (int i : core_) core_items.push_back(items[std::size_t(i)]);
-    steps_ = knapsack::sorted_steps(core_items, hulls_);
+    // The core's hull steps (already in ratio order), by depth: the LP over
+    // the items from depth d on bounds a node at depth d.
+    for (Step s : p.steps)
+      if (depth_of[std::size_t(s.item)] >= 0) {
+        s.item = depth_of[std::size_t(s.item)];
+        steps_.push_back(s);
+      }
     suffix_min_cost_.assign(core_.size() + 1, 0.0);
     suffix_min_benefit_.assign(core_.size() + 1, 0.0);
     for (std::size_t d = core_.size(); d-- > 0;) {
@@ -154,12 +159,12 @@ std::vector<int> core_items(std::span<const KnapsackItem> items, const std::vect
 
 KnapsackSolution optimal_knapsack(std::span<const KnapsackItem> items, double budget,
                                   const OptimalOptions& options) {
-  const KnapsackSolution greedy = greedy_knapsack(items, budget);
+  const knapsack::Prepared prepared = knapsack::prepare(items);
+  KnapsackSolution greedy = knapsack::greedy(items, prepared, budget);
+  greedy.greedy_benefit = greedy.benefit;
   if (greedy.cost > budget) return greedy;  // even the cheapest choices exceed it
-  std::vector<std::vector<int>> hulls;
-  for (const KnapsackItem& item : items) hulls.push_back(knapsack::hull(item, knapsack::undominated(item)));
-  const std::vector<Step> steps = knapsack::sorted_steps(items, hulls);
-  const Relaxation lp = relax(items, hulls, steps, budget);
+  const std::vector<Step>& steps = prepared.steps;
+  const Relaxation lp = relax(items, prepared.hulls, steps, budget);
 
   // Items outside the core keep their LP choice; the core starts from the LP
   // choice too (feasible: whole steps only) and is searched exactly.
@@ -176,11 +181,12 @@ KnapsackSolution optimal_knapsack(std::span<const KnapsackItem> items, double bu
     if (in_core[i]) core_benefit += c.benefit;
     else fixed_cost += c.cost;
   }
-  CoreSearch search(items, core, options.node_limit);
+  CoreSearch search(items, prepared, core, options.node_limit);
   const bool finished = search.run(budget - fixed_cost, core_benefit - 1e-12, choice);
 
   KnapsackSolution own = evaluate(items, std::move(choice));
   KnapsackSolution best = own.benefit >= greedy.benefit ? std::move(own) : greedy;
+  best.greedy_benefit = greedy.benefit;
   best.upper_bound = std::max(lp.value, best.benefit);
   best.proven_optimal = (finished && core.size() == items.size()) ||
                         best.benefit >= lp.value - 1e-9 * std::max(1.0, std::abs(lp.value));

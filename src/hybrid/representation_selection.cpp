@@ -128,11 +128,16 @@ FrameSelection select_representations(SelectionPolicy policy, std::span<const In
     case SelectionPolicy::kGreedy:
     case SelectionPolicy::kOptimal: {
       const auto items = knapsack_items(instances, [](const RepresentationOption&) { return true; });
-      const KnapsackSolution g = greedy_knapsack(items, budget_ms);
-      const KnapsackSolution o = optimal_knapsack(items, budget_ms, options.optimal);
-      s.option = policy == SelectionPolicy::kGreedy ? g.choice : o.choice;
-      s.objective_greedy = g.benefit;
-      s.objective_optimal = o.benefit;
+      if (policy == SelectionPolicy::kGreedy) {
+        const KnapsackSolution g = greedy_knapsack(items, budget_ms);
+        s.option = g.choice;
+        s.objective_greedy = g.benefit;
+      } else {
+        const KnapsackSolution o = optimal_knapsack(items, budget_ms, options.optimal);
+        s.option = o.choice;
+        s.objective_greedy = o.greedy_benefit;
+        s.objective_optimal = o.benefit;
+      }
       return total(instances, s);
     }
   }

@@ -44,7 +44,9 @@ TEST(Selection, ZeroBudgetTakesTheCheapestInfiniteTheBest) {
       EXPECT_EQ(instances[i].options[std::size_t(none.option[i])].cost_ms, min_cost);
       EXPECT_EQ(instances[i].options[std::size_t(all.option[i])].ssim, max_ssim);
     }
-    EXPECT_GE(all.objective_optimal, all.objective_greedy);
+    if (p == SelectionPolicy::kOptimal) {
+      EXPECT_GE(all.objective_optimal, all.objective_greedy);
+    }
   }
 }
 

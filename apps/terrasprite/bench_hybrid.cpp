@@ -93,9 +93,11 @@ DrawCostModel calibrated_cost(const std::vector<QualityTable>& tables) {
     for (const RepresentationQuality& r : t.representations)
       for (const SizeCost& c : r.cost)
         samples[std::size_t(r.rep.kind)].push_back(
-            {1.0, double(r.triangles), M_PI / 4 * c.size_px * c.size_px, c.ms_per_instance});
+            {1.0, 1.0, double(r.triangles), M_PI / 4 * c.size_px * c.size_px, c.ms_per_instance});
+  // The tables time one instance per draw; instanced, most of that constant
+  // is the draw call's.
   DrawCostModel m;
-  for (int k = 0; k < 3; ++k) m.calibrate(ObjectKind(k), samples[std::size_t(k)]);
+  for (int k = 0; k < 3; ++k) m.calibrate(ObjectKind(k), samples[std::size_t(k)], 0.9);
   return m;
 }
 

@@ -11,8 +11,10 @@
 
 namespace terrasprite {
 
-/// ms = per_instance + per_triangle * triangles + per_pixel * pixels.
+/// One instance: per_instance + per_triangle * triangles + per_pixel * pixels;
+/// one instanced draw call of the kind adds per_draw.
 struct DrawCostTerms {
+  double per_draw_ms = 0;
   double per_instance_ms = 0;
   double per_triangle_ms = 0;
   double per_pixel_ms = 0;
@@ -21,6 +23,7 @@ struct DrawCostTerms {
 /// One measured draw: `instances` instances of one kind, their triangles and
 /// covered pixels (sums), and the time it took.
 struct DrawSample {
+  double draws = 0;  ///< draw calls (calibration: one per sample)
   double instances = 0;
   double triangles = 0;
   double pixels = 0;
@@ -50,8 +53,11 @@ class DrawCostModel {
 
   /// Least-squares fit of one kind's terms to measured draws (terms that come
   /// out negative are dropped and the rest refit). Fewer than one sample
-  /// leaves the terms as they were.
-  void calibrate(ObjectKind kind, std::span<const DrawSample> samples);
+  /// leaves the terms as they were. Draws of one instance each cannot tell a
+  /// draw call from an instance: the fitted constant is split
+  /// `draw_share` to the draw call, the rest to the instance (the online
+  /// refit moves both).
+  void calibrate(ObjectKind kind, std::span<const DrawSample> samples, double draw_share);
   void set_terms(ObjectKind kind, const DrawCostTerms& terms);
   void set_frame_ms(double ms) {
     frame_ms_ = ms;
@@ -60,7 +66,7 @@ class DrawCostModel {
   const DrawCostTerms& terms(ObjectKind kind) const { return terms_[std::size_t(kind)]; }
   double frame_ms() const { return frame_ms_; }
 
-  /// Expected time of one instance drawn as `kind`.
+  /// Expected time of one instance drawn as `kind` (its draw call's share not included).
   double instance_ms(ObjectKind kind, double triangles, double pixels) const;
   /// Expected time of a frame: the fixed term plus every kind's load.
   double predict(const FrameLoad& load) const;
@@ -71,7 +77,7 @@ class DrawCostModel {
   void observe(const FrameLoad& load, double measured_ms);
 
  private:
-  static constexpr int kTerms = 10;
+  static constexpr int kTerms = 13;
   void reset_prior();
   std::array<double, kTerms> theta() const;
   std::array<double, kTerms> calibrated_{};

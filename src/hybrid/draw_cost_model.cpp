@@ -52,12 +52,13 @@ bool solve_subset(std::span<const DrawSample> samples, const std::array<bool, 3>
   return true;
 }
 
-std::array<double, 10> features(const FrameLoad& load) {
-  std::array<double, 10> x{1.0};
-  for (int k = 0; k < 3; ++k) {
-    x[1 + 3 * k] = load.kinds[k].instances;
-    x[2 + 3 * k] = load.kinds[k].triangles;
-    x[3 + 3 * k] = load.kinds[k].pixels;
+std::array<double, 13> features(const FrameLoad& load) {
+  std::array<double, 13> x{1.0};
+  for (std::size_t k = 0; k < 3; ++k) {
+    x[1 + 4 * k] = load.kinds[k].draws;
+    x[2 + 4 * k] = load.kinds[k].instances;
+    x[3 + 4 * k] = load.kinds[k].triangles;
+    x[4 + 4 * k] = load.kinds[k].pixels;
   }
   return x;
 }
@@ -71,7 +72,7 @@ void DrawCostModel::set_terms(ObjectKind kind, const DrawCostTerms& terms) {
   prior_set_ = false;
 }
 
-void DrawCostModel::calibrate(ObjectKind kind, std::span<const DrawSample> samples) {
+void DrawCostModel::calibrate(ObjectKind kind, std::span<const DrawSample> samples, double draw_share) {
   if (samples.empty()) return;
   std::array<bool, 3> use{true, true, true};
   for (int round = 0; round < 3; ++round) {
@@ -84,7 +85,7 @@ void DrawCostModel::calibrate(ObjectKind kind, std::span<const DrawSample> sampl
     }
     const auto worst = std::min_element(t.begin(), t.end());
     if (*worst >= 0) {
-      set_terms(kind, {t[0], t[1], t[2]});
+      set_terms(kind, {draw_share * t[0], (1 - draw_share) * t[0], t[1], t[2]});
       return;
     }
     use[std::size_t(worst - t.begin())] = false;
@@ -101,16 +102,17 @@ double DrawCostModel::predict(const FrameLoad& load) const {
   for (int k = 0; k < 3; ++k) {
     const DrawSample& s = load.kinds[k];
     const DrawCostTerms& t = terms_[std::size_t(k)];
-    ms += t.per_instance_ms * s.instances + t.per_triangle_ms * s.triangles + t.per_pixel_ms * s.pixels;
+    ms += t.per_draw_ms * s.draws + t.per_instance_ms * s.instances + t.per_triangle_ms * s.triangles +
+          t.per_pixel_ms * s.pixels;
   }
   return ms;
 }
 
-std::array<double, 10> DrawCostModel::theta() const {
+std::array<double, DrawCostModel::kTerms> DrawCostModel::theta() const {
   return {frame_ms_,
-          terms_[0].per_instance_ms, terms_[0].per_triangle_ms, terms_[0].per_pixel_ms,
-          terms_[1].per_instance_ms, terms_[1].per_triangle_ms, terms_[1].per_pixel_ms,
-          terms_[2].per_instance_ms, terms_[2].per_triangle_ms, terms_[2].per_pixel_ms};
+          terms_[0].per_draw_ms, terms_[0].per_instance_ms, terms_[0].per_triangle_ms, terms_[0].per_pixel_ms,
+          terms_[1].per_draw_ms, terms_[1].per_instance_ms, terms_[1].per_triangle_ms, terms_[1].per_pixel_ms,
+          terms_[2].per_draw_ms, terms_[2].per_instance_ms, terms_[2].per_triangle_ms, terms_[2].per_pixel_ms};
 }
 
 void DrawCostModel::reset_prior() {
@@ -158,7 +160,7 @@ void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
     for (double& v : covariance_) v *= prior_trace_ / trace;
   const auto m = [&](int i) { return calibrated_[std::size_t(i)] * multipliers_[std::size_t(i)]; };
   frame_ms_ = m(0);
-  for (int k = 0; k < 3; ++k) terms_[std::size_t(k)] = {m(1 + 3 * k), m(2 + 3 * k), m(3 + 3 * k)};
+  for (int k = 0; k < 3; ++k) terms_[std::size_t(k)] = {m(1 + 4 * k), m(2 + 4 * k), m(3 + 4 * k), m(4 + 4 * k)};
 }
 
 }  // namespace terrasprite

@@ -169,6 +169,7 @@ long long HybridObjects::draw(const Camera& camera) {
     st.triangles += opt.triangles;
     st.instances_by_kind[std::size_t(r.kind)] += 1;
   }
+  for (const auto& [key, g] : groups) s.load.kinds[std::size_t(std::get<1>(key))].draws += 1;
   st.predicted_ms = s.cost.predict(s.load);
   for (auto& [key, g] : groups) s.set.model(std::get<0>(key)).draw(g.first, g.second, camera);
   last_ = st;

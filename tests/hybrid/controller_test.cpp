@@ -85,16 +85,17 @@ TEST(DrawCostModel, FitsMeasuredDrawsAndRefitsOnline) {
   for (double n : {1.0, 4.0, 16.0})
     for (double tris : {1000.0, 10000.0})
       for (double px : {500.0, 5000.0})
-        draws.push_back({n, n * tris, n * px, n * (0.01 + 2e-5 * tris + 1e-5 * px)});
+        draws.push_back({1, n, n * tris, n * px, n * (0.01 + 2e-5 * tris + 1e-5 * px)});
   DrawCostModel m;
-  m.calibrate(ObjectKind::kMesh, draws);
-  EXPECT_NEAR(m.terms(ObjectKind::kMesh).per_instance_ms, 0.01, 1e-9);
+  m.calibrate(ObjectKind::kMesh, draws, 0.25);
+  EXPECT_NEAR(m.terms(ObjectKind::kMesh).per_draw_ms, 0.0025, 1e-9);
+  EXPECT_NEAR(m.terms(ObjectKind::kMesh).per_instance_ms, 0.0075, 1e-9);
   EXPECT_NEAR(m.terms(ObjectKind::kMesh).per_triangle_ms, 2e-5, 1e-12);
   EXPECT_NEAR(m.terms(ObjectKind::kMesh).per_pixel_ms, 1e-5, 1e-12);
   m.set_frame_ms(20);
   // The machine becomes 1.5x slower: frame predictions follow.
   FrameLoad load;
-  load.kinds[0] = {100, 1e6, 2e5, 0};
+  load.kinds[0] = {1, 100, 1e6, 2e5, 0};
   const double before = m.predict(load);
   for (int f = 0; f < 40; ++f) {
     load.kinds[0].triangles = 1e6 * (1 + 0.3 * (f % 3));

@@ -33,19 +33,11 @@ struct HybridArgs {
   std::string out = "out/bench_hybrid";
   double target_ms = 400;
   int frames = 160, score_every = 2, instances = 0, terrain_quads = 64;
-  std::string table_sizes = "200,50", relief_resolutions = "32,64,128,256", octahedral_resolutions = "32,64,128";
+  std::string table_sizes = "200,50", relief_resolutions = "32,64,128,256",
+              octahedral_resolutions = "32,64,128";
   double table_angle_step = 45;
   std::string figure6 = "C";
 };
-
-std::vector<int> positive_ints(const std::string& text, const char* option) {
-  std::vector<int> v;
-  for (double d : parse_list(text, option)) {
-    if (d != std::floor(d) || d <= 0) throw InputError(fmt::format("{}: {} is not a positive whole number", option, d));
-    v.push_back(int(d));
-  }
-  return v;
-}
 
 /// Keeps `count` instances (0: all), drawn at random (seeded) so the model mix stays.
 void subsample(ObjectScene& scene, int count) {
@@ -55,26 +47,44 @@ void subsample(ObjectScene& scene, int count) {
   scene.instances.resize(std::size_t(count));
 }
 
-/// Model i's table: relief and LOD levels, then octahedral, each from the
-/// cache or measured now (and cached).
-QualityTable model_table(ObjectSet& set, std::size_t i, const HybridArgs& a) {
-  const SceneModel& sm = set.scene_model(i);
-  QualityTable merged;
-  const std::pair<std::vector<ObjectKind>, const std::string*> parts[] = {
-      {{ObjectKind::kMesh, ObjectKind::kRelief}, &a.relief_resolutions},
-      {{ObjectKind::kOctahedral}, &a.octahedral_resolutions}};
-  for (const auto& [kinds, res] : parts) {
+/// The two table samplings: relief and LOD levels, then octahedral. Throws
+/// InputError for a bad list (checked before any work).
+std::vector<TableOptions> table_options(const HybridArgs& a) {
+  struct Part {
+    std::vector<ObjectKind> kinds;
+    const std::string& resolutions;
+    const char* option;
+  };
+  const Part parts[] = {
+      {{ObjectKind::kMesh, ObjectKind::kRelief}, a.relief_resolutions, "--relief-resolutions"},
+      {{ObjectKind::kOctahedral}, a.octahedral_resolutions, "--octahedral-resolutions"}};
+  std::vector<TableOptions> out;
+  for (const auto& [kinds, res, option] : parts) {
     TableOptions o;
     o.kinds = kinds;
-    o.resolutions = positive_ints(*res, "--resolutions");
-    o.sizes_px = positive_ints(a.table_sizes, "--table-sizes");
+    o.resolutions = int_list(res, option);
+    o.sizes_px = int_list(a.table_sizes, "--table-sizes");
     o.angle_step_deg = a.table_angle_step;
     for (int r : o.resolutions)
-      if (r < 16 || r > 512) throw InputError(fmt::format("impostor resolution {} is outside 16..512", r));
-    const auto file = table_cache_file(a.cache, sm.file, sm.options, o);
+      if (r < 16 || r > 512) throw InputError(fmt::format("{}: {} is outside 16..512", option, r));
+    for (int px : o.sizes_px)
+      if (px < 16 || px > 2048) throw InputError(fmt::format("--table-sizes: {} is outside 16..2048", px));
+    out.push_back(std::move(o));
+  }
+  return out;
+}
+
+/// Model i's table, each sampling from the cache or measured now (and cached).
+QualityTable model_table(ObjectSet& set, std::size_t i, const std::vector<TableOptions>& options,
+                         const std::string& cache) {
+  const SceneModel& sm = set.scene_model(i);
+  QualityTable merged;
+  for (const TableOptions& o : options) {
+    const auto file = table_cache_file(cache, sm.file, sm.options, o);
     std::optional<QualityTable> t = read_table_cache(file);
     if (!t) {
-      fmt::print(stderr, "measuring the quality table of {} ({})\n", sm.name, kinds.size() > 1 ? "pm, relief" : "octahedral");
+      fmt::print(stderr, "measuring the quality table of {} ({})\n", sm.name,
+                 o.kinds.size() > 1 ? "pm, relief" : "octahedral");
       Progress progress("table " + sm.name);
       t = measure_quality_table(set.model(i), o, [&](int d, int n) { progress(d, n); });
       write_table_cache(file, table_json(*t, o));
@@ -107,9 +117,16 @@ std::vector<HybridScenario> scenarios() {
       {"full", {ObjectKind::kMesh}, SelectionPolicy::kStatic, true, C::kNone},
       {"ibr", {ObjectKind::kRelief}, SelectionPolicy::kImpostorOnly, false, C::kNone},
       {"pm", {ObjectKind::kMesh}, SelectionPolicy::kGreedy, false, C::kBudgetPi},
-      {"mixed", {ObjectKind::kMesh, ObjectKind::kRelief}, SelectionPolicy::kPaper, false, C::kQualityStep},
-      {"mixed-optimal", {ObjectKind::kMesh, ObjectKind::kRelief, ObjectKind::kOctahedral}, SelectionPolicy::kOptimal,
-       false, C::kBudgetPi},
+      {"mixed",
+       {ObjectKind::kMesh, ObjectKind::kRelief},
+       SelectionPolicy::kPaper,
+       false,
+       C::kQualityStep},
+      {"mixed-optimal",
+       {ObjectKind::kMesh, ObjectKind::kRelief, ObjectKind::kOctahedral},
+       SelectionPolicy::kOptimal,
+       false,
+       C::kBudgetPi},
   };
 }
 
@@ -122,7 +139,8 @@ struct ScoringState {
   std::vector<int> flip_frames;
 };
 
-std::vector<std::uint8_t> object_mask(const Frame& ref, const Frame& test, const std::vector<float>& terrain) {
+std::vector<std::uint8_t> object_mask(const Frame& ref, const Frame& test,
+                                      const std::vector<float>& terrain) {
   std::vector<std::uint8_t> mask(terrain.size(), 0);
   auto in_front = [](float d, float t) { return std::isfinite(d) && !(d >= t * 0.9995f - 1e-3f); };
   for (std::size_t i = 0; i < mask.size(); ++i)
@@ -135,8 +153,8 @@ Scorer hybrid_scorer(std::shared_ptr<ScoringState> state) {
   return [state](const Frame& ref, const Frame& test) {
     QualityScore s;
     s.figures["ssim_objects"] = 1.0;
-    const bool flip = std::find(state->flip_frames.begin(), state->flip_frames.end(), state->frame) !=
-                      state->flip_frames.end();
+    const bool flip = std::find(state->flip_frames.begin(), state->flip_frames.end(),
+                                state->frame) != state->flip_frames.end();
     if (ref.color.rgba == test.color.rgba) {
       s.flip = flip ? 0.0 : -1.0;
       return s;
@@ -148,7 +166,8 @@ Scorer hybrid_scorer(std::shared_ptr<ScoringState> state) {
     if (state->terrain_depth.size() == std::size_t(ref.width()) * ref.height()) {
       const auto mask = object_mask(ref, test, state->terrain_depth);
       if (std::find(mask.begin(), mask.end(), 1) != mask.end())
-        s.figures["ssim_objects"] = quality::ssim(ref.color.view(), test.color.view(), so, mask).ssim;
+        s.figures["ssim_objects"] =
+            quality::ssim(ref.color.view(), test.color.view(), so, mask).ssim;
     }
     s.flip = flip ? quality::flip(ref.color.view(), test.color.view()).mean : -1.0;
     return s;
@@ -157,12 +176,19 @@ Scorer hybrid_scorer(std::shared_ptr<ScoringState> state) {
 
 void annotate(const HybridObjects& objects, FrameResult& r) {
   const HybridFrameStats& s = objects.last();
-  r.counters = {{"selection_ms", s.selection_ms},         {"policy_ms", s.policy_ms},         {"predicted_ms", s.predicted_ms},
-                {"budget_ms", s.budget_ms},               {"target_quality", s.target_quality},
-                {"expected_ssim", s.expected_ssim},       {"switches", s.switches},
-                {"visible", s.visible},                   {"triangles_min", double(s.triangles_min)},
-                {"triangles_max", double(s.triangles_max)}, {"n_mesh", s.instances_by_kind[0]},
-                {"n_relief", s.instances_by_kind[1]},     {"n_octahedral", s.instances_by_kind[2]}};
+  r.counters = {{"selection_ms", s.selection_ms},
+                {"policy_ms", s.policy_ms},
+                {"predicted_ms", s.predicted_ms},
+                {"budget_ms", s.budget_ms},
+                {"target_quality", s.target_quality},
+                {"expected_ssim", s.expected_ssim},
+                {"switches", s.switches},
+                {"visible", s.visible},
+                {"triangles_min", double(s.triangles_min)},
+                {"triangles_max", double(s.triangles_max)},
+                {"n_mesh", s.instances_by_kind[0]},
+                {"n_relief", s.instances_by_kind[1]},
+                {"n_octahedral", s.instances_by_kind[2]}};
   if (s.objective_greedy >= 0) {
     r.counters["objective_greedy"] = s.objective_greedy;
     r.counters["objective_optimal"] = s.objective_optimal;
@@ -239,6 +265,7 @@ void run_bench(const HybridArgs& a) {
   auto [w, h] = parse_size(a.size, "--size");
   check_outputs(a.out, {a.json});
   if (!(a.target_ms > 0)) throw InputError("--target-ms must be positive");
+  const std::vector<TableOptions> table_sampling = table_options(a);
   const Terrain terrain = load_terrain_verbose(a.terrain);
   check_lod_quads(a.terrain_quads, terrain.heights, "--terrain-quads");
   ObjectScene scene = a.scene.empty() ? default_object_scene(a.models_dir, terrain.heights)
@@ -255,7 +282,8 @@ void run_bench(const HybridArgs& a) {
     path_text = ss.str();
   }
   const std::string path_name = a.path.empty() ? "the default walkthrough" : a.path;
-  std::vector<Camera> path = path_from_json(path_text, path_name, terrain.heights, a.frames, double(w) / h);
+  std::vector<Camera> path =
+      path_from_json(path_text, path_name, terrain.heights, a.frames, double(w) / h);
   const std::vector<PathCheckpoint> checkpoints =
       snapped(checkpoints_of(path_text, path_name, a.frames), a.score_every, a.frames);
   OutputDir out(a.out, output_policy());
@@ -265,7 +293,7 @@ void run_bench(const HybridArgs& a) {
   ground.prepare(a.terrain_quads);
   ObjectSet set(scene);
   std::vector<QualityTable> tables;
-  for (std::size_t i = 0; i < set.model_count(); ++i) tables.push_back(model_table(set, i, a));
+  for (std::size_t i = 0; i < set.model_count(); ++i) tables.push_back(model_table(set, i, table_sampling, a.cache));
   DrawCostModel cost = calibrated_cost(tables);
 
   HybridBenchResult result;
@@ -281,7 +309,8 @@ void run_bench(const HybridArgs& a) {
   HybridRenderer terrain_only(ground, nullptr, "terrain", w, h, a.terrain_quads);
   {
     std::vector<double> ms;
-    for (int k = 0; k < 6; ++k) ms.push_back(terrain_only.draw(path[std::size_t(k * (path.size() - 1) / 5)]).ms);
+    for (int k = 0; k < 6; ++k)
+      ms.push_back(terrain_only.draw(path[std::size_t(k * (path.size() - 1) / 5)]).ms);
     result.terrain_ms = summarize(ms).median;
     cost.set_frame_ms(result.terrain_ms);
   }
@@ -295,7 +324,8 @@ void run_bench(const HybridArgs& a) {
   for (const HybridScenario& sc : scenarios()) {
     objects.push_back(std::make_unique<HybridObjects>(set, tables, cost, sc, ho));
     objects.back()->prepare();
-    renderers.push_back(std::make_unique<HybridRenderer>(ground, objects.back().get(), sc.name, w, h, a.terrain_quads));
+    renderers.push_back(std::make_unique<HybridRenderer>(ground, objects.back().get(), sc.name, w,
+                                                         h, a.terrain_quads));
   }
 
   auto state = std::make_shared<ScoringState>();
@@ -309,9 +339,15 @@ void run_bench(const HybridArgs& a) {
   Participant ref{.renderer = renderers[0].get(), .name = "full", .read = ReadBack::kColorDepth};
   ref.annotate = [o = objects[0].get()](const Frame&, FrameResult& r) { annotate(*o, r); };
   experiment.set_reference(ref);
-  experiment.add({.renderer = &terrain_only, .name = "terrain", .every = a.score_every, .read = ReadBack::kDepth});
+  experiment.add({.renderer = &terrain_only,
+                  .name = "terrain",
+                  .every = a.score_every,
+                  .read = ReadBack::kDepth});
   for (std::size_t k = 1; k < renderers.size(); ++k) {
-    Participant p{.renderer = renderers[k].get(), .name = renderers[k]->name(), .score = true, .read = ReadBack::kDepth};
+    Participant p{.renderer = renderers[k].get(),
+                  .name = renderers[k]->name(),
+                  .score = true,
+                  .read = ReadBack::kDepth};
     p.annotate = [o = objects[k].get()](const Frame&, FrameResult& r) { annotate(*o, r); };
     experiment.add(p);
   }
@@ -339,14 +375,19 @@ void run_bench(const HybridArgs& a) {
   out.commit();
   fmt::print("{}\n", table2_markdown(result));
   for (const HybridScenarioResult& s : result.scenarios)
-    fmt::print("{:14} median {:7.1f} ms  p95 {:7.1f} ms  p99 {:7.1f} ms  (target {:.0f} ms, {:.0f}% within +10%)  "
-               "mean SSIM {:.4f}, objects {:.4f}, {:.2f} switches/frame\n",
-               s.name, s.ms.median, s.ms.p95, s.ms.p99, a.target_ms, 100 * s.within_10pct, s.mean_ssim,
-               s.mean_ssim_objects, s.switches_per_frame);
-  fmt::print("selection (optimal): {:.3f} ms/frame median, p95 {:.3f}; objective optimal {:.5f} vs greedy {:.5f} "
-             "(mean gain {:.3f}%, max {:.3f}%)\n",
-             result.selection.ms_per_frame, result.selection.ms_p95, result.selection.objective_optimal,
-             result.selection.objective_greedy, 100 * result.selection.gain_mean, 100 * result.selection.gain_max);
+    fmt::print(
+        "{:14} median {:7.1f} ms  p95 {:7.1f} ms  p99 {:7.1f} ms  (target {:.0f} ms, {:.0f}% "
+        "within +10%)  "
+        "mean SSIM {:.4f}, objects {:.4f}, {:.2f} switches/frame\n",
+        s.name, s.ms.median, s.ms.p95, s.ms.p99, a.target_ms, 100 * s.within_10pct, s.mean_ssim,
+        s.mean_ssim_objects, s.switches_per_frame);
+  fmt::print(
+      "selection (optimal): {:.3f} ms/frame median, p95 {:.3f}; objective optimal {:.5f} vs greedy "
+      "{:.5f} "
+      "(mean gain {:.3f}%, max {:.3f}%)\n",
+      result.selection.ms_per_frame, result.selection.ms_p95, result.selection.objective_optimal,
+      result.selection.objective_greedy, 100 * result.selection.gain_mean,
+      100 * result.selection.gain_max);
 }
 
 }  // namespace
@@ -356,30 +397,42 @@ void add_bench_hybrid(CLI::App& bench) {
       "hybrid", "objects under a frame-time budget: the hybrid walkthrough (Figures 4-6, Table 2)");
   auto a = std::make_shared<HybridArgs>();
   add_terrain_options(*cmd, a->terrain);
-  cmd->add_option("--scene", a->scene, "scene file (JSON); default: the built-in 400-instance scene");
-  cmd->add_option("--models-dir", a->models_dir, "where the default scene's models are")->capture_default_str();
+  cmd->add_option("--scene", a->scene,
+                  "scene file (JSON); default: the built-in 400-instance scene");
+  cmd->add_option("--models-dir", a->models_dir, "where the default scene's models are")
+      ->capture_default_str();
   cmd->add_option("--instances", a->instances, "keep this many instances, drawn at random (0: all)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1000000));
   cmd->add_option("--target-ms", a->target_ms, "target frame time, ms")->capture_default_str();
   cmd->add_option("--size", a->size, "image size WxH")->capture_default_str();
-  cmd->add_option("--frames", a->frames, "frames along the path")->capture_default_str()->check(CLI::Range(2, 100000));
+  cmd->add_option("--frames", a->frames, "frames along the path")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 100000));
   cmd->add_option("--score-every", a->score_every, "draw full geometry and score every n-th frame")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
-  cmd->add_option("--path", a->path, "JSON path file (with optional checkpoints); default: the walkthrough");
-  cmd->add_option("--terrain-quads", a->terrain_quads, "terrain: coarse mesh quads per side")->capture_default_str();
-  cmd->add_option("--table-sizes", a->table_sizes, "quality tables: on-screen sizes, px")->capture_default_str();
-  cmd->add_option("--table-angle-step", a->table_angle_step, "quality tables: degrees between views")
+  cmd->add_option("--path", a->path,
+                  "JSON path file (with optional checkpoints); default: the walkthrough");
+  cmd->add_option("--terrain-quads", a->terrain_quads, "terrain: coarse mesh quads per side")
+      ->capture_default_str();
+  cmd->add_option("--table-sizes", a->table_sizes, "quality tables: on-screen sizes, px")
+      ->capture_default_str();
+  cmd->add_option("--table-angle-step", a->table_angle_step,
+                  "quality tables: degrees between views")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 180.0));
-  cmd->add_option("--relief-resolutions", a->relief_resolutions, "relief impostor resolutions")->capture_default_str();
-  cmd->add_option("--octahedral-resolutions", a->octahedral_resolutions, "octahedral impostor resolutions")
+  cmd->add_option("--relief-resolutions", a->relief_resolutions, "relief impostor resolutions")
+      ->capture_default_str();
+  cmd->add_option("--octahedral-resolutions", a->octahedral_resolutions,
+                  "octahedral impostor resolutions")
       ->capture_default_str();
   cmd->add_option("--figure6", a->figure6, "checkpoint shown in Figure 6")->capture_default_str();
-  cmd->add_option("--cache", a->cache, "quality-table cache directory (default: ~/.cache/terrasprite/objects)");
+  cmd->add_option("--cache", a->cache,
+                  "quality-table cache directory (default: ~/.cache/terrasprite/objects)");
   cmd->add_option("--json", a->json, "also write the JSON here");
-  cmd->add_option("--out", a->out, "output directory (JSON, figures, index.html)")->capture_default_str();
+  cmd->add_option("--out", a->out, "output directory (JSON, figures, index.html)")
+      ->capture_default_str();
   cmd->callback([a] { run_bench(*a); });
 }
 

@@ -99,16 +99,6 @@ struct TableArgs {
   bool no_cache = false;
 };
 
-std::vector<int> int_list(const std::string& text, const char* option) {
-  std::vector<int> out;
-  for (double v : parse_list(text, option)) {
-    if (v != std::floor(v) || v <= 0)
-      throw InputError(fmt::format("{}: {} is not a positive whole number", option, v));
-    out.push_back(int(v));
-  }
-  return out;
-}
-
 TableOptions table_options(const TableArgs& a) {
   TableOptions o;
   o.kinds.clear();
@@ -180,6 +170,17 @@ void add_objects_table(CLI::App& objects) {
 }
 
 }  // namespace
+
+std::vector<int> int_list(const std::string& text, const char* option) {
+  std::vector<int> out;
+  for (double v : parse_list(text, option)) {
+    if (v != std::floor(v) || v <= 0)
+      throw InputError(fmt::format("{}: {} is not a positive whole number", option, v));
+    out.push_back(int(v));
+  }
+  return out;
+}
+
 
 void add_objects_scene(CLI::App& objects);  // objects_scene.cpp
 

@@ -21,8 +21,8 @@ struct HybridCheckpoint {
 
 struct HybridScenarioResult {
   std::string name;
-  Summary ms;                 ///< frame time, terrain included
-  double within_10pct = 0;    ///< fraction of frames at or under target + 10%
+  Summary ms;               ///< frame time, terrain included
+  double within_10pct = 0;  ///< fraction of frames at or under target + 10%
   double mean_ssim = 1, mean_ssim_objects = 1;
   double switches_per_frame = 0;
   std::vector<HybridCheckpoint> checkpoints;

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "terrasprite/model.h"
 #include "terrasprite/output_dir.h"
@@ -38,6 +39,9 @@ void write_table_cache(const std::filesystem::path& file, const nlohmann::json& 
 /// Writes the .dat files, plots (gnuplot; skipped with a note when missing),
 /// and table1.md into `out`.
 void write_objects_report(const QualityTable& t, const TableOptions& o, OutputDir& out);
+
+/// A comma-separated list of positive whole numbers (`option` names it in errors).
+std::vector<int> int_list(const std::string& text, const char* option);
 
 /// Table 1 as Markdown text (also printed by the command).
 std::string table1_markdown(const QualityTable& t, const TableOptions& o);

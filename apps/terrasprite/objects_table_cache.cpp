@@ -40,7 +40,8 @@ void write_table_cache(const std::filesystem::path& file, const nlohmann::json& 
 std::filesystem::path table_cache_file(const std::string& cache_dir, const std::string& model_file,
                                        const ModelOptions& m, const TableOptions& o) {
   return std::filesystem::path(cache_dir.empty() ? default_cache_dir() : cache_dir) /
-         (std::filesystem::path(model_file).stem().string() + "-" + table_cache_key(model_file, m, o) + ".json");
+         (std::filesystem::path(model_file).stem().string() + "-" +
+          table_cache_key(model_file, m, o) + ".json");
 }
 
 }  // namespace terrasprite::cli

@@ -9,8 +9,8 @@ namespace terrasprite {
 
 struct BudgetControllerOptions {
   double target_ms = 100;
-  double kp = 0.1;  ///< proportional gain on the relative error (target - measured) / target
-  double ki = 0.05; ///< integral gain (per frame)
+  double kp = 0.1;   ///< proportional gain on the relative error (target - measured) / target
+  double ki = 0.05;  ///< integral gain (per frame)
   /// measured / predicted is smoothed with this weight for the newest frame.
   double ratio_smoothing = 0.6;
   /// A frame measured over this many times its prediction is a one-off

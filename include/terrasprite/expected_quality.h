@@ -38,7 +38,8 @@ class QualityInterpolator {
     int slices = 0;  ///< 0: no samples (perfect quality)
     std::array<int, 2> slice{0, 0};
     double t = 0;  ///< blend of slice[1] over slice[0]
-    std::array<std::array<std::pair<int, double>, 4>, 2> nearest{};  ///< (sample, weight), weights sum to 1
+    std::array<std::array<std::pair<int, double>, 4>, 2>
+        nearest{};  ///< (sample, weight), weights sum to 1
   };
   Weights weights(double phi_deg, double theta_deg, double size_px) const;
   ExpectedQuality at(const Weights& w) const;
@@ -54,7 +55,8 @@ class QualityInterpolator {
     double size_px = 0;
     std::vector<Direction> samples;
   };
-  std::array<std::pair<int, double>, 4> nearest(const SizeSlice& slice, double x, double y, double z) const;
+  std::array<std::pair<int, double>, 4> nearest(const SizeSlice& slice, double x, double y,
+                                                double z) const;
   std::vector<SizeSlice> slices_;  ///< rising size
   double theta_max_ = 180.0;
 };

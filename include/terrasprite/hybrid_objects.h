@@ -46,13 +46,13 @@ struct HybridOptions {
 /// What the last frame's selection did.
 struct HybridFrameStats {
   int visible = 0;
-  double selection_ms = 0;     ///< view, options and policy, CPU wall time
-  double policy_ms = 0;        ///< of which the policy and hysteresis
-  double predicted_ms = 0;     ///< cost model: terrain term + chosen objects
-  double budget_ms = 0;        ///< whole-frame budget handed to the policy (predicted ms)
-  double target_quality = 0;   ///< the paper controller's SSIM target (others: the fixed one)
-  double benefit = 0;          ///< sum of weight x expected SSIM
-  double expected_ssim = 0;    ///< weight-averaged expected SSIM of the visible instances
+  double selection_ms = 0;    ///< view, options and policy, CPU wall time
+  double policy_ms = 0;       ///< of which the policy and hysteresis
+  double predicted_ms = 0;    ///< cost model: terrain term + chosen objects
+  double budget_ms = 0;       ///< whole-frame budget handed to the policy (predicted ms)
+  double target_quality = 0;  ///< the paper controller's SSIM target (others: the fixed one)
+  double benefit = 0;         ///< sum of weight x expected SSIM
+  double expected_ssim = 0;   ///< weight-averaged expected SSIM of the visible instances
   double objective_greedy = -1, objective_optimal = -1;
   int switches = 0;
   long long triangles = 0, triangles_min = 0, triangles_max = 0;  ///< chosen, cheapest, full

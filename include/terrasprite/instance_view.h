@@ -11,7 +11,7 @@
 namespace terrasprite {
 
 struct InstanceView {
-  bool visible = false;  ///< bounding sphere touches the view frustum
+  bool visible = false;   ///< bounding sphere touches the view frustum
   double distance_m = 0;  ///< camera to sphere centre
   /// Diameter of the bounding sphere on screen, pixels (the tables' size_px);
   /// the full image height when the camera is inside the sphere.

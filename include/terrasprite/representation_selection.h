@@ -25,8 +25,8 @@ struct RepresentationOption {
 
 /// One visible instance and its options (at least one).
 struct InstanceOptions {
-  int instance = 0;     ///< caller's id, stable across frames (hysteresis keys on it)
-  double size_px = 0;   ///< on-screen diameter
+  int instance = 0;    ///< caller's id, stable across frames (hysteresis keys on it)
+  double size_px = 0;  ///< on-screen diameter
   /// Benefit weight of the instance: its expected quality counts in
   /// proportion to the image area it covers, (size_px^2) / (width * height).
   double weight = 0;
@@ -65,8 +65,9 @@ inline double benefit(const InstanceOptions& instance, const RepresentationOptio
 /// Chooses for every instance. `budget_ms` is the objects' share of the
 /// frame (static and ibr ignore it). Instances not passed (outside the view)
 /// are not drawn and cost nothing.
-FrameSelection select_representations(SelectionPolicy policy, std::span<const InstanceOptions> instances,
-                                      double budget_ms, const PolicyOptions& options = {});
+FrameSelection select_representations(SelectionPolicy policy,
+                                      std::span<const InstanceOptions> instances, double budget_ms,
+                                      const PolicyOptions& options = {});
 
 /// The knapsack of `instances` restricted to the options `keep` accepts
 /// (an instance with none accepted keeps all its options).

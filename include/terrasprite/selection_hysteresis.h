@@ -28,7 +28,8 @@ class SelectionHysteresis {
   /// as the total expected cost stays within `budget_ms` (or does not grow,
   /// when the selection is already over it). Returns the switches kept this
   /// frame (instances seen last frame whose representation changed).
-  int apply(std::span<const InstanceOptions> instances, FrameSelection& selection, double budget_ms);
+  int apply(std::span<const InstanceOptions> instances, FrameSelection& selection,
+            double budget_ms);
   void reset() { last_.clear(); }
 
  private:

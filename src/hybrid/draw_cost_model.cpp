@@ -72,7 +72,8 @@ void DrawCostModel::set_terms(ObjectKind kind, const DrawCostTerms& terms) {
   prior_set_ = false;
 }
 
-void DrawCostModel::calibrate(ObjectKind kind, std::span<const DrawSample> samples, double draw_share) {
+void DrawCostModel::calibrate(ObjectKind kind, std::span<const DrawSample> samples,
+                              double draw_share) {
   if (samples.empty()) return;
   std::array<bool, 3> use{true, true, true};
   for (int round = 0; round < 3; ++round) {
@@ -80,7 +81,10 @@ void DrawCostModel::calibrate(ObjectKind kind, std::span<const DrawSample> sampl
     if (!solve_subset(samples, use, t)) {
       // Too few distinct samples: drop the last term still in use.
       for (int j = 2; j >= 0; --j)
-        if (use[j]) { use[j] = false; break; }
+        if (use[j]) {
+          use[j] = false;
+          break;
+        }
       continue;
     }
     const auto worst = std::min_element(t.begin(), t.end());
@@ -102,17 +106,26 @@ double DrawCostModel::predict(const FrameLoad& load) const {
   for (int k = 0; k < 3; ++k) {
     const DrawSample& s = load.kinds[k];
     const DrawCostTerms& t = terms_[std::size_t(k)];
-    ms += t.per_draw_ms * s.draws + t.per_instance_ms * s.instances + t.per_triangle_ms * s.triangles +
-          t.per_pixel_ms * s.pixels;
+    ms += t.per_draw_ms * s.draws + t.per_instance_ms * s.instances +
+          t.per_triangle_ms * s.triangles + t.per_pixel_ms * s.pixels;
   }
   return ms;
 }
 
 std::array<double, DrawCostModel::kTerms> DrawCostModel::theta() const {
   return {frame_ms_,
-          terms_[0].per_draw_ms, terms_[0].per_instance_ms, terms_[0].per_triangle_ms, terms_[0].per_pixel_ms,
-          terms_[1].per_draw_ms, terms_[1].per_instance_ms, terms_[1].per_triangle_ms, terms_[1].per_pixel_ms,
-          terms_[2].per_draw_ms, terms_[2].per_instance_ms, terms_[2].per_triangle_ms, terms_[2].per_pixel_ms};
+          terms_[0].per_draw_ms,
+          terms_[0].per_instance_ms,
+          terms_[0].per_triangle_ms,
+          terms_[0].per_pixel_ms,
+          terms_[1].per_draw_ms,
+          terms_[1].per_instance_ms,
+          terms_[1].per_triangle_ms,
+          terms_[1].per_pixel_ms,
+          terms_[2].per_draw_ms,
+          terms_[2].per_instance_ms,
+          terms_[2].per_triangle_ms,
+          terms_[2].per_pixel_ms};
 }
 
 void DrawCostModel::reset_prior() {
@@ -131,7 +144,8 @@ void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
   if (!prior_set_) reset_prior();
   const std::array<double, kTerms> x = features(load);
   std::array<double, kTerms> z{};  // each term's calibrated contribution, ms
-  for (int i = 0; i < kTerms; ++i) z[std::size_t(i)] = calibrated_[std::size_t(i)] * x[std::size_t(i)];
+  for (int i = 0; i < kTerms; ++i)
+    z[std::size_t(i)] = calibrated_[std::size_t(i)] * x[std::size_t(i)];
   auto P = [&](int i, int j) -> double& { return covariance_[std::size_t(i * kTerms + j)]; };
   std::array<double, kTerms> pz{};
   double zpz = 0, predicted = 0;
@@ -147,8 +161,8 @@ void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
   const double denom = lambda * noise + zpz;
   const double residual = measured_ms - predicted;
   for (int i = 0; i < kTerms; ++i)
-    multipliers_[std::size_t(i)] =
-        std::clamp(multipliers_[std::size_t(i)] + pz[std::size_t(i)] / denom * residual, 0.05, 20.0);
+    multipliers_[std::size_t(i)] = std::clamp(
+        multipliers_[std::size_t(i)] + pz[std::size_t(i)] / denom * residual, 0.05, 20.0);
   double trace = 0;
   for (int i = 0; i < kTerms; ++i)
     for (int j = 0; j < kTerms; ++j) {
@@ -160,7 +174,8 @@ void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
     for (double& v : covariance_) v *= prior_trace_ / trace;
   const auto m = [&](int i) { return calibrated_[std::size_t(i)] * multipliers_[std::size_t(i)]; };
   frame_ms_ = m(0);
-  for (int k = 0; k < 3; ++k) terms_[std::size_t(k)] = {m(1 + 4 * k), m(2 + 4 * k), m(3 + 4 * k), m(4 + 4 * k)};
+  for (int k = 0; k < 3; ++k)
+    terms_[std::size_t(k)] = {m(1 + 4 * k), m(2 + 4 * k), m(3 + 4 * k), m(4 + 4 * k)};
 }
 
 }  // namespace terrasprite

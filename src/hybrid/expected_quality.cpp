@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-
 #include <glm/glm.hpp>
 
 namespace terrasprite {
@@ -41,7 +40,7 @@ QualityInterpolator::QualityInterpolator(const RepresentationQuality& rep) {
 }
 
 std::array<std::pair<int, double>, 4> QualityInterpolator::nearest(const SizeSlice& slice, double x,
-                                                                     double y, double z) const {
+                                                                   double y, double z) const {
   // The four nearest samples by angle (largest cosine), weighted by inverse angle.
   std::array<std::pair<double, int>, 4> best;
   best.fill({-2.0, -1});
@@ -85,7 +84,8 @@ QualityInterpolator::Weights QualityInterpolator::weights(double phi_deg, double
     b = 1;
     while (slices_[b].size_px < size_px) ++b;
     a = b - 1;
-    w.t = std::log2(size_px / slices_[a].size_px) / std::log2(slices_[b].size_px / slices_[a].size_px);
+    w.t = std::log2(size_px / slices_[a].size_px) /
+          std::log2(slices_[b].size_px / slices_[a].size_px);
   }
   w.slices = a == b ? 1 : 2;
   w.slice = {int(a), int(b)};
@@ -120,7 +120,8 @@ bool QualityInterpolator::same_layout(const QualityInterpolator& other) const {
     const SizeSlice &a = slices_[s], &b = other.slices_[s];
     if (a.size_px != b.size_px || a.samples.size() != b.samples.size()) return false;
     for (std::size_t k = 0; k < a.samples.size(); ++k)
-      if (std::abs(a.samples[k].x - b.samples[k].x) > 1e-9 || std::abs(a.samples[k].y - b.samples[k].y) > 1e-9 ||
+      if (std::abs(a.samples[k].x - b.samples[k].x) > 1e-9 ||
+          std::abs(a.samples[k].y - b.samples[k].y) > 1e-9 ||
           std::abs(a.samples[k].z - b.samples[k].z) > 1e-9)
         return false;
   }

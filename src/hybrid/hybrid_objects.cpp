@@ -43,7 +43,11 @@ struct HybridObjects::Impl {
   FrameLoad load;  ///< of the last frame, for the cost model's refit
 
   Impl(ObjectSet& s, const DrawCostModel& c, const HybridOptions& o)
-      : set(s), cost(c), options(o), hysteresis(o.hysteresis), controller(o.controller),
+      : set(s),
+        cost(c),
+        options(o),
+        hysteresis(o.hysteresis),
+        controller(o.controller),
         quality_step(o.quality_step) {}
 };
 
@@ -64,17 +68,19 @@ HybridObjects::HybridObjects(ObjectSet& set, const std::vector<QualityTable>& ta
       for (const RepresentationQuality& rq : tables[m].representations) {
         if (!offered(scenario_, rq.rep.kind)) continue;
         if (rq.rep.kind == ObjectKind::kMesh && rq.rep.level >= int(chain.size())) continue;
-        const double err = rq.rep.kind == ObjectKind::kMesh ? chain[std::size_t(rq.rep.level)].error_m : 0.0;
+        const double err =
+            rq.rep.kind == ObjectKind::kMesh ? chain[std::size_t(rq.rep.level)].error_m : 0.0;
         impl_->offers[m].push_back({rq.rep, QualityInterpolator(rq), model.triangles(rq.rep), err});
       }
     // Full geometry is always on offer to meshes (and is the reference).
-    const bool has_full = std::any_of(impl_->offers[m].begin(), impl_->offers[m].end(), [](const Offer& f) {
-      return f.rep.kind == ObjectKind::kMesh && f.rep.level == 0;
-    });
+    const bool has_full = std::any_of(
+        impl_->offers[m].begin(), impl_->offers[m].end(),
+        [](const Offer& f) { return f.rep.kind == ObjectKind::kMesh && f.rep.level == 0; });
     if ((scenario_.full || offered(scenario_, ObjectKind::kMesh)) && !has_full)
       impl_->offers[m].push_back({Representation{}, QualityInterpolator(RepresentationQuality{}),
                                   model.triangles(Representation{}), 0.0});
-    for (Offer& f : impl_->offers[m]) f.shared_layout = f.quality.same_layout(impl_->offers[m].front().quality);
+    for (Offer& f : impl_->offers[m])
+      f.shared_layout = f.quality.same_layout(impl_->offers[m].front().quality);
   }
 }
 
@@ -100,20 +106,22 @@ long long HybridObjects::draw(const Camera& camera) {
     const Model& model = s.set.model(m).model();
     const auto instances = s.set.instances(m);
     for (std::size_t i = 0; i < instances.size(); ++i, ++id) {
-      const InstanceView v =
-          view_instance(camera, o.height, instances[i], glm::dvec3(model.center()), model.bounding_radius());
+      const InstanceView v = view_instance(camera, o.height, instances[i],
+                                           glm::dvec3(model.center()), model.bounding_radius());
       if (!v.visible || s.offers[m].empty()) continue;
       InstanceOptions inst{id, v.size_px, std::min(1.0, v.size_px * v.size_px / image_px), {}};
       const double pixels = std::min(image_px, M_PI / 4 * v.size_px * v.size_px);
       // One table lookup per instance; every representation on the same views reuses it.
-      const QualityInterpolator::Weights w = s.offers[m].front().quality.weights(v.phi_deg, v.theta_deg, v.size_px);
+      const QualityInterpolator::Weights w =
+          s.offers[m].front().quality.weights(v.phi_deg, v.theta_deg, v.size_px);
       for (const Offer& f : s.offers[m]) {
         if (scenario_.full && !(f.rep.kind == ObjectKind::kMesh && f.rep.level == 0)) continue;
         const ExpectedQuality q =
             f.shared_layout ? f.quality.at(w) : f.quality.at(v.phi_deg, v.theta_deg, v.size_px);
-        const double err_px = f.error_m * instances[i].scale * px_per_m / std::max(v.distance_m, 1e-6);
-        inst.options.push_back({f.rep, s.cost.instance_ms(f.rep.kind, double(f.triangles), pixels), q.ssim,
-                                q.psnr, f.triangles, err_px});
+        const double err_px =
+            f.error_m * instances[i].scale * px_per_m / std::max(v.distance_m, 1e-6);
+        inst.options.push_back({f.rep, s.cost.instance_ms(f.rep.kind, double(f.triangles), pixels),
+                                q.ssim, q.psnr, f.triangles, err_px});
       }
       long long lo = inst.options.front().triangles;
       for (const auto& opt : inst.options) lo = std::min(lo, opt.triangles);
@@ -130,18 +138,22 @@ long long HybridObjects::draw(const Camera& camera) {
   double budget = INFINITY;
   PolicyOptions po = o.policy;
   switch (scenario_.control) {
-    case HybridScenario::Control::kNone: break;
+    case HybridScenario::Control::kNone:
+      break;
     case HybridScenario::Control::kQualityStep:
       po.target_ssim = s.quality_step.quality();
       budget = o.target_ms;
       break;
-    case HybridScenario::Control::kBudgetPi: budget = s.controller.budget_ms(); break;
+    case HybridScenario::Control::kBudgetPi:
+      budget = s.controller.budget_ms();
+      break;
   }
   st.budget_ms = budget;
   st.target_quality = po.target_ssim;
   const SelectionPolicy policy = scenario_.full ? SelectionPolicy::kStatic : scenario_.policy;
   FrameSelection sel = select_representations(policy, frame, budget - s.cost.frame_ms(), po);
-  if (o.use_hysteresis && !scenario_.full) st.switches = s.hysteresis.apply(frame, sel, budget - s.cost.frame_ms());
+  if (o.use_hysteresis && !scenario_.full)
+    st.switches = s.hysteresis.apply(frame, sel, budget - s.cost.frame_ms());
   st.objective_greedy = sel.objective_greedy;
   st.objective_optimal = sel.objective_optimal;
   st.benefit = sel.benefit;
@@ -181,7 +193,8 @@ void HybridObjects::feedback(double measured_ms) {
   s.controller.update(last_.predicted_ms, measured_ms);
   s.quality_step.update(measured_ms);
   // A one-off surprise (an impostor build, a stall) says nothing about the terms.
-  if (measured_ms < s.options.controller.outlier_factor * last_.predicted_ms) s.cost.observe(s.load, measured_ms);
+  if (measured_ms < s.options.controller.outlier_factor * last_.predicted_ms)
+    s.cost.observe(s.load, measured_ms);
 }
 
 }  // namespace terrasprite

@@ -34,8 +34,9 @@ InstanceView view_instance(const Camera& camera, int height_px, const ObjectInst
   v.visible = z + r > camera.near_m && z - r < camera.far_m && (std::abs(x) - tx * z) * nx < r &&
               (std::abs(y) - ty * z) * ny < r;
   if (!v.visible) return v;
-  v.size_px = v.distance_m > r ? height_px * (r / std::sqrt(v.distance_m * v.distance_m - r * r)) / ty
-                               : double(height_px);
+  v.size_px = v.distance_m > r
+                  ? height_px * (r / std::sqrt(v.distance_m * v.distance_m - r * r)) / ty
+                  : double(height_px);
   v.size_px = std::min(v.size_px, 4.0 * height_px);
   // The camera's direction from the centre, in the model's frame.
   const glm::dvec3 d = heading_rotate(-to / std::max(v.distance_m, 1e-12), -heading);

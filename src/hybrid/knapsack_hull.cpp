@@ -29,8 +29,8 @@ std::vector<int> hull(const KnapsackItem& item, const std::vector<int>& undomina
     while (h.size() >= 2) {
       const KnapsackChoice& a = c[h[h.size() - 2]];
       const KnapsackChoice& b = c[h.back()];
-      const double cross =
-          (b.cost - a.cost) * (c[i].benefit - a.benefit) - (b.benefit - a.benefit) * (c[i].cost - a.cost);
+      const double cross = (b.cost - a.cost) * (c[i].benefit - a.benefit) -
+                           (b.benefit - a.benefit) * (c[i].cost - a.cost);
       if (cross < 0) break;
       h.pop_back();
     }
@@ -51,8 +51,9 @@ std::vector<Step> sorted_steps(std::span<const KnapsackItem> items,
     }
   }
   // Hull ratios fall along an item, so a stable sort keeps each item's steps in order.
-  std::stable_sort(steps.begin(), steps.end(),
-                   [](const Step& a, const Step& b) { return a.benefit * b.cost > b.benefit * a.cost; });
+  std::stable_sort(steps.begin(), steps.end(), [](const Step& a, const Step& b) {
+    return a.benefit * b.cost > b.benefit * a.cost;
+  });
   return steps;
 }
 

@@ -54,8 +54,8 @@ Relaxation relax(std::span<const KnapsackItem> items, const std::vector<std::vec
 /// Depth-first branch and bound over the core items; the rest stay fixed.
 class CoreSearch {
  public:
-  CoreSearch(std::span<const KnapsackItem> items, const knapsack::Prepared& p, std::vector<int> core,
-             long long node_limit)
+  CoreSearch(std::span<const KnapsackItem> items, const knapsack::Prepared& p,
+             std::vector<int> core, long long node_limit)
       : items_(items), core_(std::move(core)), node_limit_(node_limit) {
     std::vector<int> depth_of(items.size(), -1);
     for (std::size_t d = 0; d < core_.size(); ++d) {
@@ -75,7 +75,8 @@ class CoreSearch {
     suffix_min_cost_.assign(core_.size() + 1, 0.0);
     suffix_min_benefit_.assign(core_.size() + 1, 0.0);
     for (std::size_t d = core_.size(); d-- > 0;) {
-      const KnapsackChoice& c = items[std::size_t(core_[d])].choices[std::size_t(hulls_[d].front())];
+      const KnapsackChoice& c =
+          items[std::size_t(core_[d])].choices[std::size_t(hulls_[d].front())];
       suffix_min_cost_[d] = suffix_min_cost_[d + 1] + c.cost;
       suffix_min_benefit_[d] = suffix_min_benefit_[d + 1] + c.benefit;
     }
@@ -89,7 +90,8 @@ class CoreSearch {
     best_core_.clear();
     search(0, budget, 0.0);
     if (!best_core_.empty())
-      for (std::size_t d = 0; d < core_.size(); ++d) best_choice[std::size_t(core_[d])] = best_core_[d];
+      for (std::size_t d = 0; d < core_.size(); ++d)
+        best_choice[std::size_t(core_[d])] = best_core_[d];
     return nodes_ <= node_limit_;
   }
 
@@ -150,7 +152,8 @@ std::vector<int> core_items(std::span<const KnapsackItem> items, const std::vect
   }
   std::vector<int> order(items.size());
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return distance[a] < distance[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return distance[a] < distance[b]; });
   order.resize(std::min<std::size_t>(order.size(), std::size_t(count)));
   return order;
 }
@@ -178,8 +181,10 @@ KnapsackSolution optimal_knapsack(std::span<const KnapsackItem> items, double bu
   for (int i : core) in_core[std::size_t(i)] = 1;
   for (std::size_t i = 0; i < items.size(); ++i) {
     const KnapsackChoice& c = items[i].choices[std::size_t(choice[i])];
-    if (in_core[i]) core_benefit += c.benefit;
-    else fixed_cost += c.cost;
+    if (in_core[i])
+      core_benefit += c.benefit;
+    else
+      fixed_cost += c.cost;
   }
   CoreSearch search(items, prepared, core, options.node_limit);
   const bool finished = search.run(budget - fixed_cost, core_benefit - 1e-12, choice);

@@ -33,12 +33,14 @@ int static_choice(const InstanceOptions& inst, double error_px) {
   for (std::size_t o = 0; o < inst.options.size(); ++o) {
     const RepresentationOption& r = inst.options[o];
     if (!is_mesh(r)) continue;
-    if (r.error_px <= error_px && (best < 0 || r.triangles < inst.options[std::size_t(best)].triangles))
+    if (r.error_px <= error_px &&
+        (best < 0 || r.triangles < inst.options[std::size_t(best)].triangles))
       best = int(o);
   }
   if (best >= 0) return best;
   for (std::size_t o = 0; o < inst.options.size(); ++o)
-    if (is_mesh(inst.options[o]) && (best < 0 || inst.options[o].triangles > inst.options[std::size_t(best)].triangles))
+    if (is_mesh(inst.options[o]) &&
+        (best < 0 || inst.options[o].triangles > inst.options[std::size_t(best)].triangles))
       best = int(o);
   return best >= 0 ? best : 0;
 }
@@ -48,8 +50,10 @@ int impostor_choice(const InstanceOptions& inst, double target, int max_res) {
   int best = -1;
   for (std::size_t o = 0; o < inst.options.size(); ++o) {
     const RepresentationOption& r = inst.options[o];
-    if (r.rep.kind != ObjectKind::kRelief || r.rep.resolution > max_res || r.ssim < target) continue;
-    if (best < 0 || r.rep.resolution < inst.options[std::size_t(best)].rep.resolution) best = int(o);
+    if (r.rep.kind != ObjectKind::kRelief || r.rep.resolution > max_res || r.ssim < target)
+      continue;
+    if (best < 0 || r.rep.resolution < inst.options[std::size_t(best)].rep.resolution)
+      best = int(o);
   }
   return best;
 }
@@ -61,7 +65,8 @@ int ibr_choice(const InstanceOptions& inst, double target) {
   int best = -1;
   for (std::size_t o = 0; o < inst.options.size(); ++o)
     if (inst.options[o].rep.kind == ObjectKind::kRelief &&
-        (best < 0 || inst.options[o].rep.resolution > inst.options[std::size_t(best)].rep.resolution))
+        (best < 0 ||
+         inst.options[o].rep.resolution > inst.options[std::size_t(best)].rep.resolution))
       best = int(o);
   return best >= 0 ? best : 0;
 }
@@ -74,7 +79,8 @@ FrameSelection paper_selection(std::span<const InstanceOptions> instances, doubl
   std::vector<std::size_t> mesh_of;
   double impostor_ms = 0;
   for (std::size_t i = 0; i < instances.size(); ++i) {
-    const int c = impostor_choice(instances[i], options.target_ssim, options.max_impostor_resolution);
+    const int c =
+        impostor_choice(instances[i], options.target_ssim, options.max_impostor_resolution);
     if (c >= 0) {
       s.option[i] = c;
       impostor_ms += instances[i].options[std::size_t(c)].cost_ms;
@@ -99,35 +105,45 @@ SelectionPolicy parse_selection_policy(const std::string& text, const char* opti
   if (text == "paper") return SelectionPolicy::kPaper;
   if (text == "optimal") return SelectionPolicy::kOptimal;
   if (text == "ibr") return SelectionPolicy::kImpostorOnly;
-  throw InputError(fmt::format("{} '{}': expected static, greedy, paper, optimal or ibr", option, text));
+  throw InputError(
+      fmt::format("{} '{}': expected static, greedy, paper, optimal or ibr", option, text));
 }
 
 const char* selection_policy_name(SelectionPolicy policy) {
   switch (policy) {
-    case SelectionPolicy::kStatic: return "static";
-    case SelectionPolicy::kGreedy: return "greedy";
-    case SelectionPolicy::kPaper: return "paper";
-    case SelectionPolicy::kOptimal: return "optimal";
-    case SelectionPolicy::kImpostorOnly: return "ibr";
+    case SelectionPolicy::kStatic:
+      return "static";
+    case SelectionPolicy::kGreedy:
+      return "greedy";
+    case SelectionPolicy::kPaper:
+      return "paper";
+    case SelectionPolicy::kOptimal:
+      return "optimal";
+    case SelectionPolicy::kImpostorOnly:
+      return "ibr";
   }
   return "?";
 }
 
-FrameSelection select_representations(SelectionPolicy policy, std::span<const InstanceOptions> instances,
-                                      double budget_ms, const PolicyOptions& options) {
+FrameSelection select_representations(SelectionPolicy policy,
+                                      std::span<const InstanceOptions> instances, double budget_ms,
+                                      const PolicyOptions& options) {
   FrameSelection s;
   switch (policy) {
     case SelectionPolicy::kStatic:
-      for (const InstanceOptions& inst : instances) s.option.push_back(static_choice(inst, options.static_error_px));
+      for (const InstanceOptions& inst : instances)
+        s.option.push_back(static_choice(inst, options.static_error_px));
       return total(instances, s);
     case SelectionPolicy::kImpostorOnly:
-      for (const InstanceOptions& inst : instances) s.option.push_back(ibr_choice(inst, options.target_ssim));
+      for (const InstanceOptions& inst : instances)
+        s.option.push_back(ibr_choice(inst, options.target_ssim));
       return total(instances, s);
     case SelectionPolicy::kPaper:
       return paper_selection(instances, budget_ms, options);
     case SelectionPolicy::kGreedy:
     case SelectionPolicy::kOptimal: {
-      const auto items = knapsack_items(instances, [](const RepresentationOption&) { return true; });
+      const auto items =
+          knapsack_items(instances, [](const RepresentationOption&) { return true; });
       if (policy == SelectionPolicy::kGreedy) {
         const KnapsackSolution g = greedy_knapsack(items, budget_ms);
         s.option = g.choice;

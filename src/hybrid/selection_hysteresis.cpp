@@ -9,8 +9,9 @@ namespace terrasprite {
 namespace {
 
 bool same(const Representation& a, const Representation& b) {
-  return a.kind == b.kind && (a.kind == ObjectKind::kMesh ? a.level == b.level
-                                                          : a.resolution == b.resolution && a.views == b.views);
+  return a.kind == b.kind &&
+         (a.kind == ObjectKind::kMesh ? a.level == b.level
+                                      : a.resolution == b.resolution && a.views == b.views);
 }
 
 int find_option(const InstanceOptions& inst, const Representation& rep) {
@@ -21,8 +22,8 @@ int find_option(const InstanceOptions& inst, const Representation& rep) {
 
 }  // namespace
 
-int SelectionHysteresis::apply(std::span<const InstanceOptions> instances, FrameSelection& selection,
-                               double budget_ms) {
+int SelectionHysteresis::apply(std::span<const InstanceOptions> instances,
+                               FrameSelection& selection, double budget_ms) {
   struct Revert {
     std::size_t i;
     int option;
@@ -38,12 +39,12 @@ int SelectionHysteresis::apply(std::span<const InstanceOptions> instances, Frame
     const RepresentationOption& a = instances[i].options[std::size_t(old)];
     const RepresentationOption& b = instances[i].options[std::size_t(now)];
     const bool too_soon = frame_ - it->second.frame_switched < options_.hold_frames;
-    const bool too_small =
-        std::abs(benefit(instances[i], b) - benefit(instances[i], a)) <=
-        options_.min_gain * std::max(benefit(instances[i], a), 1e-12);
+    const bool too_small = std::abs(benefit(instances[i], b) - benefit(instances[i], a)) <=
+                           options_.min_gain * std::max(benefit(instances[i], a), 1e-12);
     if (too_soon || too_small) reverts.push_back({i, old, a.cost_ms - b.cost_ms});
   }
-  std::sort(reverts.begin(), reverts.end(), [](const Revert& a, const Revert& b) { return a.extra_ms < b.extra_ms; });
+  std::sort(reverts.begin(), reverts.end(),
+            [](const Revert& a, const Revert& b) { return a.extra_ms < b.extra_ms; });
   const double limit = std::max(budget_ms, selection.cost_ms);
   for (const Revert& r : reverts) {
     if (selection.cost_ms + r.extra_ms > limit) continue;

@@ -5,10 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <set>
-#include <vector>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <vector>
 
 #include "test_util.h"
 
@@ -16,8 +16,10 @@ namespace {
 
 std::string small_scene(const std::string& data) {
   return R"({"models": [
-    {"name": "teapot", "file": ")" + data + R"(/models_scans/teapot.obj", "up": "y", "height_m": 4},
-    {"name": "tree", "file": ")" + data + R"(/models_kenney_nature/tree_oak_fall.glb", "up": "y", "height_m": 6}],
+    {"name": "teapot", "file": ")" +
+         data + R"(/models_scans/teapot.obj", "up": "y", "height_m": 4},
+    {"name": "tree", "file": ")" +
+         data + R"(/models_kenney_nature/tree_oak_fall.glb", "up": "y", "height_m": 6}],
   "scatter": [{"model": "teapot", "count": 6}, {"model": "tree", "count": 6}],
   "scatter_defaults": {"seed": 3, "region": [-280, -270, -200, -150], "max_slope_deg": 45, "min_spacing_m": 6}})";
 }
@@ -27,11 +29,14 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
   tstest::TempDir dir;
   std::ofstream(dir / "scene.json") << small_scene(data);
-  const std::string args = "bench hybrid --scene " + (dir / "scene.json") +
-                           " --size 160x90 --frames 10 --score-every 2 --target-ms 40 --table-sizes 64"
-                           " --table-angle-step 120 --relief-resolutions 16,32 --octahedral-resolutions 16"
-                           " --terrain-quads 16 --cache " + (dir / "cache");
-  const tstest::CliResult r = tstest::run_cli(args + " --json " + (dir / "h.json") + " --out " + (dir / "h"));
+  const std::string args =
+      "bench hybrid --scene " + (dir / "scene.json") +
+      " --size 160x90 --frames 10 --score-every 2 --target-ms 40 --table-sizes 64"
+      " --table-angle-step 120 --relief-resolutions 16,32 --octahedral-resolutions 16"
+      " --terrain-quads 16 --cache " +
+      (dir / "cache");
+  const tstest::CliResult r =
+      tstest::run_cli(args + " --json " + (dir / "h.json") + " --out " + (dir / "h"));
   ASSERT_EQ(r.status, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "h.json"));
   for (const char* k : {"target_ms", "size", "scenarios", "full_triangles_max", "selection"})
@@ -64,10 +69,13 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
 
 TEST(BenchHybrid, BadInputExitsTwoWithoutOutput) {
   tstest::TempDir dir;
-  std::ofstream(dir / "path.json") << R"({"keyframes": [{"t": 0, "position": [0, 0, 50], "yaw_deg": 0},
+  std::ofstream(dir / "path.json")
+      << R"({"keyframes": [{"t": 0, "position": [0, 0, 50], "yaw_deg": 0},
     {"t": 2, "position": [10, 0, 50], "yaw_deg": 0}], "checkpoints": [{"name": "A", "t": 5}]})";
-  for (const std::string& bad : std::vector<std::string>{"--target-ms 0", "--path " + (dir / "path.json"), "--size 0x0"}) {
-    const tstest::CliResult r = tstest::run_cli("bench hybrid --frames 4 " + bad + " --out " + (dir / "o"));
+  for (const std::string& bad :
+       std::vector<std::string>{"--target-ms 0", "--path " + (dir / "path.json"), "--size 0x0"}) {
+    const tstest::CliResult r =
+        tstest::run_cli("bench hybrid --frames 4 " + bad + " --out " + (dir / "o"));
     EXPECT_EQ(r.status, 2) << bad << ": " << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "o")) << bad;
   }

@@ -41,8 +41,12 @@ TEST(BudgetController, StepChangeReturnsWithinTenPercentWithoutOscillating) {
     int settled = -1;
     for (int f = step; f < step + 40; ++f) {
       bool all_in = true;
-      for (int g = f; g < step + 40; ++g) all_in = all_in && std::abs(ms[g] - target) <= 0.1 * target;
-      if (all_in) { settled = f - step; break; }
+      for (int g = f; g < step + 40; ++g)
+        all_in = all_in && std::abs(ms[g] - target) <= 0.1 * target;
+      if (all_in) {
+        settled = f - step;
+        break;
+      }
     }
     EXPECT_GE(settled, 0) << "step at " << step;
     EXPECT_LE(settled, 4) << "step at " << step;

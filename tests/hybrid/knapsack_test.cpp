@@ -27,7 +27,8 @@ TEST(Knapsack, OptimalMatchesBruteForceAndGreedyNeverBeatsIt) {
   for (unsigned seed = 1; seed <= 300; ++seed) {
     const auto items = random_items(6, 4, seed);
     std::mt19937 rng(seed + 1000);
-    const double budget = total_cheapest(items) + std::uniform_real_distribution<double>(0, 15)(rng);
+    const double budget =
+        total_cheapest(items) + std::uniform_real_distribution<double>(0, 15)(rng);
     const KnapsackSolution brute = brute_force_knapsack(items, budget);
     const KnapsackSolution opt = optimal_knapsack(items, budget);
     const KnapsackSolution greedy = greedy_knapsack(items, budget);
@@ -87,7 +88,9 @@ TEST(Knapsack, ReportsTimeAt400Instances) {
     const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < 20; ++k)
       (void)(which[0] == 'g' ? greedy_knapsack(items, budget) : optimal_knapsack(items, budget));
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / 20;
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() /
+        20;
     std::printf("%s: %.3f ms per solve (400 items x 17 choices)\n", which, ms);
   }
 }

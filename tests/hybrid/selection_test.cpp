@@ -16,8 +16,12 @@ InstanceOptions make_instance(int id, double size_px) {
   InstanceOptions inst{id, size_px, size_px * size_px / (640.0 * 480.0), {}};
   for (int level = 0; level < 4; ++level) {
     const long long tris = 8000 >> (2 * level);
-    inst.options.push_back({{ObjectKind::kMesh, level, 64, 12}, 0.002 + tris * 1e-4, 1.0 - 0.03 * level, 100 - 8.0 * level,
-                            tris, level * 0.6});
+    inst.options.push_back({{ObjectKind::kMesh, level, 64, 12},
+                            0.002 + tris * 1e-4,
+                            1.0 - 0.03 * level,
+                            100 - 8.0 * level,
+                            tris,
+                            level * 0.6});
   }
   inst.options.push_back({{ObjectKind::kRelief, 0, 64, 12}, 0.05, 0.93, 30, 12, 0});
   inst.options.push_back({{ObjectKind::kRelief, 0, 128, 12}, 0.08, 0.96, 33, 12, 0});
@@ -52,12 +56,15 @@ TEST(Selection, ZeroBudgetTakesTheCheapestInfiniteTheBest) {
 
 TEST(Selection, PolicyShapes) {
   const auto instances = scene(30);
-  const FrameSelection st = select_representations(SelectionPolicy::kStatic, instances, 0.0, {.static_error_px = 1.0});
+  const FrameSelection st =
+      select_representations(SelectionPolicy::kStatic, instances, 0.0, {.static_error_px = 1.0});
   for (std::size_t i = 0; i < instances.size(); ++i)
-    EXPECT_EQ(instances[i].options[std::size_t(st.option[i])].rep.level, 1);  // 0.6 px <= 1 < 1.2 px
+    EXPECT_EQ(instances[i].options[std::size_t(st.option[i])].rep.level,
+              1);  // 0.6 px <= 1 < 1.2 px
   const FrameSelection ibr = select_representations(SelectionPolicy::kImpostorOnly, instances, 0.0);
   for (std::size_t i = 0; i < instances.size(); ++i)
-    EXPECT_EQ(instances[i].options[std::size_t(ibr.option[i])].rep.resolution, 128);  // first reaching 0.95
+    EXPECT_EQ(instances[i].options[std::size_t(ibr.option[i])].rep.resolution,
+              128);  // first reaching 0.95
   PolicyOptions po;
   po.max_impostor_resolution = 64;  // 128 is over the limit: meshes, on the budget left
   const FrameSelection paper = select_representations(SelectionPolicy::kPaper, instances, 3.0, po);

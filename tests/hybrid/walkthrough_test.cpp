@@ -7,7 +7,8 @@
 namespace terrasprite {
 namespace {
 
-constexpr const char* kPath = R"({"keyframes": [{"t": 1, "position": [0, 0, 5]}, {"t": 11, "position": [9, 0, 5]}],
+constexpr const char* kPath =
+    R"({"keyframes": [{"t": 1, "position": [0, 0, 5]}, {"t": 11, "position": [9, 0, 5]}],
   "checkpoints": [{"name": "A", "t": 1}, {"name": "B", "t": 6}, {"name": "C", "t": 11}]})";
 
 TEST(Walkthrough, CheckpointsLandOnTheirFrames) {
@@ -20,10 +21,11 @@ TEST(Walkthrough, CheckpointsLandOnTheirFrames) {
 }
 
 TEST(Walkthrough, BadCheckpointsNameTheFile) {
-  for (const char* bad : {R"({"keyframes": [{"t": 0}, {"t": 1}], "checkpoints": [{"t": 0.5}]})",
-                          R"({"keyframes": [{"t": 0}, {"t": 1}], "checkpoints": [{"name": "A", "t": 2}]})",
-                          R"({"keyframes": [{"t": 0}, {"t": 1}], "checkpoints": [{"name": "A", "t": "x"}]})",
-                          R"({"keyframes": [{"t": 0}, {"t": 1}], "checkpoints": 3})"}) {
+  for (const char* bad :
+       {R"({"keyframes": [{"t": 0}, {"t": 1}], "checkpoints": [{"t": 0.5}]})",
+        R"({"keyframes": [{"t": 0}, {"t": 1}], "checkpoints": [{"name": "A", "t": 2}]})",
+        R"({"keyframes": [{"t": 0}, {"t": 1}], "checkpoints": [{"name": "A", "t": "x"}]})",
+        R"({"keyframes": [{"t": 0}, {"t": 1}], "checkpoints": 3})"}) {
     try {
       checkpoints_of(bad, "p.json", 5);
       ADD_FAILURE() << bad;

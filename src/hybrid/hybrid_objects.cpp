@@ -105,6 +105,7 @@ long long HybridObjects::draw(const Camera& camera) {
   for (std::size_t m = 0; m < s.set.model_count(); ++m) {
     const Model& model = s.set.model(m).model();
     const auto instances = s.set.instances(m);
+    const std::size_t first = frame.size();
     for (std::size_t i = 0; i < instances.size(); ++i, ++id) {
       const InstanceView v = view_instance(camera, o.height, instances[i],
                                            glm::dvec3(model.center()), model.bounding_radius());
@@ -130,6 +131,13 @@ long long HybridObjects::draw(const Camera& camera) {
       frame.push_back(std::move(inst));
       where.push_back({m, i});
     }
+    // A draw call per (model, representation) the knapsack cannot see as a
+    // fixed cost: each visible instance of the model carries its share of it
+    // (at most one call per representation for all of them).
+    const double visible = double(frame.size() - first);
+    for (std::size_t k = first; k < frame.size(); ++k)
+      for (RepresentationOption& opt : frame[k].options)
+        opt.cost_ms += s.cost.terms(opt.rep.kind).per_draw_ms / visible;
   }
   st.visible = int(frame.size());
   const auto t1 = std::chrono::steady_clock::now();

@@ -15,5 +15,7 @@ void add_bench_lodsprite(CLI::App& bench);
 void add_bench_warp(CLI::App& bench);
 /// bench stream: a flythrough over a tiled terrain streamed from disk vs in memory.
 void add_bench_stream(CLI::App& bench);
+/// bench hybrid: objects under a frame-time budget, the hybrid-objects walkthrough.
+void add_bench_hybrid(CLI::App& bench);
 
 }  // namespace terrasprite::cli

@@ -13,6 +13,7 @@ void add_bench(CLI::App& app) {
   add_bench_lodsprite(*bench);
   add_bench_warp(*bench);
   add_bench_stream(*bench);
+  add_bench_hybrid(*bench);
 }
 
 }  // namespace terrasprite::cli

@@ -99,16 +99,6 @@ struct TableArgs {
   bool no_cache = false;
 };
 
-std::vector<int> int_list(const std::string& text, const char* option) {
-  std::vector<int> out;
-  for (double v : parse_list(text, option)) {
-    if (v != std::floor(v) || v <= 0)
-      throw InputError(fmt::format("{}: {} is not a positive whole number", option, v));
-    out.push_back(int(v));
-  }
-  return out;
-}
-
 TableOptions table_options(const TableArgs& a) {
   TableOptions o;
   o.kinds.clear();
@@ -124,33 +114,6 @@ TableOptions table_options(const TableArgs& a) {
   if (o.views < 2 || o.views > 32)
     throw InputError(fmt::format("--views: {} is outside 2..32", o.views));
   return o;
-}
-
-// The cached table for `key`, if one is there and readable.
-std::optional<QualityTable> read_cache(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) return std::nullopt;
-  try {
-    return table_from_json(nlohmann::json::parse(in));
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "warning: ignoring unreadable cache file {}: {}\n", file.string(), e.what());
-    return std::nullopt;
-  }
-}
-
-void write_cache(const std::filesystem::path& file, const nlohmann::json& j) {
-  std::error_code ec;
-  std::filesystem::create_directories(file.parent_path(), ec);
-  const std::filesystem::path tmp = file.string() + ".tmp";
-  {
-    std::ofstream f(tmp);
-    f << j.dump();
-    if (!f) {
-      fmt::print(stderr, "warning: cannot write the cache file {}\n", file.string());
-      return;
-    }
-  }
-  std::filesystem::rename(tmp, file, ec);
 }
 
 QualityTable measure(const Model& model, const TableOptions& o) {
@@ -187,14 +150,12 @@ void add_objects_table(CLI::App& objects) {
     check_outputs(out_dir, {a->json});
     const Model model = load_model(a->model.file, mo);
     OutputDir out(out_dir, output_policy());
-    const std::filesystem::path cache_file =
-        std::filesystem::path(a->cache.empty() ? default_cache_dir() : a->cache) /
-        (stem + "-" + table_cache_key(a->model.file, mo, o) + ".json");
-    std::optional<QualityTable> t = a->no_cache ? std::nullopt : read_cache(cache_file);
+    const std::filesystem::path cache_file = table_cache_file(a->cache, a->model.file, mo, o);
+    std::optional<QualityTable> t = a->no_cache ? std::nullopt : read_table_cache(cache_file);
     const bool cached = t.has_value();
     if (!cached) t = measure(model, o);
     nlohmann::json j = table_json(*t, o);
-    if (!cached && !a->no_cache) write_cache(cache_file, j);
+    if (!cached && !a->no_cache) write_table_cache(cache_file, j);
     j["cached"] = cached;
     write_objects_report(*t, o, out);
     write_json(j, out.file("table.json"));
@@ -209,6 +170,17 @@ void add_objects_table(CLI::App& objects) {
 }
 
 }  // namespace
+
+std::vector<int> int_list(const std::string& text, const char* option) {
+  std::vector<int> out;
+  for (double v : parse_list(text, option)) {
+    if (v != std::floor(v) || v <= 0)
+      throw InputError(fmt::format("{}: {} is not a positive whole number", option, v));
+    out.push_back(int(v));
+  }
+  return out;
+}
+
 
 void add_objects_scene(CLI::App& objects);  // objects_scene.cpp
 

@@ -2,8 +2,11 @@
 // `objects table`: the measured quality table of one model, its on-disk
 // cache, its JSON and its report (plots of the paper's Figures 1-3, Table 1).
 #pragma once
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "terrasprite/model.h"
 #include "terrasprite/output_dir.h"
@@ -24,10 +27,21 @@ std::string table_cache_key(const std::string& model_file, const ModelOptions& m
 /// The cache directory: $TERRASPRITE_CACHE, else $XDG_CACHE_HOME/terrasprite,
 /// else ~/.cache/terrasprite; "objects" below it.
 std::string default_cache_dir();
+/// The cache file of a model's table in `cache_dir` (empty: default_cache_dir()).
+std::filesystem::path table_cache_file(const std::string& cache_dir, const std::string& model_file,
+                                       const ModelOptions& m, const TableOptions& o);
+/// The cached table in `file`, if one is there and readable (an unreadable
+/// one is reported on stderr and ignored).
+std::optional<QualityTable> read_table_cache(const std::filesystem::path& file);
+/// Stores `j` (table_json) atomically; a failure is a warning, not an error.
+void write_table_cache(const std::filesystem::path& file, const nlohmann::json& j);
 
 /// Writes the .dat files, plots (gnuplot; skipped with a note when missing),
 /// and table1.md into `out`.
 void write_objects_report(const QualityTable& t, const TableOptions& o, OutputDir& out);
+
+/// A comma-separated list of positive whole numbers (`option` names it in errors).
+std::vector<int> int_list(const std::string& text, const char* option);
 
 /// Table 1 as Markdown text (also printed by the command).
 std::string table1_markdown(const QualityTable& t, const TableOptions& o);

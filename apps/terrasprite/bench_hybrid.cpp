@@ -1,0 +1,439 @@
+// SPDX-License-Identifier: MIT
+// terrasprite bench hybrid: the walkthrough of Jehaes, Lamotte & Tack (GRAPP
+// 2008, section 4) through the object scene, five scenarios interleaved frame
+// by frame in one experiment: full geometry (the reference), relief impostors
+// only, LOD meshes only, the paper's mixed policy, and optimal selection over
+// relief, octahedral and meshes.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+
+#include "bench_commands.h"
+#include "cli_common.h"
+#include "hybrid_bench.h"
+#include "objects_table.h"
+#include "terrasprite/camera_path.h"
+#include "terrasprite/error.h"
+#include "terrasprite/gl_context.h"
+#include "terrasprite/hybrid_renderer.h"
+#include "terrasprite/lod_chain.h"
+#include "terrasprite/quality.h"
+#include "terrasprite/walkthrough_path.h"
+
+namespace terrasprite::cli {
+namespace {
+
+struct HybridArgs {
+  TerrainOptions terrain;
+  std::string scene, models_dir = "../shared/data", size = "1280x720", path, json, cache;
+  std::string out = "out/bench_hybrid";
+  double target_ms = 400;
+  int frames = 160, score_every = 2, instances = 0, terrain_quads = 64;
+  std::string table_sizes = "200,50", relief_resolutions = "32,64,128,256",
+              octahedral_resolutions = "32,64,128";
+  double table_angle_step = 45;
+  std::string figure6 = "C";
+};
+
+/// Keeps `count` instances (0: all), drawn at random (seeded) so the model mix stays.
+void subsample(ObjectScene& scene, int count) {
+  if (count <= 0 || count >= int(scene.instances.size())) return;
+  std::mt19937 rng(11);
+  std::shuffle(scene.instances.begin(), scene.instances.end(), rng);
+  scene.instances.resize(std::size_t(count));
+}
+
+/// The two table samplings: relief and LOD levels, then octahedral. Throws
+/// InputError for a bad list (checked before any work).
+std::vector<TableOptions> table_options(const HybridArgs& a) {
+  struct Part {
+    std::vector<ObjectKind> kinds;
+    const std::string& resolutions;
+    const char* option;
+  };
+  const Part parts[] = {
+      {{ObjectKind::kMesh, ObjectKind::kRelief}, a.relief_resolutions, "--relief-resolutions"},
+      {{ObjectKind::kOctahedral}, a.octahedral_resolutions, "--octahedral-resolutions"}};
+  std::vector<TableOptions> out;
+  for (const auto& [kinds, res, option] : parts) {
+    TableOptions o;
+    o.kinds = kinds;
+    o.resolutions = int_list(res, option);
+    o.sizes_px = int_list(a.table_sizes, "--table-sizes");
+    o.angle_step_deg = a.table_angle_step;
+    for (int r : o.resolutions)
+      if (r < 16 || r > 512) throw InputError(fmt::format("{}: {} is outside 16..512", option, r));
+    for (int px : o.sizes_px)
+      if (px < 16 || px > 2048) throw InputError(fmt::format("--table-sizes: {} is outside 16..2048", px));
+    out.push_back(std::move(o));
+  }
+  return out;
+}
+
+/// Model i's table, each sampling from the cache or measured now (and cached).
+QualityTable model_table(ObjectSet& set, std::size_t i, const std::vector<TableOptions>& options,
+                         const std::string& cache) {
+  const SceneModel& sm = set.scene_model(i);
+  QualityTable merged;
+  for (const TableOptions& o : options) {
+    const auto file = table_cache_file(cache, sm.file, sm.options, o);
+    std::optional<QualityTable> t = read_table_cache(file);
+    if (!t) {
+      fmt::print(stderr, "measuring the quality table of {} ({})\n", sm.name,
+                 o.kinds.size() > 1 ? "pm, relief" : "octahedral");
+      Progress progress("table " + sm.name);
+      t = measure_quality_table(set.model(i), o, [&](int d, int n) { progress(d, n); });
+      write_table_cache(file, table_json(*t, o));
+    }
+    merged.model = t->model;
+    merged.triangles = t->triangles;
+    for (auto& r : t->representations) merged.representations.push_back(std::move(r));
+  }
+  return merged;
+}
+
+/// The cost model's terms per kind, fitted to the tables' measured draws.
+DrawCostModel calibrated_cost(const std::vector<QualityTable>& tables) {
+  std::array<std::vector<DrawSample>, 3> samples;
+  for (const QualityTable& t : tables)
+    for (const RepresentationQuality& r : t.representations)
+      for (const SizeCost& c : r.cost)
+        samples[std::size_t(r.rep.kind)].push_back(
+            {1.0, 1.0, double(r.triangles), M_PI / 4 * c.size_px * c.size_px, c.ms_per_instance});
+  // The tables time one instance per draw; instanced, most of that constant
+  // is the draw call's.
+  DrawCostModel m;
+  for (int k = 0; k < 3; ++k) m.calibrate(ObjectKind(k), samples[std::size_t(k)], 0.9);
+  return m;
+}
+
+std::vector<HybridScenario> scenarios() {
+  using C = HybridScenario::Control;
+  return {
+      {"full", {ObjectKind::kMesh}, SelectionPolicy::kStatic, true, C::kNone},
+      {"ibr", {ObjectKind::kRelief}, SelectionPolicy::kImpostorOnly, false, C::kNone},
+      {"pm", {ObjectKind::kMesh}, SelectionPolicy::kGreedy, false, C::kBudgetPi},
+      {"mixed",
+       {ObjectKind::kMesh, ObjectKind::kRelief},
+       SelectionPolicy::kPaper,
+       false,
+       C::kQualityStep},
+      {"mixed-optimal",
+       {ObjectKind::kMesh, ObjectKind::kRelief, ObjectKind::kOctahedral},
+       SelectionPolicy::kOptimal,
+       false,
+       C::kBudgetPi},
+  };
+}
+
+/// Per-frame state the scorer shares with the frame callback: which frame
+/// this is, and where the terrain alone is (object pixels are those in front
+/// of it in either image).
+struct ScoringState {
+  int frame = -1;
+  std::vector<float> terrain_depth;
+  std::vector<int> flip_frames;
+};
+
+std::vector<std::uint8_t> object_mask(const Frame& ref, const Frame& test,
+                                      const std::vector<float>& terrain) {
+  std::vector<std::uint8_t> mask(terrain.size(), 0);
+  auto in_front = [](float d, float t) { return std::isfinite(d) && !(d >= t * 0.9995f - 1e-3f); };
+  for (std::size_t i = 0; i < mask.size(); ++i)
+    mask[i] = (i < ref.depth.size() && in_front(ref.depth[i], terrain[i])) ||
+              (i < test.depth.size() && in_front(test.depth[i], terrain[i]));
+  return mask;
+}
+
+Scorer hybrid_scorer(std::shared_ptr<ScoringState> state) {
+  return [state](const Frame& ref, const Frame& test) {
+    QualityScore s;
+    s.figures["ssim_objects"] = 1.0;
+    const bool flip = std::find(state->flip_frames.begin(), state->flip_frames.end(),
+                                state->frame) != state->flip_frames.end();
+    if (ref.color.rgba == test.color.rgba) {
+      s.flip = flip ? 0.0 : -1.0;
+      return s;
+    }
+    quality::SsimOptions so;
+    so.channels = false;
+    s.psnr = std::min(quality::psnr(ref.color.view(), test.color.view()).rgb, kPsnrCapDb);
+    s.ssim = quality::ssim(ref.color.view(), test.color.view(), so).ssim;
+    if (state->terrain_depth.size() == std::size_t(ref.width()) * ref.height()) {
+      const auto mask = object_mask(ref, test, state->terrain_depth);
+      if (std::find(mask.begin(), mask.end(), 1) != mask.end())
+        s.figures["ssim_objects"] =
+            quality::ssim(ref.color.view(), test.color.view(), so, mask).ssim;
+    }
+    s.flip = flip ? quality::flip(ref.color.view(), test.color.view()).mean : -1.0;
+    return s;
+  };
+}
+
+void annotate(const HybridObjects& objects, FrameResult& r) {
+  const HybridFrameStats& s = objects.last();
+  r.counters = {{"selection_ms", s.selection_ms},
+                {"policy_ms", s.policy_ms},
+                {"predicted_ms", s.predicted_ms},
+                {"budget_ms", s.budget_ms},
+                {"target_quality", s.target_quality},
+                {"expected_ssim", s.expected_ssim},
+                {"switches", s.switches},
+                {"visible", s.visible},
+                {"triangles_min", double(s.triangles_min)},
+                {"triangles_max", double(s.triangles_max)},
+                {"n_mesh", s.instances_by_kind[0]},
+                {"n_relief", s.instances_by_kind[1]},
+                {"n_octahedral", s.instances_by_kind[2]}};
+  if (s.objective_greedy >= 0) {
+    r.counters["objective_greedy"] = s.objective_greedy;
+    r.counters["objective_optimal"] = s.objective_optimal;
+  }
+}
+
+HybridScenarioResult summarise(const RendererRun& run, double target_ms,
+                               const std::vector<PathCheckpoint>& checkpoints) {
+  HybridScenarioResult s;
+  s.name = run.name;
+  s.frames = run.frames;
+  s.ms = run.ms();
+  int within = 0;
+  for (const FrameResult& f : run.frames) within += f.ms <= 1.1 * target_ms;
+  s.within_10pct = run.frames.empty() ? 0 : double(within) / double(run.frames.size());
+  const Summary q = run.quality("ssim"), qo = run.quality("ssim_objects");
+  s.mean_ssim = q.count ? q.mean : 1.0;
+  s.mean_ssim_objects = qo.count ? qo.mean : 1.0;
+  const Summary sw = run.counter("switches");
+  s.switches_per_frame = sw.count ? sw.mean : 0.0;
+  for (const PathCheckpoint& c : checkpoints) {
+    HybridCheckpoint hc{c.name, c.frame};
+    for (const FrameResult& f : run.frames)
+      if (f.frame == c.frame && f.quality) {
+        hc.ssim = f.quality->ssim;
+        hc.psnr = f.quality->psnr;
+        hc.flip = std::max(0.0, f.quality->flip);
+        const auto it = f.quality->figures.find("ssim_objects");
+        hc.ssim_objects = it != f.quality->figures.end() ? it->second : 1.0;
+      }
+    s.checkpoints.push_back(hc);
+  }
+  return s;
+}
+
+SelectionFigures selection_figures(const RendererRun& run) {
+  SelectionFigures f;
+  std::vector<double> ms;
+  double g = 0, o = 0;
+  for (const FrameResult& r : run.frames) {
+    ms.push_back(r.counters.at("selection_ms"));
+    const auto gi = r.counters.find("objective_greedy");
+    if (gi == r.counters.end()) continue;
+    const double og = gi->second, oo = r.counters.at("objective_optimal");
+    g += og;
+    o += oo;
+    const double gain = og > 0 ? (oo - og) / og : 0.0;
+    f.gain_mean += gain;
+    f.gain_max = std::max(f.gain_max, gain);
+    ++f.frames;
+  }
+  const Summary s = summarize(ms);
+  f.ms_per_frame = s.median;
+  f.ms_p95 = s.p95;
+  if (f.frames) {
+    f.objective_greedy = g / f.frames;
+    f.objective_optimal = o / f.frames;
+    f.gain_mean /= f.frames;
+  }
+  return f;
+}
+
+/// Checkpoints moved onto the nearest scored frame.
+std::vector<PathCheckpoint> snapped(std::vector<PathCheckpoint> cps, int score_every, int frames) {
+  for (PathCheckpoint& c : cps) {
+    c.frame = int(std::lround(double(c.frame) / score_every)) * score_every;
+    while (c.frame >= frames) c.frame -= score_every;
+    c.frame = std::max(0, c.frame);
+  }
+  return cps;
+}
+
+void run_bench(const HybridArgs& a) {
+  auto [w, h] = parse_size(a.size, "--size");
+  check_outputs(a.out, {a.json});
+  if (!(a.target_ms > 0)) throw InputError("--target-ms must be positive");
+  const std::vector<TableOptions> table_sampling = table_options(a);
+  const Terrain terrain = load_terrain_verbose(a.terrain);
+  check_lod_quads(a.terrain_quads, terrain.heights, "--terrain-quads");
+  ObjectScene scene = a.scene.empty() ? default_object_scene(a.models_dir, terrain.heights)
+                                      : load_object_scene(a.scene, terrain.heights);
+  subsample(scene, a.instances);
+  std::string path_text;
+  if (a.path.empty()) {
+    path_text = walkthrough_path_json(terrain.heights);
+  } else {
+    std::ifstream in(a.path);
+    if (!in) throw InputError(fmt::format("--path {}: cannot read the file", a.path));
+    std::stringstream ss;
+    ss << in.rdbuf();
+    path_text = ss.str();
+  }
+  const std::string path_name = a.path.empty() ? "the default walkthrough" : a.path;
+  std::vector<Camera> path =
+      path_from_json(path_text, path_name, terrain.heights, a.frames, double(w) / h);
+  const std::vector<PathCheckpoint> checkpoints =
+      snapped(checkpoints_of(path_text, path_name, a.frames), a.score_every, a.frames);
+  OutputDir out(a.out, output_policy());
+
+  GlContext gl;
+  Scene ground(terrain);
+  ground.prepare(a.terrain_quads);
+  ObjectSet set(scene);
+  std::vector<QualityTable> tables;
+  for (std::size_t i = 0; i < set.model_count(); ++i) tables.push_back(model_table(set, i, table_sampling, a.cache));
+  DrawCostModel cost = calibrated_cost(tables);
+
+  HybridBenchResult result;
+  result.gl_renderer = gl.renderer();
+  result.target_ms = a.target_ms;
+  result.width = w;
+  result.height = h;
+  result.instances = int(set.instance_count());
+  result.full_triangles_max = set.full_triangles();
+  result.score_every = a.score_every;
+
+  // The terrain alone: the cost model's fixed term, and the object mask.
+  HybridRenderer terrain_only(ground, nullptr, "terrain", w, h, a.terrain_quads);
+  {
+    std::vector<double> ms;
+    for (int k = 0; k < 6; ++k)
+      ms.push_back(terrain_only.draw(path[std::size_t(k * (path.size() - 1) / 5)]).ms);
+    result.terrain_ms = summarize(ms).median;
+    cost.set_frame_ms(result.terrain_ms);
+  }
+
+  HybridOptions ho;
+  ho.width = w;
+  ho.height = h;
+  ho.target_ms = a.target_ms;
+  std::vector<std::unique_ptr<HybridObjects>> objects;
+  std::vector<std::unique_ptr<HybridRenderer>> renderers;
+  for (const HybridScenario& sc : scenarios()) {
+    objects.push_back(std::make_unique<HybridObjects>(set, tables, cost, sc, ho));
+    objects.back()->prepare();
+    renderers.push_back(std::make_unique<HybridRenderer>(ground, objects.back().get(), sc.name, w,
+                                                         h, a.terrain_quads));
+  }
+
+  auto state = std::make_shared<ScoringState>();
+  for (const PathCheckpoint& c : checkpoints) state->flip_frames.push_back(c.frame);
+  const auto fig6 = std::find_if(checkpoints.begin(), checkpoints.end(),
+                                 [&](const PathCheckpoint& c) { return c.name == a.figure6; });
+  const int fig6_frame = fig6 != checkpoints.end() ? fig6->frame : -1;
+  result.figure6_checkpoint = fig6 != checkpoints.end() ? fig6->name : "";
+
+  Experiment experiment;
+  Participant ref{.renderer = renderers[0].get(), .name = "full", .read = ReadBack::kColorDepth};
+  ref.annotate = [o = objects[0].get()](const Frame&, FrameResult& r) { annotate(*o, r); };
+  experiment.set_reference(ref);
+  experiment.add({.renderer = &terrain_only,
+                  .name = "terrain",
+                  .every = a.score_every,
+                  .read = ReadBack::kDepth});
+  for (std::size_t k = 1; k < renderers.size(); ++k) {
+    Participant p{.renderer = renderers[k].get(),
+                  .name = renderers[k]->name(),
+                  .score = true,
+                  .read = ReadBack::kDepth};
+    p.annotate = [o = objects[k].get()](const Frame&, FrameResult& r) { annotate(*o, r); };
+    experiment.add(p);
+  }
+  Progress progress("bench hybrid");
+  ExperimentOptions eo;
+  eo.score_every = a.score_every;
+  eo.scorer = hybrid_scorer(state);
+  eo.progress = std::ref(progress);
+  eo.on_frame = [&](int frame, const std::string& name, const Frame& f) {
+    state->frame = frame;
+    if (name == "terrain") state->terrain_depth = f.depth;
+    if (frame == fig6_frame && name != "terrain") result.figure6.push_back({name, f.color});
+  };
+  PathSource cameras(std::move(path));
+  const ExperimentResult r = experiment.run(cameras, eo);
+  result.frames = r.frames;
+  for (const HybridScenario& sc : scenarios())
+    result.scenarios.push_back(summarise(r.run(sc.name), a.target_ms, checkpoints));
+  result.selection = selection_figures(r.run("mixed-optimal"));
+
+  const nlohmann::json j = hybrid_json(result);
+  write_hybrid_report(result, out);
+  write_json(j, out.file("hybrid.json"));
+  if (!a.json.empty()) write_json(j, a.json);
+  out.commit();
+  fmt::print("{}\n", table2_markdown(result));
+  for (const HybridScenarioResult& s : result.scenarios)
+    fmt::print(
+        "{:14} median {:7.1f} ms  p95 {:7.1f} ms  p99 {:7.1f} ms  (target {:.0f} ms, {:.0f}% "
+        "within +10%)  "
+        "mean SSIM {:.4f}, objects {:.4f}, {:.2f} switches/frame\n",
+        s.name, s.ms.median, s.ms.p95, s.ms.p99, a.target_ms, 100 * s.within_10pct, s.mean_ssim,
+        s.mean_ssim_objects, s.switches_per_frame);
+  fmt::print(
+      "selection (optimal): {:.3f} ms/frame median, p95 {:.3f}; objective optimal {:.5f} vs greedy "
+      "{:.5f} "
+      "(mean gain {:.3f}%, max {:.3f}%)\n",
+      result.selection.ms_per_frame, result.selection.ms_p95, result.selection.objective_optimal,
+      result.selection.objective_greedy, 100 * result.selection.gain_mean,
+      100 * result.selection.gain_max);
+}
+
+}  // namespace
+
+void add_bench_hybrid(CLI::App& bench) {
+  auto* cmd = bench.add_subcommand(
+      "hybrid", "objects under a frame-time budget: the hybrid walkthrough (Figures 4-6, Table 2)");
+  auto a = std::make_shared<HybridArgs>();
+  add_terrain_options(*cmd, a->terrain);
+  cmd->add_option("--scene", a->scene,
+                  "scene file (JSON); default: the built-in 400-instance scene");
+  cmd->add_option("--models-dir", a->models_dir, "where the default scene's models are")
+      ->capture_default_str();
+  cmd->add_option("--instances", a->instances, "keep this many instances, drawn at random (0: all)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000000));
+  cmd->add_option("--target-ms", a->target_ms, "target frame time, ms")->capture_default_str();
+  cmd->add_option("--size", a->size, "image size WxH")->capture_default_str();
+  cmd->add_option("--frames", a->frames, "frames along the path")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 100000));
+  cmd->add_option("--score-every", a->score_every, "draw full geometry and score every n-th frame")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  cmd->add_option("--path", a->path,
+                  "JSON path file (with optional checkpoints); default: the walkthrough");
+  cmd->add_option("--terrain-quads", a->terrain_quads, "terrain: coarse mesh quads per side")
+      ->capture_default_str();
+  cmd->add_option("--table-sizes", a->table_sizes, "quality tables: on-screen sizes, px")
+      ->capture_default_str();
+  cmd->add_option("--table-angle-step", a->table_angle_step,
+                  "quality tables: degrees between views")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 180.0));
+  cmd->add_option("--relief-resolutions", a->relief_resolutions, "relief impostor resolutions")
+      ->capture_default_str();
+  cmd->add_option("--octahedral-resolutions", a->octahedral_resolutions,
+                  "octahedral impostor resolutions")
+      ->capture_default_str();
+  cmd->add_option("--figure6", a->figure6, "checkpoint shown in Figure 6")->capture_default_str();
+  cmd->add_option("--cache", a->cache,
+                  "quality-table cache directory (default: ~/.cache/terrasprite/objects)");
+  cmd->add_option("--json", a->json, "also write the JSON here");
+  cmd->add_option("--out", a->out, "output directory (JSON, figures, index.html)")
+      ->capture_default_str();
+  cmd->callback([a] { run_bench(*a); });
+}
+
+}  // namespace terrasprite::cli

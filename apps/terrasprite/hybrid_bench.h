@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: MIT
+// `bench hybrid`: the walkthrough's typed results, and the report written
+// from them (JSON, the paper's Figures 4-6 and Table 2, index.html).
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "terrasprite/experiment.h"
+#include "terrasprite/image.h"
+#include "terrasprite/output_dir.h"
+#include "terrasprite/stats.h"
+
+namespace terrasprite::cli {
+
+struct HybridCheckpoint {
+  std::string name;
+  int frame = 0;
+  double ssim = 1, ssim_objects = 1, psnr = kPsnrCapDb, flip = 0;
+};
+
+struct HybridScenarioResult {
+  std::string name;
+  Summary ms;               ///< frame time, terrain included
+  double within_10pct = 0;  ///< fraction of frames at or under target + 10%
+  double mean_ssim = 1, mean_ssim_objects = 1;
+  double switches_per_frame = 0;
+  std::vector<HybridCheckpoint> checkpoints;
+  std::vector<FrameResult> frames;
+};
+
+struct SelectionFigures {
+  std::string policy = "optimal";
+  double ms_per_frame = 0, ms_p95 = 0;  ///< selection (view, options, policy, hysteresis)
+  double objective_greedy = 0, objective_optimal = 0;  ///< means over the same frames
+  double gain_mean = 0, gain_max = 0;  ///< relative gain of optimal over greedy per frame
+  int frames = 0;
+};
+
+struct HybridBenchResult {
+  std::string gl_renderer;
+  double target_ms = 0;
+  int width = 0, height = 0;
+  int frames = 0, instances = 0, score_every = 1;
+  double terrain_ms = 0;  ///< terrain alone, median
+  long long full_triangles_max = 0;
+  std::vector<HybridScenarioResult> scenarios;  ///< full first
+  SelectionFigures selection;
+  std::string figure6_checkpoint;
+  /// Figure 6: the images at that checkpoint, full first, by scenario.
+  std::vector<std::pair<std::string, Image>> figure6;
+};
+
+nlohmann::json hybrid_json(const HybridBenchResult& r);
+/// Writes the .dat files, figures (gnuplot; a failure is a note), the Figure
+/// 6 images and index.html into `out`.
+void write_hybrid_report(const HybridBenchResult& r, OutputDir& out);
+/// Table 2 as Markdown (also printed by the command).
+std::string table2_markdown(const HybridBenchResult& r);
+
+}  // namespace terrasprite::cli

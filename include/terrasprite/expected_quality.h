@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+// Expected image quality of a representation seen from a given direction at
+// a given on-screen size, interpolated from its measured quality table
+// (QualityTable samples over phi x theta x size_px).
+#pragma once
+#include <array>
+#include <utility>
+#include <vector>
+
+#include "terrasprite/quality_table.h"
+
+namespace terrasprite {
+
+struct ExpectedQuality {
+  double ssim = 1.0;
+  double psnr = 100.0;  ///< dB, capped at 100 (identical images)
+};
+
+/// Interpolates one representation's samples: over the view direction by
+/// inverse angular distance to the (up to) four nearest samples of each
+/// measured size, then linearly in log2(size) between the two sizes around
+/// the asked one (sizes outside the measured range clamp to the nearest).
+/// theta beyond the sampled range (a hemisphere table seen from below)
+/// clamps to the largest sampled theta.
+class QualityInterpolator {
+ public:
+  /// Copies the samples. A representation without samples (or a full-detail
+  /// mesh) reads as perfect quality.
+  explicit QualityInterpolator(const RepresentationQuality& rep);
+  /// phi in degrees (any range), theta in degrees from straight above, size
+  /// in pixels (> 0).
+  ExpectedQuality at(double phi_deg, double theta_deg, double size_px) const;
+
+  /// Where a view falls in the table: which samples, with which weights.
+  /// Computed once per instance and view, applied to every representation
+  /// measured on the same views and sizes (same_layout).
+  struct Weights {
+    int slices = 0;  ///< 0: no samples (perfect quality)
+    std::array<int, 2> slice{0, 0};
+    double t = 0;  ///< blend of slice[1] over slice[0]
+    std::array<std::array<std::pair<int, double>, 4>, 2>
+        nearest{};  ///< (sample, weight), weights sum to 1
+  };
+  Weights weights(double phi_deg, double theta_deg, double size_px) const;
+  ExpectedQuality at(const Weights& w) const;
+  /// Whether `other` has the same sizes and views in the same order.
+  bool same_layout(const QualityInterpolator& other) const;
+
+ private:
+  struct Direction {
+    double x, y, z;  ///< unit view direction of the sample
+    ExpectedQuality q;
+  };
+  struct SizeSlice {
+    double size_px = 0;
+    std::vector<Direction> samples;
+  };
+  std::array<std::pair<int, double>, 4> nearest(const SizeSlice& slice, double x, double y,
+                                                double z) const;
+  std::vector<SizeSlice> slices_;  ///< rising size
+  double theta_max_ = 180.0;
+};
+
+}  // namespace terrasprite

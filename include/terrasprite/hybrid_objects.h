@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: MIT
+// A scene's objects drawn each frame with representations chosen under a
+// frame-time budget (Jehaes, Lamotte & Tack, GRAPP 2008, and past it): every
+// visible instance's options come from its model's quality tables and the
+// cost model, a policy picks, hysteresis steadies the picks, a controller
+// holds the target frame time from measured frames.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "terrasprite/budget_controller.h"
+#include "terrasprite/draw_cost_model.h"
+#include "terrasprite/object_set.h"
+#include "terrasprite/quality_table.h"
+#include "terrasprite/representation_selection.h"
+#include "terrasprite/selection_hysteresis.h"
+
+namespace terrasprite {
+
+/// How one scenario draws the objects.
+struct HybridScenario {
+  std::string name;
+  /// Representations offered (a model's table rows of these kinds).
+  std::vector<ObjectKind> kinds{ObjectKind::kMesh};
+  SelectionPolicy policy = SelectionPolicy::kStatic;
+  /// Every visible instance at full geometry (the reference), ignoring the rest.
+  bool full = false;
+  enum class Control {
+    kNone,         ///< unbudgeted (full, ibr) or a fixed budget
+    kQualityStep,  ///< the paper's: target quality up/down with the frame time
+    kBudgetPi,     ///< cost-model prediction corrected by measured time (PI)
+  } control = Control::kNone;
+};
+
+struct HybridOptions {
+  int width = 1280, height = 720;
+  double target_ms = 100;
+  PolicyOptions policy;
+  HysteresisOptions hysteresis;
+  bool use_hysteresis = true;
+  BudgetControllerOptions controller;  ///< target_ms is set from target_ms above
+  QualityStepOptions quality_step;     ///< likewise
+};
+
+/// What the last frame's selection did.
+struct HybridFrameStats {
+  int visible = 0;
+  double selection_ms = 0;    ///< view, options and policy, CPU wall time
+  double policy_ms = 0;       ///< of which the policy and hysteresis
+  double predicted_ms = 0;    ///< cost model: terrain term + chosen objects
+  double budget_ms = 0;       ///< whole-frame budget handed to the policy (predicted ms)
+  double target_quality = 0;  ///< the paper controller's SSIM target (others: the fixed one)
+  double benefit = 0;         ///< sum of weight x expected SSIM
+  double expected_ssim = 0;   ///< weight-averaged expected SSIM of the visible instances
+  double objective_greedy = -1, objective_optimal = -1;
+  int switches = 0;
+  long long triangles = 0, triangles_min = 0, triangles_max = 0;  ///< chosen, cheapest, full
+  std::array<int, 3> instances_by_kind{};
+};
+
+class HybridObjects : public SceneObjects {
+ public:
+  /// `tables[i]` is model i's table (its representations; rows of kinds the
+  /// scenario does not offer are ignored). `cost` is copied and refit online
+  /// from feedback(). The set must outlive this.
+  HybridObjects(ObjectSet& set, const std::vector<QualityTable>& tables, const DrawCostModel& cost,
+                HybridScenario scenario, const HybridOptions& options);
+  ~HybridObjects() override;
+
+  /// Selects and draws every visible instance; returns the triangles.
+  long long draw(const Camera& camera) override;
+  /// The measured time of the whole frame just drawn (terrain included).
+  void feedback(double measured_ms);
+  const HybridFrameStats& last() const { return last_; }
+  const HybridScenario& scenario() const { return scenario_; }
+  /// Builds every impostor the scenario may draw (before timing anything).
+  void prepare();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  HybridScenario scenario_;
+  HybridFrameStats last_;
+};
+
+}  // namespace terrasprite

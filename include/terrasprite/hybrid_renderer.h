@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: MIT
+// One hybrid scenario as a Renderer: the terrain as a fixed coarse mesh with
+// the hand-filtered drape (the same in every scenario, counted in the frame
+// time), then the scenario's objects; the measured frame time is fed back to
+// the objects' controller after each draw.
+#pragma once
+#include <memory>
+#include <string>
+
+#include "terrasprite/hybrid_objects.h"
+#include "terrasprite/renderer.h"
+#include "terrasprite/scene.h"
+
+namespace terrasprite {
+
+class HybridRenderer : public Renderer {
+ public:
+  /// `objects` may be null (terrain alone). `scene`, `objects` must outlive
+  /// it. Needs a current GL context. Throws InputError for a bad `quads`.
+  HybridRenderer(Scene& scene, HybridObjects* objects, std::string name, int width, int height,
+                 int terrain_quads = 64);
+  ~HybridRenderer() override;
+  Frame draw(const Camera& camera) override;
+  void read_back(Frame& frame, ReadBack what) override;
+  std::string name() const override { return name_; }
+
+ private:
+  Scene& scene_;
+  HybridObjects* objects_;
+  std::string name_;
+  std::unique_ptr<Renderer> terrain_;
+};
+
+}  // namespace terrasprite

@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: MIT
+// How a camera sees one object instance: inside the view frustum or not,
+// its on-screen size and the viewing angles in the model's own frame (the
+// quality tables' phi and theta).
+#pragma once
+#include <glm/glm.hpp>
+
+#include "terrasprite/camera.h"
+#include "terrasprite/object_renderer.h"
+
+namespace terrasprite {
+
+struct InstanceView {
+  bool visible = false;   ///< bounding sphere touches the view frustum
+  double distance_m = 0;  ///< camera to sphere centre
+  /// Diameter of the bounding sphere on screen, pixels (the tables' size_px);
+  /// the full image height when the camera is inside the sphere.
+  double size_px = 0;
+  double phi_deg = 0;    ///< azimuth of the camera around the model, its own frame
+  double theta_deg = 0;  ///< 0: camera straight above the model, 90: level with it
+};
+
+/// `center_m` and `radius_m` are the model's bounding sphere in its own
+/// metres (Model::center, Model::bounding_radius); the instance's heading
+/// and scale apply. `height_px`: image height.
+InstanceView view_instance(const Camera& camera, int height_px, const ObjectInstance& instance,
+                           glm::dvec3 center_m, double radius_m);
+
+}  // namespace terrasprite

@@ -1,0 +1,208 @@
+// SPDX-License-Identifier: MIT
+// Per frame: view each instance, list its options (expected quality from the
+// tables, expected cost from the cost model), choose, steady the choice,
+// draw each (model, representation) group with one instanced draw.
+#include "terrasprite/hybrid_objects.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "terrasprite/expected_quality.h"
+#include "terrasprite/instance_view.h"
+
+namespace terrasprite {
+namespace {
+
+struct Offer {
+  Representation rep;
+  QualityInterpolator quality;
+  long long triangles = 0;
+  double error_m = 0;
+  bool shared_layout = false;  ///< measured on the model's common views: reuse its weights
+};
+
+bool offered(const HybridScenario& s, ObjectKind k) {
+  return std::find(s.kinds.begin(), s.kinds.end(), k) != s.kinds.end();
+}
+
+using GroupKey = std::tuple<std::size_t, int, int, int>;  // model, kind, level, resolution
+
+}  // namespace
+
+struct HybridObjects::Impl {
+  ObjectSet& set;
+  DrawCostModel cost;
+  HybridOptions options;
+  std::vector<std::vector<Offer>> offers;  ///< per model
+  SelectionHysteresis hysteresis;
+  BudgetController controller;
+  QualityStepController quality_step;
+  FrameLoad load;  ///< of the last frame, for the cost model's refit
+
+  Impl(ObjectSet& s, const DrawCostModel& c, const HybridOptions& o)
+      : set(s),
+        cost(c),
+        options(o),
+        hysteresis(o.hysteresis),
+        controller(o.controller),
+        quality_step(o.quality_step) {}
+};
+
+HybridObjects::HybridObjects(ObjectSet& set, const std::vector<QualityTable>& tables,
+                             const DrawCostModel& cost, HybridScenario scenario,
+                             const HybridOptions& options)
+    : scenario_(std::move(scenario)) {
+  HybridOptions o = options;
+  o.controller.target_ms = o.target_ms;
+  o.quality_step.target_ms = o.target_ms;
+  o.quality_step.start_quality = o.policy.target_ssim;
+  impl_ = std::make_unique<Impl>(set, cost, o);
+  impl_->offers.resize(set.model_count());
+  for (std::size_t m = 0; m < set.model_count(); ++m) {
+    GlModel& model = set.model(m);
+    const auto& chain = model.chain();
+    if (m < tables.size())
+      for (const RepresentationQuality& rq : tables[m].representations) {
+        if (!offered(scenario_, rq.rep.kind)) continue;
+        if (rq.rep.kind == ObjectKind::kMesh && rq.rep.level >= int(chain.size())) continue;
+        const double err =
+            rq.rep.kind == ObjectKind::kMesh ? chain[std::size_t(rq.rep.level)].error_m : 0.0;
+        impl_->offers[m].push_back({rq.rep, QualityInterpolator(rq), model.triangles(rq.rep), err});
+      }
+    // Full geometry is always on offer to meshes (and is the reference).
+    const bool has_full = std::any_of(
+        impl_->offers[m].begin(), impl_->offers[m].end(),
+        [](const Offer& f) { return f.rep.kind == ObjectKind::kMesh && f.rep.level == 0; });
+    if ((scenario_.full || offered(scenario_, ObjectKind::kMesh)) && !has_full)
+      impl_->offers[m].push_back({Representation{}, QualityInterpolator(RepresentationQuality{}),
+                                  model.triangles(Representation{}), 0.0});
+    for (Offer& f : impl_->offers[m])
+      f.shared_layout = f.quality.same_layout(impl_->offers[m].front().quality);
+  }
+}
+
+HybridObjects::~HybridObjects() = default;
+
+void HybridObjects::prepare() {
+  for (std::size_t m = 0; m < impl_->offers.size(); ++m)
+    for (const Offer& f : impl_->offers[m])
+      if (f.rep.kind != ObjectKind::kMesh) impl_->set.model(m).prepare(f.rep);
+}
+
+long long HybridObjects::draw(const Camera& camera) {
+  Impl& s = *impl_;
+  const auto t0 = std::chrono::steady_clock::now();
+  const HybridOptions& o = s.options;
+  const double image_px = double(o.width) * o.height;
+  const double px_per_m = o.height / (2 * std::tan(glm::radians(camera.fov_y_deg) / 2));
+  std::vector<InstanceOptions> frame;
+  std::vector<std::pair<std::size_t, std::size_t>> where;  // (model, instance index)
+  HybridFrameStats st;
+  int id = 0;
+  for (std::size_t m = 0; m < s.set.model_count(); ++m) {
+    const Model& model = s.set.model(m).model();
+    const auto instances = s.set.instances(m);
+    const std::size_t first = frame.size();
+    for (std::size_t i = 0; i < instances.size(); ++i, ++id) {
+      const InstanceView v = view_instance(camera, o.height, instances[i],
+                                           glm::dvec3(model.center()), model.bounding_radius());
+      if (!v.visible || s.offers[m].empty()) continue;
+      InstanceOptions inst{id, v.size_px, std::min(1.0, v.size_px * v.size_px / image_px), {}};
+      const double pixels = std::min(image_px, M_PI / 4 * v.size_px * v.size_px);
+      // One table lookup per instance; every representation on the same views reuses it.
+      const QualityInterpolator::Weights w =
+          s.offers[m].front().quality.weights(v.phi_deg, v.theta_deg, v.size_px);
+      for (const Offer& f : s.offers[m]) {
+        if (scenario_.full && !(f.rep.kind == ObjectKind::kMesh && f.rep.level == 0)) continue;
+        const ExpectedQuality q =
+            f.shared_layout ? f.quality.at(w) : f.quality.at(v.phi_deg, v.theta_deg, v.size_px);
+        const double err_px =
+            f.error_m * instances[i].scale * px_per_m / std::max(v.distance_m, 1e-6);
+        inst.options.push_back({f.rep, s.cost.instance_ms(f.rep.kind, double(f.triangles), pixels),
+                                q.ssim, q.psnr, f.triangles, err_px});
+      }
+      long long lo = inst.options.front().triangles;
+      for (const auto& opt : inst.options) lo = std::min(lo, opt.triangles);
+      st.triangles_min += lo;
+      st.triangles_max += model.triangles();
+      frame.push_back(std::move(inst));
+      where.push_back({m, i});
+    }
+    // A draw call per (model, representation) the knapsack cannot see as a
+    // fixed cost: each visible instance of the model carries its share of it
+    // (at most one call per representation for all of them).
+    const double visible = double(frame.size() - first);
+    for (std::size_t k = first; k < frame.size(); ++k)
+      for (RepresentationOption& opt : frame[k].options)
+        opt.cost_ms += s.cost.terms(opt.rep.kind).per_draw_ms / visible;
+  }
+  st.visible = int(frame.size());
+  const auto t1 = std::chrono::steady_clock::now();
+
+  // The budget the policy spends on objects: the whole frame's, less the terrain.
+  double budget = INFINITY;
+  PolicyOptions po = o.policy;
+  switch (scenario_.control) {
+    case HybridScenario::Control::kNone:
+      break;
+    case HybridScenario::Control::kQualityStep:
+      po.target_ssim = s.quality_step.quality();
+      budget = o.target_ms;
+      break;
+    case HybridScenario::Control::kBudgetPi:
+      budget = s.controller.budget_ms();
+      break;
+  }
+  st.budget_ms = budget;
+  st.target_quality = po.target_ssim;
+  const SelectionPolicy policy = scenario_.full ? SelectionPolicy::kStatic : scenario_.policy;
+  FrameSelection sel = select_representations(policy, frame, budget - s.cost.frame_ms(), po);
+  if (o.use_hysteresis && !scenario_.full)
+    st.switches = s.hysteresis.apply(frame, sel, budget - s.cost.frame_ms());
+  st.objective_greedy = sel.objective_greedy;
+  st.objective_optimal = sel.objective_optimal;
+  st.benefit = sel.benefit;
+  double wsum = 0;
+  for (const InstanceOptions& inst : frame) wsum += inst.weight;
+  st.expected_ssim = wsum > 0 ? sel.benefit / wsum : 1.0;
+  const auto t2 = std::chrono::steady_clock::now();
+  st.selection_ms = std::chrono::duration<double, std::milli>(t2 - t0).count();
+  st.policy_ms = std::chrono::duration<double, std::milli>(t2 - t1).count();
+
+  // Group by (model, representation); one instanced draw per group.
+  std::map<GroupKey, std::pair<Representation, std::vector<ObjectInstance>>> groups;
+  s.load = {};
+  for (std::size_t k = 0; k < frame.size(); ++k) {
+    const RepresentationOption& opt = frame[k].options[std::size_t(sel.option[k])];
+    const auto [m, i] = where[k];
+    const Representation& r = opt.rep;
+    auto& g = groups[{m, int(r.kind), r.level, r.resolution}];
+    g.first = r;
+    g.second.push_back(s.set.instances(m)[i]);
+    DrawSample& ld = s.load.kinds[std::size_t(r.kind)];
+    ld.instances += 1;
+    ld.triangles += double(opt.triangles);
+    ld.pixels += std::min(image_px, M_PI / 4 * frame[k].size_px * frame[k].size_px);
+    st.triangles += opt.triangles;
+    st.instances_by_kind[std::size_t(r.kind)] += 1;
+  }
+  for (const auto& [key, g] : groups) s.load.kinds[std::size_t(std::get<1>(key))].draws += 1;
+  st.predicted_ms = s.cost.predict(s.load);
+  for (auto& [key, g] : groups) s.set.model(std::get<0>(key)).draw(g.first, g.second, camera);
+  last_ = st;
+  return st.triangles;
+}
+
+void HybridObjects::feedback(double measured_ms) {
+  Impl& s = *impl_;
+  s.controller.update(last_.predicted_ms, measured_ms);
+  s.quality_step.update(measured_ms);
+  // A one-off surprise (an impostor build, a stall) says nothing about the terms.
+  if (measured_ms < s.options.controller.outlier_factor * last_.predicted_ms)
+    s.cost.observe(s.load, measured_ms);
+}
+
+}  // namespace terrasprite

@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: MIT
+#include "terrasprite/hybrid_renderer.h"
+
+#include "terrasprite/mesh_renderer.h"
+
+namespace terrasprite {
+
+HybridRenderer::HybridRenderer(Scene& scene, HybridObjects* objects, std::string name, int width,
+                               int height, int terrain_quads)
+    : scene_(scene), objects_(objects), name_(std::move(name)) {
+  // Never llvmpipe's anisotropic path: it stalls for seconds at grazing
+  // angles, and a walkthrough is all grazing angles.
+  terrain_ = std::make_unique<MeshRenderer>(scene, width, height, terrain_quads,
+                                            RasterOptions{.drape_filter = DrapeFilter::kHand});
+}
+
+HybridRenderer::~HybridRenderer() = default;
+
+Frame HybridRenderer::draw(const Camera& camera) {
+  scene_.set_objects(objects_);
+  Frame f = terrain_->draw(camera);
+  scene_.set_objects(nullptr);
+  if (objects_) objects_->feedback(f.ms);
+  f.cls = name_;
+  return f;
+}
+
+void HybridRenderer::read_back(Frame& frame, ReadBack what) {
+  terrain_->read_back(frame, what);
+}
+
+}  // namespace terrasprite

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: MIT
+#include "terrasprite/instance_view.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace terrasprite {
+namespace {
+
+/// A model vector turned by a compass heading (clockwise seen from above),
+/// as the object shaders do.
+glm::dvec3 heading_rotate(glm::dvec3 v, double heading_rad) {
+  const double c = std::cos(heading_rad), s = std::sin(heading_rad);
+  return {c * v.x + s * v.y, -s * v.x + c * v.y, v.z};
+}
+
+}  // namespace
+
+InstanceView view_instance(const Camera& camera, int height_px, const ObjectInstance& instance,
+                           glm::dvec3 center_m, double radius_m) {
+  const double heading = glm::radians(instance.heading_deg);
+  const glm::dvec3 centre = instance.position + heading_rotate(center_m * instance.scale, heading);
+  const double r = radius_m * instance.scale;
+  InstanceView v;
+  const glm::dvec3 to = centre - camera.position;
+  v.distance_m = glm::length(to);
+  // Frustum test on the sphere: depth along the view axis, then the four
+  // side planes through the eye.
+  const glm::dvec3 f = camera.forward(), rt = camera.right(), up = camera.up();
+  const double z = glm::dot(to, f);
+  const double ty = std::tan(glm::radians(camera.fov_y_deg) / 2), tx = ty * camera.aspect;
+  const double x = glm::dot(to, rt), y = glm::dot(to, up);
+  const double ny = 1.0 / std::sqrt(1 + ty * ty), nx = 1.0 / std::sqrt(1 + tx * tx);
+  v.visible = z + r > camera.near_m && z - r < camera.far_m && (std::abs(x) - tx * z) * nx < r &&
+              (std::abs(y) - ty * z) * ny < r;
+  if (!v.visible) return v;
+  v.size_px = v.distance_m > r
+                  ? height_px * (r / std::sqrt(v.distance_m * v.distance_m - r * r)) / ty
+                  : double(height_px);
+  v.size_px = std::min(v.size_px, 4.0 * height_px);
+  // The camera's direction from the centre, in the model's frame.
+  const glm::dvec3 d = heading_rotate(-to / std::max(v.distance_m, 1e-12), -heading);
+  v.theta_deg = glm::degrees(std::acos(std::clamp(d.z, -1.0, 1.0)));
+  v.phi_deg = glm::degrees(std::atan2(-d.x, -d.y));
+  if (v.phi_deg < 0) v.phi_deg += 360.0;
+  return v;
+}
+
+}  // namespace terrasprite

@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: MIT
+// `bench hybrid` at a reduced size: two small models, 12 instances, 10 frames
+// at 160 x 90, coarse table sampling (its own cache in a temp dir). Checks
+// the JSON contract and the report's files; no timing is asserted.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <vector>
+
+#include "test_util.h"
+
+namespace {
+
+std::string small_scene(const std::string& data) {
+  return R"({"models": [
+    {"name": "teapot", "file": ")" +
+         data + R"(/models_scans/teapot.obj", "up": "y", "height_m": 4},
+    {"name": "tree", "file": ")" +
+         data + R"(/models_kenney_nature/tree_oak_fall.glb", "up": "y", "height_m": 6}],
+  "scatter": [{"model": "teapot", "count": 6}, {"model": "tree", "count": 6}],
+  "scatter_defaults": {"seed": 3, "region": [-280, -270, -200, -150], "max_slope_deg": 45, "min_spacing_m": 6}})";
+}
+
+TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
+  const std::string data = tstest::shared_data();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
+  tstest::TempDir dir;
+  std::ofstream(dir / "scene.json") << small_scene(data);
+  const std::string args =
+      "bench hybrid --scene " + (dir / "scene.json") +
+      " --size 160x90 --frames 10 --score-every 2 --target-ms 40 --table-sizes 64"
+      " --table-angle-step 120 --relief-resolutions 16,32 --octahedral-resolutions 16"
+      " --terrain-quads 16 --cache " +
+      (dir / "cache");
+  const tstest::CliResult r =
+      tstest::run_cli(args + " --json " + (dir / "h.json") + " --out " + (dir / "h"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "h.json"));
+  for (const char* k : {"target_ms", "size", "scenarios", "full_triangles_max", "selection"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  std::set<std::string> names;
+  for (const auto& s : j["scenarios"]) {
+    names.insert(s["name"].get<std::string>());
+    for (const char* k : {"name", "median_ms", "p95_ms", "p99_ms", "within_10pct", "mean_ssim",
+                          "switches_per_frame", "checkpoints"})
+      EXPECT_TRUE(s.contains(k)) << k;
+    ASSERT_EQ(s["checkpoints"].size(), 5u);  // A-E of the default walkthrough
+    for (const auto& c : s["checkpoints"]) {
+      for (const char* k : {"name", "frame", "ssim", "ssim_objects", "psnr", "flip"})
+        EXPECT_TRUE(c.contains(k)) << k;
+      EXPECT_EQ(c["frame"].get<int>() % 2, 0);  // on a scored frame
+      if (s["name"] == "full") {
+        EXPECT_EQ(c["ssim"].get<double>(), 1.0);
+      }
+    }
+  }
+  EXPECT_EQ(names, (std::set<std::string>{"full", "ibr", "pm", "mixed", "mixed-optimal"}));
+  const auto& sel = j["selection"];
+  for (const char* k : {"policy", "ms_per_frame", "objective_greedy", "objective_optimal"})
+    EXPECT_TRUE(sel.contains(k)) << k;
+  EXPECT_GE(sel["objective_optimal"].get<double>(), sel["objective_greedy"].get<double>());
+  EXPECT_TRUE(std::filesystem::exists(dir / "h/index.html"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "h/table2.md"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "h/fig6_mixed-optimal.png"));
+}
+
+TEST(BenchHybrid, BadInputExitsTwoWithoutOutput) {
+  tstest::TempDir dir;
+  std::ofstream(dir / "path.json")
+      << R"({"keyframes": [{"t": 0, "position": [0, 0, 50], "yaw_deg": 0},
+    {"t": 2, "position": [10, 0, 50], "yaw_deg": 0}], "checkpoints": [{"name": "A", "t": 5}]})";
+  for (const std::string& bad :
+       std::vector<std::string>{"--target-ms 0", "--path " + (dir / "path.json"), "--size 0x0"}) {
+    const tstest::CliResult r =
+        tstest::run_cli("bench hybrid --frames 4 " + bad + " --out " + (dir / "o"));
+    EXPECT_EQ(r.status, 2) << bad << ": " << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "o")) << bad;
+  }
+}
+
+}  // namespace

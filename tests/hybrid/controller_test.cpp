@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: MIT
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "terrasprite/budget_controller.h"
+#include "terrasprite/draw_cost_model.h"
+
+namespace terrasprite {
+namespace {
+
+/// A simulated renderer: the selection spends the budget up to what the
+/// scene can use (predicted = min(budget, 400 ms)), and the machine takes
+/// `load` times the prediction, with 2% noise (log-normal).
+struct Simulation {
+  double load = 1.0;
+  std::mt19937 rng{5};
+  double frame(double budget, double& predicted) {
+    predicted = std::clamp(budget, 5.0, 400.0);
+    return load * predicted * std::exp(std::normal_distribution<double>(0, 0.02)(rng));
+  }
+};
+
+TEST(BudgetController, StepChangeReturnsWithinTenPercentWithoutOscillating) {
+  const double target = 50;
+  BudgetController c({.target_ms = target});
+  Simulation sim;
+  std::vector<double> ms;
+  for (int f = 0; f < 120; ++f) {
+    if (f == 40) sim.load = 2.0;  // a step: the machine halves its speed
+    if (f == 80) sim.load = 0.7;
+    double predicted = 0;
+    const double measured = sim.frame(c.budget_ms(), predicted);
+    c.update(predicted, measured);
+    ms.push_back(measured);
+  }
+  // Settles within 10% of the target in at most 4 frames after each step...
+  for (int step : {0, 40, 80}) {
+    int settled = -1;
+    for (int f = step; f < step + 40; ++f) {
+      bool all_in = true;
+      for (int g = f; g < step + 40; ++g)
+        all_in = all_in && std::abs(ms[g] - target) <= 0.1 * target;
+      if (all_in) {
+        settled = f - step;
+        break;
+      }
+    }
+    EXPECT_GE(settled, 0) << "step at " << step;
+    EXPECT_LE(settled, 4) << "step at " << step;
+    std::printf("step at frame %d: within 10%% from %d frames on\n", step, settled);
+    // ...and does not oscillate: after the step's own frame no frame
+    // overshoots by more than 15%, and the error changes sign beyond a 5%
+    // band at most a few times (noise, not a swing).
+    int swings = 0, last_sign = 0;
+    for (int f = step + 1; f < step + 40; ++f) {
+      EXPECT_LT(ms[f], 1.15 * target) << "frame " << f;
+      const double e = (ms[f] - target) / target;
+      const int sign = e > 0.05 ? 1 : e < -0.05 ? -1 : 0;
+      if (sign && last_sign && sign != last_sign) ++swings;
+      if (sign) last_sign = sign;
+    }
+    EXPECT_LE(swings, 2) << "step at " << step;
+  }
+}
+
+TEST(BudgetController, OneSurpriseFrameDoesNotThrowTheRestOff) {
+  BudgetController c({.target_ms = 50});
+  for (int f = 0; f < 20; ++f) c.update(c.budget_ms(), c.budget_ms());
+  const double before = c.budget_ms();
+  c.update(before, 10 * before);  // a keyframe, an impostor build
+  EXPECT_NEAR(c.budget_ms(), before, 1e-9);
+}
+
+TEST(QualityStepController, RaisesUnderAndLowersOverTarget) {
+  QualityStepController q({.target_ms = 50, .step = 0.01, .start_quality = 0.9});
+  q.update(80);
+  EXPECT_NEAR(q.quality(), 0.89, 1e-12);
+  q.update(20);
+  q.update(20);
+  EXPECT_NEAR(q.quality(), 0.91, 1e-12);
+}
+
+TEST(DrawCostModel, FitsMeasuredDrawsAndRefitsOnline) {
+  // Truth: 0.01 ms per instance, 2e-5 ms per triangle, 1e-5 ms per pixel.
+  std::vector<DrawSample> draws;
+  for (double n : {1.0, 4.0, 16.0})
+    for (double tris : {1000.0, 10000.0})
+      for (double px : {500.0, 5000.0})
+        draws.push_back({1, n, n * tris, n * px, n * (0.01 + 2e-5 * tris + 1e-5 * px)});
+  DrawCostModel m;
+  m.calibrate(ObjectKind::kMesh, draws, 0.25);
+  EXPECT_NEAR(m.terms(ObjectKind::kMesh).per_draw_ms, 0.0025, 1e-9);
+  EXPECT_NEAR(m.terms(ObjectKind::kMesh).per_instance_ms, 0.0075, 1e-9);
+  EXPECT_NEAR(m.terms(ObjectKind::kMesh).per_triangle_ms, 2e-5, 1e-12);
+  EXPECT_NEAR(m.terms(ObjectKind::kMesh).per_pixel_ms, 1e-5, 1e-12);
+  m.set_frame_ms(20);
+  // The machine becomes 1.5x slower: frame predictions follow.
+  FrameLoad load;
+  load.kinds[0] = {1, 100, 1e6, 2e5, 0};
+  const double before = m.predict(load);
+  for (int f = 0; f < 40; ++f) {
+    load.kinds[0].triangles = 1e6 * (1 + 0.3 * (f % 3));
+    m.observe(load, 1.5 * (20 + 100 * 0.01 + 2e-5 * load.kinds[0].triangles + 1e-5 * 2e5));
+  }
+  load.kinds[0].triangles = 1e6;
+  EXPECT_NEAR(m.predict(load) / (1.5 * before), 1.0, 0.05);
+}
+
+}  // namespace
+}  // namespace terrasprite

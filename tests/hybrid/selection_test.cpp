@@ -1,0 +1,130 @@
+// SPDX-License-Identifier: MIT
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "terrasprite/expected_quality.h"
+#include "terrasprite/instance_view.h"
+#include "terrasprite/representation_selection.h"
+#include "terrasprite/selection_hysteresis.h"
+
+namespace terrasprite {
+namespace {
+
+/// An instance with four LOD levels and two relief resolutions.
+InstanceOptions make_instance(int id, double size_px) {
+  InstanceOptions inst{id, size_px, size_px * size_px / (640.0 * 480.0), {}};
+  for (int level = 0; level < 4; ++level) {
+    const long long tris = 8000 >> (2 * level);
+    inst.options.push_back({{ObjectKind::kMesh, level, 64, 12},
+                            0.002 + tris * 1e-4,
+                            1.0 - 0.03 * level,
+                            100 - 8.0 * level,
+                            tris,
+                            level * 0.6});
+  }
+  inst.options.push_back({{ObjectKind::kRelief, 0, 64, 12}, 0.05, 0.93, 30, 12, 0});
+  inst.options.push_back({{ObjectKind::kRelief, 0, 128, 12}, 0.08, 0.96, 33, 12, 0});
+  return inst;
+}
+
+std::vector<InstanceOptions> scene(int n) {
+  std::vector<InstanceOptions> v;
+  for (int i = 0; i < n; ++i) v.push_back(make_instance(i, 20.0 + 17.0 * (i % 13)));
+  return v;
+}
+
+TEST(Selection, ZeroBudgetTakesTheCheapestInfiniteTheBest) {
+  const auto instances = scene(30);
+  for (SelectionPolicy p : {SelectionPolicy::kGreedy, SelectionPolicy::kOptimal}) {
+    const FrameSelection none = select_representations(p, instances, 0.0);
+    const FrameSelection all = select_representations(p, instances, INFINITY);
+    for (std::size_t i = 0; i < instances.size(); ++i) {
+      double min_cost = INFINITY, max_ssim = 0;
+      for (const auto& o : instances[i].options) {
+        min_cost = std::min(min_cost, o.cost_ms);
+        max_ssim = std::max(max_ssim, o.ssim);
+      }
+      EXPECT_EQ(instances[i].options[std::size_t(none.option[i])].cost_ms, min_cost);
+      EXPECT_EQ(instances[i].options[std::size_t(all.option[i])].ssim, max_ssim);
+    }
+    if (p == SelectionPolicy::kOptimal) {
+      EXPECT_GE(all.objective_optimal, all.objective_greedy);
+    }
+  }
+}
+
+TEST(Selection, PolicyShapes) {
+  const auto instances = scene(30);
+  const FrameSelection st =
+      select_representations(SelectionPolicy::kStatic, instances, 0.0, {.static_error_px = 1.0});
+  for (std::size_t i = 0; i < instances.size(); ++i)
+    EXPECT_EQ(instances[i].options[std::size_t(st.option[i])].rep.level,
+              1);  // 0.6 px <= 1 < 1.2 px
+  const FrameSelection ibr = select_representations(SelectionPolicy::kImpostorOnly, instances, 0.0);
+  for (std::size_t i = 0; i < instances.size(); ++i)
+    EXPECT_EQ(instances[i].options[std::size_t(ibr.option[i])].rep.resolution,
+              128);  // first reaching 0.95
+  PolicyOptions po;
+  po.max_impostor_resolution = 64;  // 128 is over the limit: meshes, on the budget left
+  const FrameSelection paper = select_representations(SelectionPolicy::kPaper, instances, 3.0, po);
+  EXPECT_LE(paper.cost_ms, 3.0);
+  for (std::size_t i = 0; i < instances.size(); ++i)
+    EXPECT_EQ(instances[i].options[std::size_t(paper.option[i])].rep.kind, ObjectKind::kMesh);
+}
+
+TEST(Selection, InstanceBehindTheCameraIsNotInView) {
+  Camera cam;
+  cam.position = {0, 0, 2};
+  cam.yaw_deg = 0;  // looking north (+y)
+  cam.aspect = 4.0 / 3.0;
+  const ObjectInstance ahead{{0, 50, 0}, 0, 1}, behind{{0, -50, 0}, 0, 1};
+  const InstanceView a = view_instance(cam, 480, ahead, {0, 0, 1}, 1.5);
+  const InstanceView b = view_instance(cam, 480, behind, {0, 0, 1}, 1.5);
+  ASSERT_TRUE(a.visible);
+  EXPECT_FALSE(b.visible);
+  // Seen from the south, 1 m above its centre: phi 0, theta just under 90; size by the sphere.
+  EXPECT_NEAR(a.phi_deg, 0.0, 1e-6);
+  EXPECT_NEAR(a.theta_deg, 90 - std::atan(1 / 50.0) * 180 / M_PI, 1e-6);
+  EXPECT_NEAR(a.size_px, 480 * (1.5 / std::sqrt(50.01 * 50.01 - 2.25)) / std::tan(M_PI / 6), 0.5);
+  // Heading east (turned a quarter clockwise), the model's +x points south, at
+  // the camera: the tables' camera at phi 270 sits on +x.
+  const InstanceView c = view_instance(cam, 480, ObjectInstance{{0, 50, 0}, 90, 1}, {0, 0, 1}, 1.5);
+  EXPECT_NEAR(c.phi_deg, 270.0, 1e-6);
+  // An empty frame costs nothing.
+  EXPECT_EQ(select_representations(SelectionPolicy::kOptimal, {}, 10.0).cost_ms, 0.0);
+}
+
+TEST(Selection, HysteresisHoldsAndCountsSwitches) {
+  auto instances = scene(1);
+  SelectionHysteresis h({.hold_frames = 5, .min_gain = 0.0});
+  FrameSelection s{{0}, instances[0].options[0].cost_ms, 0};
+  EXPECT_EQ(h.apply(instances, s, 100), 0);
+  // A switch comes through (the first since frame 0 is not too soon? it is: held).
+  int switches = 0;
+  for (int f = 0; f < 20; ++f) {
+    FrameSelection t{{f % 2 ? 1 : 2}, instances[0].options[f % 2 ? 1 : 2].cost_ms, 0};
+    switches += h.apply(instances, t, 100);
+  }
+  EXPECT_LE(switches, 20 / 5 + 1);  // flip-flopping every frame is held to once per 5 frames
+  EXPECT_GE(switches, 1);
+}
+
+TEST(ExpectedQuality, InterpolatesBetweenSizesAndViews) {
+  RepresentationQuality rep;
+  for (int size : {100, 400})
+    for (double phi : {0.0, 90.0, 180.0, 270.0})
+      rep.samples.push_back({phi, 90, size, 20.0 + phi / 90, size == 100 ? 0.9 : 0.8});
+  const QualityInterpolator q(rep);
+  EXPECT_NEAR(q.at(0, 90, 100).ssim, 0.9, 1e-12);   // on a sample
+  EXPECT_NEAR(q.at(0, 90, 200).ssim, 0.85, 1e-12);  // halfway in log2(size)
+  EXPECT_NEAR(q.at(0, 90, 50).ssim, 0.9, 1e-12);    // clamped below the range
+  EXPECT_NEAR(q.at(90, 90, 800).psnr, 21.0, 1e-12);
+  const double mid = q.at(45, 90, 100).psnr;  // between phi 0 (20 dB) and 90 (21 dB)
+  EXPECT_GT(mid, 20.0);
+  EXPECT_LT(mid, 21.5);
+  EXPECT_EQ(QualityInterpolator(RepresentationQuality{}).at(0, 0, 10).ssim, 1.0);
+}
+
+}  // namespace
+}  // namespace terrasprite

@@ -116,21 +116,17 @@ void SpriteRenderer::make_keyframe(const Camera& camera) {
 void SpriteRenderer::draw_sprite_pass(const Camera& camera) {
   State& s = *s_;
   TerrainGpu& terrain = s.scene.terrain_gpu();
+  s.flags = s.key.fallback;
   if (s.options.sharp_px > 0) {
     // Quads whose coarse geometry is already right at this distance take the drape texture.
-    const double pixel = camera.pixel_angle(height());
-    s.flags = s.key.fallback;
-    for (std::size_t q = 0; q < s.flags.size(); ++q) {
-      const double d = glm::length(s.grid.centre[q] - camera.position);
-      if (s.grid.max_deviation[q] < s.options.sharp_px * pixel * d) s.flags[q] = 1;
-    }
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage2D(s.key.flags.id(), 0, 0, 0, s.grid.quads_x, s.grid.quads_y, GL_RED_INTEGER,
-                        GL_UNSIGNED_BYTE, s.flags.data());
+    const double limit = s.options.sharp_px * camera.pixel_angle(height());
+    for (std::size_t q = 0; q < s.flags.size(); ++q)
+      if (!s.flags[q] && s.grid.max_deviation[q] < limit * glm::length(s.grid.centre[q] - camera.position))
+        s.flags[q] = 1;
   }
   begin_output();
-  s.pass.draw(terrain, terrain.mesh(s.options.lod_quads), s.grid.quads_x, s.key,
-              glm::mat4(gl::view_projection_reversed_z(camera)), s.options.lighting);
+  s.pass.draw(terrain, terrain.mesh(s.options.lod_quads), s.key,
+              glm::mat4(gl::view_projection_reversed_z(camera)), s.flags, s.options.lighting);
 }
 
 Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {

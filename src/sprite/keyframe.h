@@ -19,6 +19,7 @@ struct Keyframe {
   KeyframeSamples samples;             // the error metric's per-quad C' and visibility
   std::vector<std::uint8_t> fallback;  // per quad: 1 = takes the drape texture
   bool valid = false;
+  long long used = 0;  // when it last stopped being the current keyframe (cache policy)
 
   Keyframe(int width, int height, const CoarseGrid& grid);
   /// Renders `camera` from the full-resolution mesh into the textures, reads

@@ -124,6 +124,12 @@ struct ExperimentOptions {
   /// Every frame of every renderer once read back and scored (the name is the
   /// participant's; the reference's frame comes first): save it, keep it.
   std::function<void(int frame, const std::string& name, const Frame&)> on_frame;
+  /// Every frame's result as soon as it is complete (after on_frame).
+  std::function<void(const std::string& name, const FrameResult&)> on_result;
+  /// Keep every FrameResult in the returned runs (their summaries need them).
+  /// False: the runs come back without frames and memory stays flat however
+  /// long the run; take the results from on_result instead.
+  bool keep_frames = true;
   std::function<void(int done, int total)> progress;
 };
 

@@ -30,4 +30,11 @@ std::vector<FrameStats> fly(Renderer& renderer, std::span<const Camera> path, Re
                             const std::function<void(int, const Frame&)>& on_frame = {},
                             const std::function<void(int, int)>& progress = {});
 
+/// The same, keeping nothing: each frame's stats go to `on_stats` as soon as
+/// the frame is done, so memory stays flat over any number of frames.
+void fly(Renderer& renderer, std::span<const Camera> path, ReadBack what,
+         const std::function<void(int, const Frame&)>& on_frame,
+         const std::function<void(const FrameStats&)>& on_stats,
+         const std::function<void(int, int)>& progress);
+
 }  // namespace terrasprite

@@ -145,7 +145,8 @@ ExperimentResult Experiment::run(CameraSource& cameras, const ExperimentOptions&
       if (read != ReadBack::kNone) p.renderer->read_back(f, read);
       if (score) r.quality = scorer(ref, f);
       if (o.on_frame) o.on_frame(i, p.name, f);
-      result.runs[k].frames.push_back(std::move(r));
+      if (o.on_result) o.on_result(p.name, r);
+      if (o.keep_frames) result.runs[k].frames.push_back(std::move(r));
       if (is_ref) ref = std::move(f);
     }
     result.frames = i + 1;

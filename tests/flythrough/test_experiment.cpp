@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: MIT
+// The experiment driver with fake renderers (no GL): what it draws, reads
+// back, scores and keeps, frame by frame. CI cost: well under a second.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "terrasprite/experiment.h"
+#include "terrasprite/flythrough.h"
+
+namespace terrasprite {
+namespace {
+
+// Draws a flat grey image whose value is the camera's x position; records
+// every call so the test can see the driver's order.
+class FakeRenderer final : public Renderer {
+ public:
+  FakeRenderer(std::string name, int offset, std::vector<std::string>& log)
+      : name_(std::move(name)), offset_(offset), log_(log) {}
+  Frame draw(const Camera& c) override {
+    log_.push_back(name_ + " draw");
+    last_ = int(c.position.x) + offset_;
+    Frame f;
+    f.cls = last_ % 2 ? "odd" : "even";
+    f.ms = double(last_);
+    f.width_px = 4;
+    f.height_px = 4;
+    f.camera = c;
+    return f;
+  }
+  void read_back(Frame& f, ReadBack what) override {
+    log_.push_back(name_ + " read");
+    if (has(what, ReadBack::kColor)) {
+      f.color = Image(4, 4);
+      for (std::size_t i = 0; i < f.color.rgba.size(); ++i)
+        f.color.rgba[i] = i % 4 == 3 ? 255 : std::uint8_t(last_);
+    }
+  }
+  std::string name() const override { return name_; }
+
+ private:
+  std::string name_;
+  int offset_;
+  int last_ = 0;
+  std::vector<std::string>& log_;
+};
+
+std::vector<Camera> path_of(int n) {
+  std::vector<Camera> p(n);
+  for (int i = 0; i < n; ++i) p[i].position.x = 10.0 * i;
+  return p;
+}
+
+// Scores by the difference of the images' first byte, so a test can tell
+// which frames were compared.
+QualityScore byte_scorer(const Frame& ref, const Frame& test) {
+  QualityScore q;
+  q.psnr = double(test.color.rgba[0]) - double(ref.color.rgba[0]);
+  q.ssim = 1.0;
+  q.flip = 0.0;
+  return q;
+}
+
+TEST(Experiment, DrawsReadsAndScoresInOrderAgainstTheReference) {
+  std::vector<std::string> log;
+  FakeRenderer ref("ref", 0, log), a("a", 1, log), b("b", 2, log);
+  Experiment e;
+  e.set_reference(ref, "ref");
+  e.add({.renderer = &a, .name = "a", .score = true});
+  e.add({.renderer = &b, .name = "b", .every = 2});  // not scored, every other frame
+  ExperimentOptions o;
+  o.warmup_draws = 1;
+  o.scorer = byte_scorer;
+  o.score_every = 2;
+  PathSource cams(path_of(4));
+  const ExperimentResult r = e.run(cams, o);
+  ASSERT_EQ(r.frames, 4);
+  ASSERT_EQ(r.runs.size(), 3u);
+  EXPECT_EQ(r.runs[0].name, "ref");
+  EXPECT_EQ(r.runs[0].frames.size(), 2u) << "the reference draws on scored frames only";
+  EXPECT_EQ(r.runs[1].frames.size(), 4u);
+  EXPECT_EQ(r.runs[2].frames.size(), 2u) << "every = 2";
+  // Frame 0: warm-ups first (one draw each, no read), then ref, a, b; frame 1: only a.
+  const std::vector<std::string> head = {"ref draw", "a draw",  "b draw", "ref draw",
+                                         "ref read", "a draw",  "a read", "b draw",
+                                         "a draw"};
+  ASSERT_GE(log.size(), head.size());
+  EXPECT_EQ(std::vector<std::string>(log.begin(), log.begin() + head.size()), head);
+  // a is scored on frames 0 and 2 against that frame's reference: 1 apart.
+  const RendererRun& ra = r.run("a");
+  ASSERT_TRUE(ra.frames[0].quality);
+  EXPECT_EQ(ra.frames[0].quality->psnr, 1.0);
+  EXPECT_FALSE(ra.frames[1].quality);
+  ASSERT_TRUE(ra.frames[2].quality);
+  EXPECT_EQ(ra.frames[2].quality->psnr, 1.0);
+  EXPECT_FALSE(r.run("b").frames[0].quality) << "b does not ask to be scored";
+  // Times and classes come from the frames: a draws 1, 11, 21, 31.
+  EXPECT_EQ(ra.ms().median, 16.0) << "median of 1, 11, 21, 31";
+  EXPECT_EQ(ra.ms().p90, 31.0) << "nearest rank: the 4th of 4";
+  EXPECT_EQ(ra.count("odd"), 4);
+  EXPECT_EQ(r.run("b").count("even"), 2);
+  EXPECT_THROW(r.run("nobody"), std::out_of_range);
+}
+
+TEST(Experiment, StreamsResultsWithoutKeepingThem) {
+  std::vector<std::string> log;
+  FakeRenderer a("a", 0, log);
+  Experiment e;
+  e.add({.renderer = &a, .name = "a"});
+  std::vector<double> seen;
+  ExperimentOptions o;
+  o.warmup_draws = 0;
+  o.keep_frames = false;
+  o.on_result = [&](const std::string& name, const FrameResult& f) {
+    EXPECT_EQ(name, "a");
+    seen.push_back(f.ms);
+  };
+  PathSource cams(path_of(5));
+  const ExperimentResult r = e.run(cams, o);
+  EXPECT_EQ(r.frames, 5);
+  EXPECT_TRUE(r.run("a").frames.empty());
+  EXPECT_EQ(seen, (std::vector<double>{0, 10, 20, 30, 40}));
+}
+
+TEST(Fly, StreamingAndCollectingGiveTheSameStats) {
+  std::vector<std::string> log;
+  FakeRenderer a("a", 3, log);
+  const std::vector<Camera> p = path_of(6);
+  const std::vector<FrameStats> kept = fly(a, p, ReadBack::kColor);
+  std::vector<FrameStats> streamed;
+  int frames_seen = 0;
+  fly(
+      a, p, ReadBack::kColor, [&](int, const Frame& f) { frames_seen += !f.color.rgba.empty(); },
+      [&](const FrameStats& s) { streamed.push_back(s); }, {});
+  ASSERT_EQ(kept.size(), 6u);
+  ASSERT_EQ(streamed.size(), 6u);
+  EXPECT_EQ(frames_seen, 6) << "every frame read back in colour";
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    EXPECT_EQ(kept[i].frame, int(i));
+    EXPECT_EQ(kept[i].frame, streamed[i].frame);
+    EXPECT_EQ(kept[i].ms, 10.0 * double(i) + 3);
+    EXPECT_EQ(kept[i].ms, streamed[i].ms);
+    EXPECT_EQ(kept[i].cls, streamed[i].cls);
+  }
+}
+
+}  // namespace
+}  // namespace terrasprite

@@ -179,7 +179,8 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
                                       {"error_px_exact", e.exact_px},
                                       {"error_samples", double(e.samples)},
                                       {"fallback_fraction", e.fallback_fraction()},
-                                      {"resample_scale", e.resample_scale}};
+                                      {"resample_scale", e.resample_scale},
+                                      {"decision_cpu_ms", sprite.last_decision_ms()}};
                         if (sprite.last_trigger())
                           r.tags["trigger"] = to_string(*sprite.last_trigger());
                         if (sprite.last_cache_hit()) r.tags["trigger"] = "cache";
@@ -199,7 +200,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
   const RendererRun &full_run = run.run("full"), &lod_run = run.run("lod"),
                     &sprite_run = run.run("sprite");
 
-  std::vector<double> full_ms(n), lod_ms(n), sprite_ms(n), key_ms, spr_ms;
+  std::vector<double> full_ms(n), lod_ms(n), sprite_ms(n), key_ms, spr_ms, decision_ms;
   std::vector<double> lod_psnr, lod_ssim, lod_flip, sp_psnr, sp_ssim, sp_flip, sp_psnr_sprite_only,
       lod_psnr_sprite_only;
   std::vector<int> key_of(n, 0);
@@ -211,6 +212,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
     lod_ms[i] = b.ms;
     sprite_ms[i] = c.ms;
     const bool key = c.cls == "key";
+    decision_ms.push_back(c.counters.at("decision_cpu_ms"));
     if (key) {
       ++keyframes;
       current_key = i;
@@ -244,6 +246,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
                          {"error_samples", int(c.counters.at("error_samples"))},
                          {"fallback_fraction", c.counters.at("fallback_fraction")},
                          {"resample_scale", c.counters.at("resample_scale")},
+                         {"decision_cpu_ms", c.counters.at("decision_cpu_ms")},
                          {"trigger", trigger == c.tags.end() ? "" : trigger->second},
                          {"keyframe", current_key},
                          {"psnr", ss.psnr},
@@ -431,6 +434,8 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
        {{"total_ms", sprite_total},
         {"median_ms", median(sprite_ms)},
         {"p99_ms", percentile(sprite_ms, 99)},
+        {"decision_cpu_median_ms", median(decision_ms)},
+        {"decision_cpu_p99_ms", percentile(decision_ms, 99)},
         {"keyframes", keyframes},
         {"sprite_frames", sprite_run.count("sprite")},
         {"key_median_ms", key_median},

@@ -119,6 +119,9 @@ class SpriteRenderer : public GlRenderer {
   bool keyframe_due(const SpriteError& e) const { return trigger_for(e).has_value(); }
   /// The error measured by the last draw() (both variants; zero on the first keyframe).
   const SpriteError& last_error() const;
+  /// CPU time (ms) the last draw() spent deciding: the error metric against
+  /// the keyframe, and against cached keyframes when one was due (inside Frame::ms).
+  double last_decision_ms() const;
   /// Why the last draw drew a keyframe; none for a sprite frame.
   std::optional<Trigger> last_trigger() const;
   const SpriteOptions& options() const;

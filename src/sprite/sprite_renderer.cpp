@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "gl/frame_timer.h"
@@ -50,6 +51,7 @@ struct SpriteRenderer::State {
   KeyframeCache cache;
   long long tick = 0;  // draws so far (the cache's clock)
   bool cache_hit = false;
+  double decision_ms = 0;
   SpritePass pass;
   SpriteError last;
   std::optional<Trigger> trigger;
@@ -137,6 +139,9 @@ int SpriteRenderer::cached_keyframes() const {
 std::size_t SpriteRenderer::keyframe_bytes_held() const {
   return std::size_t(s_->cache.size() + 1) * State::keyframe_bytes(s_->width, s_->height);
 }
+double SpriteRenderer::last_decision_ms() const {
+  return s_->decision_ms;
+}
 bool SpriteRenderer::last_cache_hit() const {
   return s_->cache_hit;
 }
@@ -182,6 +187,7 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
   timer().begin();
   ++s.tick;
   s.cache_hit = false;
+  const auto decision_start = std::chrono::steady_clock::now();
   SpriteError e = error(camera);
   if (!s.key->valid) {
     e = {};
@@ -214,6 +220,9 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
     s.trigger.reset();
   }
   const bool key = s.trigger.has_value();
+  s.decision_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
+                                                            decision_start)
+                      .count();
   long long triangles = 0;
   if (key) {
     s.retire_current(camera);

@@ -65,7 +65,8 @@ consumer: build-all
 # process-lifetime allocations.
 ASAN_SKIP ?=
 test-asan: deps
-	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTERRASPRITE_SANITIZE=ON -DTERRASPRITE_BUILD_BENCH=OFF
+	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=ASan -DCMAKE_CXX_FLAGS_ASAN='-O1 -g1' \
+	  -DCMAKE_C_FLAGS_ASAN='-O1 -g1' -DTERRASPRITE_SANITIZE=ON -DTERRASPRITE_BUILD_BENCH=OFF
 	cmake --build build-asan -j $(JOBS)
 	cd build-asan && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --output-on-failure -j $(JOBS) $(if $(ASAN_SKIP),-LE '$(ASAN_SKIP)')

@@ -3,7 +3,10 @@
 // input events and measure frame rate and input-to-display latency.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <filesystem>
+#include <memory>
+#include <optional>
 
 #include "cli_common.h"
 #include "commands.h"
@@ -11,6 +14,9 @@
 #include "terrasprite/camera_path.h"
 #include "terrasprite/error.h"
 #include "terrasprite/sprite_renderer.h"
+#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/warp.h"
+#include "terrasprite/warp_renderer.h"
 #include "viewer/viewer.h"
 
 namespace terrasprite::cli {
@@ -22,6 +28,43 @@ struct ViewOpts {
   std::string script, stats, record, play;
   viewer::ViewerOptions viewer;
   bool lighting = false, free = false;
+};
+
+/// The voxel mode: the ray caster at the panel's pixel-to-voxel ratio,
+/// optionally every n-th frame real and the others warped (Cohen-Or et al.'s
+/// video-rate scheme). The pyramid is built once per run and shared by every
+/// voxel renderer the panel's settings create.
+class VoxelViewRenderer : public viewer::ViewRenderer {
+ public:
+  VoxelViewRenderer(const VoxelTerrain& pyramid, const viewer::LiveSettings& s, int w, int h) {
+    VoxelOptions vo;
+    vo.pixel_voxel_ratio = s.voxel_ratio;
+    std::optional<WarpMethod> warp;
+    if (s.warp != "none") warp = parse_warp_method(s.warp);
+    const int mx = warp ? int(std::lround(kWarpMargin * w)) : 0;
+    const int my = warp ? int(std::lround(kWarpMargin * h)) : 0;
+    voxel_ = std::make_unique<VoxelRenderer>(pyramid, w + 2 * mx, h + 2 * my, vo);
+    if (warp) {
+      WarpScheduleOptions so;
+      so.real_every = std::max(1, s.real_every);
+      so.margin_x = mx;
+      so.margin_y = my;
+      so.warp.method = *warp;
+      warp_ = std::make_unique<WarpScheduler>(*voxel_, w, h, so);
+    }
+    device_ = fmt::format("cpu voxel {}, ratio {:.2f}{}", to_string(voxel_->options().variant),
+                          s.voxel_ratio,
+                          warp ? fmt::format(", {} warp, real every {}", s.warp, s.real_every)
+                               : std::string());
+  }
+  Renderer& renderer() override { return warp_ ? *warp_ : static_cast<Renderer&>(*voxel_); }
+  std::string device() const override { return device_; }
+
+ private:
+  static constexpr double kWarpMargin = 0.05;  // as render --warp-margin's default
+  std::unique_ptr<VoxelRenderer> voxel_;
+  std::unique_ptr<WarpScheduler> warp_;
+  std::string device_;
 };
 
 /// One --mode's renderer stack, built on the viewer's render thread.
@@ -59,6 +102,11 @@ void run(ViewOpts& o) {
   v.height = h;
   v.fly.bounded = !o.free;
   if (v.frames < 0) throw InputError(fmt::format("--frames {}: must be at least 0", v.frames));
+  if (!(v.settings.voxel_ratio > 0 && v.settings.voxel_ratio <= 64))
+    throw InputError(
+        fmt::format("--voxel-ratio {}: must be within (0, 64]", v.settings.voxel_ratio));
+  if (v.settings.real_every < 1 || v.settings.real_every > 64)
+    throw InputError(fmt::format("--real-every {}: must be within 1..64", v.settings.real_every));
   if (!(v.record_every_s > 0))
     throw InputError(fmt::format("--record-every {}: must be positive", v.record_every_s));
   if (!o.script.empty()) {
@@ -75,7 +123,13 @@ void run(ViewOpts& o) {
   const bool lighting = o.lighting;
   viewer::RunStats stats = viewer::run_viewer(
       terrain.heights, start_camera(terrain.heights, double(w) / h), v,
-      [&terrain, w, h, lighting](const viewer::LiveSettings& s, GlContext* context) {
+      [&terrain, w, h, lighting, pyramid = std::shared_ptr<VoxelTerrain>()](
+          const viewer::LiveSettings& s,
+          GlContext* context) mutable -> std::unique_ptr<viewer::ViewRenderer> {
+        if (s.mode == "voxel") {
+          if (!pyramid) pyramid = std::make_shared<VoxelTerrain>(terrain);
+          return std::make_unique<VoxelViewRenderer>(*pyramid, s, w, h);
+        }
         return std::make_unique<StackRenderer>(terrain, s, w, h, lighting, context);
       });
   nlohmann::json j = viewer::stats_json(stats);
@@ -98,6 +152,13 @@ void add_view(CLI::App& app) {
   cmd->add_option("--lod-quads", o->viewer.settings.lod_quads, "coarse grid quads (default 16)");
   cmd->add_option("--threshold", o->viewer.settings.threshold_px,
                   "LOD-sprite keyframe threshold, pixels (default 1)");
+  cmd->add_option("--voxel-ratio", o->viewer.settings.voxel_ratio,
+                  "voxel: pixel-to-voxel ratio, > 0 (default 1; larger is faster and blurrier)");
+  cmd->add_option("--warp", o->viewer.settings.warp,
+                  "voxel: warp the frames between real ones: none, poly2 or depth (default none)")
+      ->check(CLI::IsMember({"none", "poly2", "depth"}));
+  cmd->add_option("--real-every", o->viewer.settings.real_every,
+                  "voxel with --warp: every n-th frame real, 1..64 (default 4)");
   cmd->add_flag("--lighting", o->lighting, "simple sun lighting on top of the texture");
   cmd->add_option("--script", o->script,
                   "replay timed input events from this JSON file (ends 1 s after the last)");

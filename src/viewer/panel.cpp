@@ -11,6 +11,7 @@ namespace terrasprite::viewer {
 namespace {
 
 constexpr std::array kModes = {"full", "lod", "sprite", "voxel"};
+constexpr std::array kWarps = {"none", "poly2", "depth"};
 
 // Bars of frame time, keyframes in orange, with the 33 ms (30 fps) and 100 ms lines.
 void frame_graph(const std::deque<GraphSample>& history) {
@@ -62,6 +63,24 @@ PanelActions draw_panel(const PanelInfo& info, LiveSettings& settings) {
   }
   if (settings.mode == "sprite" || settings.mode == "lod")
     ImGui::SliderInt("coarse quads", &settings.lod_quads, 4, 128);
+  if (settings.mode == "voxel") {
+    float ratio = float(settings.voxel_ratio);
+    if (ImGui::SliderFloat("pixel/voxel ratio", &ratio, 0.5f, 8.f, "%.2f",
+                           ImGuiSliderFlags_Logarithmic))
+      settings.voxel_ratio = ratio;
+    int warp = int(std::find(kWarps.begin(), kWarps.end(), settings.warp) - kWarps.begin());
+    if (ImGui::Combo("warp", &warp, kWarps.data(), int(kWarps.size())))
+      settings.warp = kWarps[std::size_t(warp)];
+    if (settings.warp != "none") ImGui::SliderInt("real frame every", &settings.real_every, 2, 8);
+  }
+  act.compare = ImGui::Button(info.comparing ? "comparing..." : "compare with full (F3)");
+  if (info.compared) {
+    ImGui::SameLine();
+    act.toggle_difference =
+        ImGui::Button(info.show_difference ? "show frames" : "show difference (F4)");
+    ImGui::Text("%s vs full: PSNR %.2f dB  SSIM %.4f  FLIP %.4f", info.compared_mode.c_str(),
+                info.psnr, info.ssim, info.flip);
+  }
   ImGui::Separator();
   const auto& c = info.camera;
   ImGui::Text("eye %.0f %.0f %.0f m  yaw %.0f  pitch %.0f", c.position.x, c.position.y,
@@ -97,6 +116,8 @@ void draw_help() {
       "R                  reset the view",
       "1 2 3 4            mode full / lod / sprite / voxel",
       "F2                 screenshot (PNG)",
+      "F3                 compare this view with full resolution",
+      "F4                 show the difference image / the frames",
       "F5                 record the flight (path JSON)",
       "F6                 play the recorded path",
       "ESCAPE             quit"};

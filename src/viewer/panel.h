@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The live panel (ImGui): frame-time graph with keyframes marked, fps,
-// triangles, the LOD-sprite error and threshold, the mode switch, path and
-// screenshot buttons; and the F1 key list.
+// triangles, the LOD-sprite error and threshold, the coarse-mesh size, the
+// voxel ratio and warp, the mode switch, compare with full resolution, path
+// and screenshot buttons; and the F1 key list.
 #pragma once
 #include <deque>
 #include <string>
@@ -31,10 +32,16 @@ struct PanelInfo {
   double speed_mps = 0, clearance_m = 0;
   bool orbit = false, recording = false, playing = false, captured = true;
   std::string message;  ///< last action's result (screenshot written, ...)
+  /// The last "compare" (figures only; the image stays with the loop).
+  bool compared = false, comparing = false;
+  double psnr = 0, ssim = 0, flip = 0;
+  std::string compared_mode;
+  bool show_difference = false;  ///< the window shows the difference image
 };
 
 struct PanelActions {
   bool screenshot = false, toggle_record = false, play = false;
+  bool compare = false, toggle_difference = false;
 };
 
 /// Draws the panel (between ImGui::NewFrame and ImGui::Render); edits

@@ -8,6 +8,7 @@
 
 #include "gl/gl_objects.h"
 #include "terrasprite/gl_renderer.h"
+#include "terrasprite/quality.h"
 
 namespace terrasprite::viewer {
 
@@ -72,6 +73,34 @@ void RenderWorker::wait(double timeout_s) {
                [&] { return done_.has_value() || error_ || stop_; });
 }
 
+void RenderWorker::request_compare() {
+  {
+    std::lock_guard lock(m_);
+    compare_ = true;
+  }
+  cv_.notify_all();
+}
+
+Comparison RenderWorker::compare(ViewRenderer& r, RenderedFrame& shown, const Camera& camera,
+                                 std::unique_ptr<ViewRenderer>& reference, GlContext* context) {
+  if (!reference) {
+    LiveSettings full;
+    full.mode = "full";
+    reference = factory_(full, context);
+  }
+  Frame test = shown.frame;
+  if (test.color.rgba.empty()) r.renderer().read_back(test, ReadBack::kColor);
+  const Frame ref = reference->renderer().render(camera, ReadBack::kColor);
+  Comparison c;
+  const ImageView a = ref.color.view(), b = test.color.view();
+  c.psnr = quality::psnr(a, b).rgb;
+  c.ssim = quality::ssim(a, b).ssim;
+  c.flip = quality::flip(a, b).mean;
+  c.difference = quality::difference_image(a, b);
+  c.mode = shown.settings.mode;
+  return c;
+}
+
 bool RenderWorker::building() const {
   std::lock_guard lock(m_);
   return building_;
@@ -104,7 +133,7 @@ RenderedFrame RenderWorker::draw(ViewRenderer& r, const Camera& camera, Targets*
 void RenderWorker::loop() {
   std::unique_ptr<GlContext> context;
   std::unique_ptr<Targets> targets;
-  std::unique_ptr<ViewRenderer> renderer;
+  std::unique_ptr<ViewRenderer> renderer, reference;
   LiveSettings built;
   try {
     if (context_) context = context_();
@@ -112,10 +141,12 @@ void RenderWorker::loop() {
       Camera camera;
       std::uint64_t generation = 0;
       LiveSettings settings;
+      bool compare = false;
       {
         std::unique_lock lock(m_);
         cv_.wait(lock, [&] { return stop_ || has_request_; });
         if (stop_) break;
+        compare = std::exchange(compare_, false);
         camera = camera_;
         generation = generation_;
         settings = settings_;
@@ -134,8 +165,11 @@ void RenderWorker::loop() {
       RenderedFrame r = draw(*renderer, camera, targets.get());
       r.generation = generation;
       r.settings = settings;
+      if (compare) r.comparison = this->compare(*renderer, r, camera, reference, context.get());
       {
         std::lock_guard lock(m_);
+        // A frame not yet taken is replaced by the newer one, but not its comparison.
+        if (done_ && done_->comparison && !r.comparison) r.comparison = std::move(done_->comparison);
         done_ = std::move(r);
       }
       cv_.notify_all();
@@ -147,6 +181,7 @@ void RenderWorker::loop() {
   }
   cv_.notify_all();
   renderer.reset();  // GL objects die on the thread whose context they belong to
+  reference.reset();
   targets.reset();
   if (context) context->release_current();
 }

@@ -25,6 +25,7 @@
 #include "terrasprite/camera.h"
 #include "terrasprite/frame.h"
 #include "terrasprite/gl_context.h"
+#include "terrasprite/image.h"
 #include "terrasprite/renderer.h"
 
 namespace terrasprite::viewer {
@@ -34,7 +35,18 @@ struct LiveSettings {
   std::string mode = "sprite";  ///< full | lod | sprite | voxel
   double threshold_px = 1.0;    ///< LOD-sprite keyframe threshold
   int lod_quads = 16;           ///< coarse grid of lod and sprite
+  double voxel_ratio = 1.0;     ///< voxel: pixel-to-voxel ratio of the multires traversal
+  std::string warp = "none";    ///< voxel: none | poly2 | depth (frames between real ones warped)
+  int real_every = 4;           ///< voxel with a warp: every n-th frame rendered for real
   bool operator==(const LiveSettings&) const = default;
+};
+
+/// The displayed frame against full resolution at the same camera (the
+/// panel's "compare"): figures and the amplified difference image.
+struct Comparison {
+  double psnr = 0, ssim = 0, flip = 0;
+  std::string mode;  ///< the renderer compared
+  Image difference;  ///< |full - frame| x 4 per channel, rows top-down
 };
 
 /// A renderer with everything it owns (scene, voxel pyramids), built, used
@@ -63,6 +75,7 @@ struct RenderedFrame {
   std::string device;
   LiveSettings settings;
   int slot = -1;
+  std::optional<Comparison> comparison;  ///< when a compare was asked for
 };
 
 class RenderWorker {
@@ -83,6 +96,9 @@ class RenderWorker {
   std::optional<RenderedFrame> take();
   /// Waits up to `timeout_s` for a frame take() would return.
   void wait(double timeout_s);
+  /// Compares the next frame with full resolution (a "full" renderer built
+  /// by the factory on first use); the frame carries the Comparison.
+  void request_compare();
   /// True while the worker builds a renderer (start, mode switch).
   bool building() const;
 
@@ -90,12 +106,14 @@ class RenderWorker {
   struct Targets;
   void loop();
   RenderedFrame draw(ViewRenderer& r, const Camera& camera, Targets* targets);
+  Comparison compare(ViewRenderer& r, RenderedFrame& shown, const Camera& camera,
+                     std::unique_ptr<ViewRenderer>& reference, GlContext* context);
 
   ViewRendererFactory factory_;
   ContextFactory context_;
   mutable std::mutex m_;
   std::condition_variable cv_;
-  bool stop_ = false, has_request_ = false, building_ = false;
+  bool stop_ = false, has_request_ = false, building_ = false, compare_ = false;
   Camera camera_;
   std::uint64_t generation_ = 0;
   LiveSettings settings_;

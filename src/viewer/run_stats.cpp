@@ -21,6 +21,9 @@ nlohmann::json stats_json(const RunStats& s) {
                           {"pitch_deg", c.pitch_deg}};
   };
   auto rate = [](double ms) { return ms > 0 ? 1000.0 / ms : 0.0; };
+  nlohmann::json compared = nlohmann::json::array();
+  for (const auto& c : s.comparisons)
+    compared.push_back({{"mode", c.mode}, {"psnr", c.psnr}, {"ssim", c.ssim}, {"flip", c.flip}});
   return {{"mode", s.mode},
           {"size", {s.width, s.height}},
           {"frames", s.frames},
@@ -33,7 +36,9 @@ nlohmann::json stats_json(const RunStats& s) {
           {"latency_ms_max", lat.empty() ? 0.0 : *std::max_element(lat.begin(), lat.end())},
           {"events", events},
           {"camera_start", pose(s.camera_start)},
-          {"camera_end", pose(s.camera_end)}};
+          {"camera_end", pose(s.camera_end)},
+          {"classes", s.classes},
+          {"comparisons", compared}};
 }
 
 }  // namespace terrasprite::viewer

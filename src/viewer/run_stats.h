@@ -2,6 +2,7 @@
 // What a viewer run measured: displayed frames and input-to-display latency.
 #pragma once
 #include <nlohmann/json.hpp>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -23,12 +24,19 @@ struct RunStats {
   std::vector<double> render_ms;  ///< the renderer's own Frame::ms per displayed frame
   std::vector<EventLatency> events;
   Camera camera_start, camera_end;  ///< the flight's first and last pose
+  std::map<std::string, int> classes;  ///< displayed new frames by class (key, sprite, warp, ...)
+  struct Compared {
+    std::string mode;
+    double psnr = 0, ssim = 0, flip = 0;
+  };
+  std::vector<Compared> comparisons;  ///< every "compare" (F3) of the run, in order
 };
 
 /// The stats file: mode, size, frames, fps_median, fps_low_1pct (the rate of
 /// the 99th-percentile frame time), frames (displayed new frames), frame_ms_p50, frame_ms_p99,
 /// render_ms_p50, latency_ms_p95, latency_ms_max, events [{t, latency_ms}], camera_start and
-/// camera_end ({position, yaw_deg, pitch_deg}).
+/// camera_end ({position, yaw_deg, pitch_deg}), classes {class: frames} and
+/// comparisons [{mode, psnr, ssim, flip}] (against full resolution).
 nlohmann::json stats_json(const RunStats& s);
 
 }  // namespace terrasprite::viewer

@@ -108,6 +108,7 @@ class Loop {
   double record_t0_ = 0;
   std::optional<PathPlayer> player_;
   double play_t0_ = 0;
+  std::optional<Image> difference_;  // of the last compare
   double last_script_t_ = 0;
 };
 
@@ -173,11 +174,17 @@ void Loop::handle(const ArrivedEvent& a) {
       case GLFW_KEY_F2:
         screenshot_request_ = free_name(o_.screenshot_dir, "view", "png");
         return;
+      case GLFW_KEY_F3:
+        act({.compare = true});
+        return;
+      case GLFW_KEY_F4:
+        act({.toggle_difference = true});
+        return;
       case GLFW_KEY_F5:
-        act({false, true, false});
+        act({.toggle_record = true});
         return;
       case GLFW_KEY_F6:
-        act({false, false, true});
+        act({.play = true});
         return;
       case GLFW_KEY_1:
         settings_.mode = "full";
@@ -201,6 +208,14 @@ void Loop::handle(const ArrivedEvent& a) {
 
 void Loop::act(const PanelActions& a) {
   if (a.screenshot) screenshot_request_ = free_name(o_.screenshot_dir, "view", "png");
+  if (a.compare && !info_.comparing) {
+    worker_.request_compare();
+    info_.comparing = true;
+  }
+  if (a.toggle_difference && difference_) {
+    info_.show_difference = !info_.show_difference;
+    if (info_.show_difference) view_.upload(*difference_);
+  }
   if (a.toggle_record) {
     if (recorder_)
       stop_recording();
@@ -226,11 +241,28 @@ void Loop::move_camera(double t, double dt) {
 }
 
 void Loop::present(std::optional<RenderedFrame>& f, Clock::time_point now) {
+  if (f && f->comparison) {
+    const Comparison& c = *f->comparison;
+    info_.compared = true;
+    info_.comparing = false;
+    info_.psnr = c.psnr;
+    info_.ssim = c.ssim;
+    info_.flip = c.flip;
+    info_.compared_mode = c.mode;
+    info_.message = fmt::format("compared {} with full: PSNR {:.2f} dB, SSIM {:.4f}, FLIP {:.4f}",
+                                c.mode, c.psnr, c.ssim, c.flip);
+    stats_.comparisons.push_back({c.mode, c.psnr, c.ssim, c.flip});
+    difference_ = std::move(f->comparison->difference);
+    if (info_.show_difference) view_.upload(*difference_);
+  }
   if (f) {
-    if (f->texture)
+    if (info_.show_difference) {
+      // the difference image stays on screen until toggled off
+    } else if (f->texture) {
       view_.show(f->texture);  // drawn by the worker in a shared context: no copy
-    else
+    } else {
       view_.upload(f->frame.color);
+    }
     info_.render_ms = f->frame.ms;
     info_.triangles = f->frame.triangles;
     info_.cls = f->frame.cls;
@@ -281,6 +313,7 @@ void Loop::present(std::optional<RenderedFrame>& f, Clock::time_point now) {
     info_.fps = sum > 0 ? 1000.0 * double(info_.history.size()) / sum : 0;
   }
   stats_.render_ms.push_back(f->frame.ms);
+  ++stats_.classes[f->frame.cls];
   if (!begun_) begin(swapped);
   ++stats_.frames;
   last_new_swap_ = swapped;

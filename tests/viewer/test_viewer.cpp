@@ -253,3 +253,36 @@ TEST(ViewCli, ScriptedRunUnderXvfbMovesRecordsAndReplays) {
   EXPECT_NEAR(b["camera_start"]["position"][0].get<double>(),
               rec["keyframes"][0]["position"][0].get<double>(), 1e-3);
 }
+
+// Voxel mode with the warp (every third frame real) and the panel's compare
+// (F3): warped frames are displayed, and the comparison with full resolution
+// is in the stats. CI cost: ~5 s.
+TEST(ViewCli, VoxelWithWarpAndCompareUnderXvfb) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run missing";
+  tstest::TempDir tmp;
+  std::ofstream(tmp / "cmp.json") << R"({"events": [
+    {"t": 0.2, "type": "key", "key": "W", "action": "press"},
+    {"t": 1.2, "type": "key", "key": "W", "action": "release"},
+    {"t": 1.3, "type": "key", "key": "F3", "action": "press"},
+    {"t": 1.4, "type": "key", "key": "F3", "action": "release"},
+    {"t": 2.5, "type": "key", "key": "F4", "action": "press"}]})";
+  auto r = view("--mode voxel --warp poly2 --real-every 3 --voxel-ratio 2 --script " +
+                (tmp / "cmp.json") + " --stats " + (tmp / "s.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  auto s = read_json(tmp / "s.json");
+  EXPECT_GE(s["classes"].value("voxel", 0), 1) << s["classes"];
+  EXPECT_GE(s["classes"].value("warp", 0), 2) << s["classes"];
+  ASSERT_EQ(s["comparisons"].size(), 1u) << s["comparisons"];
+  const auto& c = s["comparisons"][0];
+  EXPECT_EQ(c["mode"], "voxel");
+  // The voxel caster and the GL mesh agree broadly, and not exactly.
+  EXPECT_GT(c["ssim"].get<double>(), 0.3) << c;
+  EXPECT_LT(c["ssim"].get<double>(), 1.0) << c;
+  EXPECT_GT(c["psnr"].get<double>(), 12.0) << c;
+  EXPECT_GE(c["flip"].get<double>(), 0.0) << c;
+  // Bad values are one line and exit 2.
+  for (const char* bad : {"--voxel-ratio 0", "--real-every 0", "--warp sideways"}) {
+    auto b = view(std::string("--mode voxel --frames 1 ") + bad);
+    EXPECT_EQ(b.status, 2) << bad << ": " << b.output;
+  }
+}

@@ -64,7 +64,7 @@ void add_bench_lodsprite(CLI::App& bench) {
                   "quads whose coarse geometry errs less than this many pixels take the drape "
                   "texture (default 0.5; 0 = off)");
   cmd->add_flag("--there-and-back", o->config.there_and_back,
-               "fly the path there and back: its frames, then the same cameras reversed");
+                "fly the path there and back: its frames, then the same cameras reversed");
   cmd->add_flag_function(
       "--cache",
       [o](std::int64_t) {

@@ -112,10 +112,10 @@ void validate(const LodspriteConfig& c) {
   for (int q : c.lod_sweep)
     if (q < 1) throw InputError(fmt::format("--lod-sweep: {} quads must be at least 1", q));
   if (c.cache_bytes > 0 && c.cache_bytes < std::size_t(2) * c.width * c.height * 8)
-    throw InputError(fmt::format(
-        "--cache-mb {:.3g}: must hold at least two {}x{} keyframes ({:.3g} MB)",
-        double(c.cache_bytes) / (1 << 20), c.width, c.height,
-        2.0 * c.width * c.height * 8 / (1 << 20)));
+    throw InputError(
+        fmt::format("--cache-mb {:.3g}: must hold at least two {}x{} keyframes ({:.3g} MB)",
+                    double(c.cache_bytes) / (1 << 20), c.width, c.height,
+                    2.0 * c.width * c.height * 8 / (1 << 20)));
   if (!(c.cache_accept > 0 && c.cache_accept <= 1))
     throw InputError(fmt::format("--cache-accept {}: must be in (0, 1]", c.cache_accept));
   if (c.sweep_score_every < 1)

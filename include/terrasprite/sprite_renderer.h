@@ -107,7 +107,8 @@ class SpriteRenderer : public GlRenderer {
   std::size_t keyframe_bytes_held() const;
   bool last_cache_hit() const;
 
-  /// Forgets the keyframe and empties the cache: the next draw() is a keyframe (e.g. after a warm-up).
+  /// Forgets the keyframe and empties the cache: the next draw() is a keyframe (e.g. after a
+  /// warm-up).
   void reset();
   bool has_keyframe() const;
   /// Error of `camera` against the current keyframe (zero without one).

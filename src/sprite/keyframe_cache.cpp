@@ -34,11 +34,10 @@ std::unique_ptr<Keyframe> KeyframeCache::put(std::unique_ptr<Keyframe> k, long l
   std::size_t victim = 0;
   for (std::size_t i = 1; i < entries_.size(); ++i) {
     const Keyframe &a = *entries_[i], &b = *entries_[victim];
-    const bool worse =
-        policy_ == CachePolicy::kLeastRecentlyUsed
-            ? a.used < b.used
-            : glm::length(a.camera.position - now.position) >
-                  glm::length(b.camera.position - now.position);
+    const bool worse = policy_ == CachePolicy::kLeastRecentlyUsed
+                           ? a.used < b.used
+                           : glm::length(a.camera.position - now.position) >
+                                 glm::length(b.camera.position - now.position);
     if (worse) victim = i;
   }
   std::unique_ptr<Keyframe> out = std::move(entries_[victim]);

@@ -93,8 +93,8 @@ void SpritePass::split(const GpuMesh& coarse, std::span<const std::uint8_t> drap
   if (source_ != coarse.vertices.id()) {
     source_ = coarse.vertices.id();
     indices_.resize(static_cast<std::size_t>(coarse.index_count));
-    glGetNamedBufferSubData(coarse.indices.id(), 0, GLsizeiptr(indices_.size() * sizeof(std::uint32_t)),
-                            indices_.data());
+    glGetNamedBufferSubData(coarse.indices.id(), 0,
+                            GLsizeiptr(indices_.size() * sizeof(std::uint32_t)), indices_.data());
     for (GpuMesh* m : {&key_mesh_, &drape_mesh_}) {
       const GLuint vao = m->vao.id();
       glVertexArrayVertexBuffer(vao, 0, source_, 0, 6 * sizeof(float));
@@ -113,8 +113,9 @@ void SpritePass::split(const GpuMesh& coarse, std::span<const std::uint8_t> drap
   key.reserve(indices_.size());
   rest.reserve(indices_.size());
   for (std::size_t q = 0; q < drape.size() && 6 * q + 6 <= indices_.size(); ++q)
-    (drape[q] ? rest : key).insert((drape[q] ? rest : key).end(), indices_.begin() + 6 * q,
-                                   indices_.begin() + 6 * q + 6);
+    (drape[q] ? rest : key)
+        .insert((drape[q] ? rest : key).end(), indices_.begin() + 6 * q,
+                indices_.begin() + 6 * q + 6);
   key_quads_ = int(key.size() / 6);
   for (auto [m, v] : {std::pair{&key_mesh_, &key}, std::pair{&drape_mesh_, &rest}}) {
     glNamedBufferData(m->indices.id(), GLsizeiptr(v->size() * sizeof(std::uint32_t)),

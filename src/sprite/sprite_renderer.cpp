@@ -173,7 +173,8 @@ void SpriteRenderer::draw_sprite_pass(const Camera& camera) {
     // Quads whose coarse geometry is already right at this distance take the drape texture.
     const double limit = s.options.sharp_px * camera.pixel_angle(height());
     for (std::size_t q = 0; q < s.flags.size(); ++q)
-      if (!s.flags[q] && s.grid.max_deviation[q] < limit * glm::length(s.grid.centre[q] - camera.position))
+      if (!s.flags[q] &&
+          s.grid.max_deviation[q] < limit * glm::length(s.grid.centre[q] - camera.position))
         s.flags[q] = 1;
   }
   begin_output();
@@ -220,9 +221,9 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
     s.trigger.reset();
   }
   const bool key = s.trigger.has_value();
-  s.decision_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
-                                                            decision_start)
-                      .count();
+  s.decision_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - decision_start)
+          .count();
   long long triangles = 0;
   if (key) {
     s.retire_current(camera);

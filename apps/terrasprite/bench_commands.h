@@ -13,5 +13,7 @@ void add_bench_voxel(CLI::App& bench);
 void add_bench_lodsprite(CLI::App& bench);
 /// bench warp: post-render warp quality (vs true renders) and cost per method.
 void add_bench_warp(CLI::App& bench);
+/// bench stream: a flythrough over a tiled terrain streamed from disk vs in memory.
+void add_bench_stream(CLI::App& bench);
 
 }  // namespace terrasprite::cli

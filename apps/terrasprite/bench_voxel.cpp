@@ -249,28 +249,34 @@ void run(const BenchVoxelOpts& o) {
                   {"mean_flip", quality_of(v, "flip").mean}});
   }
 
-  // Static pitch sweep (paper Table 1): the default variant at each thread count.
+  // Static pitch sweep (paper Table 1): the default variant at each thread
+  // count, five timed draws of each static view, thread counts interleaved.
   nlohmann::json pitch_table = nlohmann::json::array();
   for (double p : pitches) {
-    Camera c = pitch_camera(terrain.heights, p, double(w) / h);
+    Experiment table;
+    for (std::size_t t = 0; t < threads.size(); ++t)
+      table.add({.renderer = renderers[2][t].get(), .name = run_name(2, t)});
+    PathSource view(std::vector<Camera>(5, pitch_camera(terrain.heights, p, double(w) / h)));
+    ExperimentOptions to;
+    to.warmup_draws = 1;
+    const ExperimentResult r = table.run(view, to);
     for (std::size_t t = 0; t < threads.size(); ++t) {
-      std::vector<double> m;
-      for (int k = 0; k < 5; ++k) m.push_back(renderers[2][t]->render(c).ms);
+      const double m = r.run(run_name(2, t)).ms().median;
       pitch_table.push_back({{"pitch_deg", p},
                              {"threads", threads[t]},
-                             {"median_ms", median(m)},
-                             {"fps", 1000.0 / std::max(median(m), 1e-9)}});
+                             {"median_ms", m},
+                             {"fps", 1000.0 / std::max(m, 1e-9)}});
     }
   }
 
-  // Terrain size sweep: the same path over synthetic terrains (no erosion),
-  // the sizes interleaved frame by frame so machine noise hits them alike.
+  // Terrain size sweep: the same kind of path over synthetic terrains (no
+  // erosion), each planned over its own terrain, the sizes interleaved frame
+  // by frame so machine noise hits them alike.
   struct SweepEntry {
     int samples;
     std::unique_ptr<VoxelTerrain> voxels;
     std::unique_ptr<VoxelRenderer> renderer;
     std::vector<Camera> path;
-    std::vector<double> ms;
   };
   std::vector<SweepEntry> entries;
   for (int n : sizes) {
@@ -290,18 +296,24 @@ void run(const BenchVoxelOpts& o) {
     vo.threads = tmax;
     vo.pixel_voxel_ratio = o.ratio;
     e.renderer = std::make_unique<VoxelRenderer>(*e.voxels, w, h, vo);
-    e.renderer->render(e.path[0]);
     entries.push_back(std::move(e));
   }
   nlohmann::json sweep = nlohmann::json::array();
   if (!entries.empty()) {
-    for (std::size_t i = 0; i < entries[0].path.size(); ++i)
-      for (auto& e : entries) e.ms.push_back(e.renderer->render(e.path[i]).ms);
-    for (auto& e : entries)
+    Experiment by_size;
+    for (const SweepEntry& e : entries)
+      by_size.add({.renderer = e.renderer.get(),
+                   .name = std::to_string(e.samples),
+                   .camera_for = [&e](int i, const Camera&) { return e.path[std::size_t(i)]; }});
+    PathSource frames(entries[0].path);  // the count; each size flies its own path
+    const ExperimentResult r = by_size.run(frames, {});
+    for (const SweepEntry& e : entries) {
+      const Summary ms = r.run(std::to_string(e.samples)).ms();
       sweep.push_back({{"samples", e.samples},
                        {"frames", e.path.size()},
-                       {"median_ms", median(e.ms)},
-                       {"p95_ms", percentile(e.ms, 95)}});
+                       {"median_ms", ms.median},
+                       {"p95_ms", ms.p95}});
+    }
   }
 
   std::vector<std::string> names;

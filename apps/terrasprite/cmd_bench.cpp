@@ -12,6 +12,7 @@ void add_bench(CLI::App& app) {
   add_bench_voxel(*bench);
   add_bench_lodsprite(*bench);
   add_bench_warp(*bench);
+  add_bench_stream(*bench);
 }
 
 }  // namespace terrasprite::cli

@@ -9,6 +9,8 @@ namespace terrasprite::cli {
 void add_info(CLI::App& app);
 void add_render(CLI::App& app);
 void add_compare(CLI::App& app);
+/// `tile`: a terrain to Cloud-Optimized GeoTIFFs of its pyramid, for streaming.
+void add_tile(CLI::App& app);
 void add_demo(CLI::App& app);
 /// `objects info|table`: an object model, its representations and quality tables.
 void add_objects(CLI::App& app);

@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   terrasprite::cli::add_info(app);
   terrasprite::cli::add_render(app);
   terrasprite::cli::add_compare(app);
+  terrasprite::cli::add_tile(app);
   terrasprite::cli::add_objects(app);
   terrasprite::cli::add_bench(app);
   terrasprite::cli::add_demo(app);

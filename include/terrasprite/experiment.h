@@ -115,6 +115,11 @@ struct Participant {
   /// Adds the renderer's own counters and tags to a frame's result; called
   /// right after the draw, outside the timed span.
   std::function<void(const Frame&, FrameResult&)> annotate;
+  /// The camera this participant draws for frame i of the source (default:
+  /// the source's camera), e.g. the same path planned over another terrain in
+  /// a terrain-size sweep. A mapped participant should not be scored: the
+  /// reference draws the source's camera.
+  std::function<Camera(int frame, const Camera& source)> camera_for;
 };
 
 struct ExperimentOptions {

@@ -122,7 +122,8 @@ ExperimentResult Experiment::run(CameraSource& cameras, const ExperimentOptions&
   if (std::optional<Camera> first = cameras.camera(0))
     for (Participant* p : all) {
       const int draws = p->warmup_draws >= 0 ? p->warmup_draws : o.warmup_draws;
-      for (int k = 0; k < draws; ++k) p->renderer->draw(*first);
+      const Camera c = p->camera_for ? p->camera_for(0, *first) : *first;
+      for (int k = 0; k < draws; ++k) p->renderer->draw(c);
       if (p->after_warmup) p->after_warmup();
     }
 
@@ -136,7 +137,7 @@ ExperimentResult Experiment::run(CameraSource& cameras, const ExperimentOptions&
       Participant& p = *all[k];
       const bool is_ref = reference_ && k == 0;
       if (is_ref ? !scored : i % std::max(1, p.every) != 0) continue;
-      Frame f = p.renderer->draw(*camera);
+      Frame f = p.renderer->draw(p.camera_for ? p.camera_for(i, *camera) : *camera);
       FrameResult r = result_of(i, f);
       if (p.annotate) p.annotate(f, r);
       const bool score = !is_ref && scored && p.score;

@@ -67,11 +67,13 @@ class BasicTileReader {
     return refill(level, a, b);
   }
 
-  /// Bound of cell (a, b) of `level`; +inf where the tile is not resident.
+  /// Bound of cell (a, b) of `level`; where the tile is not resident, the
+  /// bound of the coarser cell holding it (looser, still a bound), or +inf
+  /// past the last level.
   float bound(int level, int a, int b) {
     const Slot* t = cell(level, a, b);
     if (!t) [[unlikely]]
-      return std::numeric_limits<float>::infinity();
+      return coarser_bound(level + 1, a >> 1, b >> 1);
     return t->bound_at(a, b);
   }
 
@@ -106,6 +108,10 @@ class BasicTileReader {
   }
 
   // The fallbacks, out of line so the resident path stays small and inlined.
+  [[gnu::noinline]] float coarser_bound(int level, int a, int b) {
+    if (level >= nlev_) return std::numeric_limits<float>::infinity();
+    return bound(level, a, b);
+  }
   [[gnu::noinline]] float coarser_height(int level, double i, double j) {
     return bilinear_height(level, i, j);
   }

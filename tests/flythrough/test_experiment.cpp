@@ -122,6 +122,25 @@ TEST(Experiment, StreamsResultsWithoutKeepingThem) {
   EXPECT_EQ(seen, (std::vector<double>{0, 10, 20, 30, 40}));
 }
 
+TEST(Experiment, AParticipantCanFlyItsOwnCameras) {
+  std::vector<std::string> log;
+  FakeRenderer a("a", 0, log), b("b", 0, log);
+  Experiment e;
+  e.add({.renderer = &a, .name = "a"});
+  e.add({.renderer = &b, .name = "b", .camera_for = [](int i, const Camera& c) {
+           Camera m = c;
+           m.position.x = 1000.0 + i;  // e.g. the same path planned over another terrain
+           return m;
+         }});
+  ExperimentOptions o;
+  o.warmup_draws = 0;
+  PathSource cams(path_of(3));
+  const ExperimentResult r = e.run(cams, o);
+  EXPECT_EQ(r.run("a").frames[2].ms, 20.0);
+  EXPECT_EQ(r.run("b").frames[0].ms, 1000.0);
+  EXPECT_EQ(r.run("b").frames[2].ms, 1002.0);
+}
+
 TEST(Fly, StreamingAndCollectingGiveTheSameStats) {
   std::vector<std::string> log;
   FakeRenderer a("a", 3, log);

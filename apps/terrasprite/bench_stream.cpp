@@ -1,0 +1,397 @@
+// SPDX-License-Identifier: MIT
+// terrasprite bench stream: a flythrough over a tiled terrain read through the
+// streaming tile cache (load on demand, prefetch, never wait), then the same
+// frames with the whole terrain in memory in a separate process (so its
+// memory does not count against the streamed run), compared frame by frame:
+// time, stalls, degraded reads and identical images once tiles are resident.
+#include <fmt/format.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <thread>
+
+#include "bench_commands.h"
+#include "cli_common.h"
+#include "plot.h"
+#include "stream/tile_file.h"
+#include "terrasprite/camera_path.h"
+#include "terrasprite/error.h"
+#include "terrasprite/experiment.h"
+#include "terrasprite/output_dir.h"
+#include "terrasprite/stats.h"
+#include "terrasprite/streaming_tiles.h"
+#include "terrasprite/voxel_renderer.h"
+
+extern char** environ;
+
+namespace terrasprite::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct BenchStreamOpts {
+  std::string tiles;
+  std::string cog;
+  int cache_mb = 256;
+  int io_threads = 2;
+  std::string size = "1920x1080";
+  std::string path = "low-fast";
+  int frames = 300;
+  int threads = 0;
+  std::string in_memory = "auto";
+  std::string child_json;  // hidden: run the in-memory half and write its figures here
+  std::string json;
+  std::string out;
+};
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+double peak_rss_mb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_maxrss) / 1024.0;  // kilobytes on Linux
+}
+
+// FNV-1a over the colour bytes: frames compared across processes by hash.
+std::uint64_t image_hash(const Image& im) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (std::uint8_t b : im.rgba) h = (h ^ b) * 1099511628211ull;
+  return h;
+}
+
+// The path is planned over a coarse level of the tiled terrain (at most 1025
+// samples a side), read once: the full-resolution grid never loads.
+Heightfield path_proxy(const TileSetInfo& set) {
+  int L = 0;
+  while (L < set.grid.coarsest_level && std::max(set.level_w(L), set.level_h(L)) > 1025) ++L;
+  Heightfield h;
+  std::string error;
+  if (!TileFile(set).read_level_heights(L, h.heights, error))
+    throw InputError(fmt::format("{}: {}", set.dir, error));
+  h.width = set.level_w(L);
+  h.height = set.level_h(L);
+  h.spacing_x = set.grid.spacing_x * (set.grid.width - 1) / double(h.width - 1);
+  h.spacing_y = set.grid.spacing_y * (set.grid.height - 1) / double(h.height - 1);
+  h.name = set.dir;
+  return h;
+}
+
+/// The ray caster over the streaming cache: each draw first lets the cache
+/// update (install finished reads, queue the footprint; never waits), and
+/// that update counts in the frame's time.
+class StreamedVoxel final : public Renderer {
+ public:
+  StreamedVoxel(StreamingTiles& tiles, int w, int h, VoxelOptions vo)
+      : tiles_(tiles), r_(tiles, w, h, vo) {}
+  Frame draw(const Camera& c) override {
+    const auto t0 = Clock::now();
+    last_ = tiles_.update(c);
+    update_ms_ = ms_since(t0);
+    Frame f = r_.draw(c);
+    tiles_.collect_reads(last_);
+    f.ms += update_ms_;
+    return f;
+  }
+  void read_back(Frame& f, ReadBack what) override { r_.read_back(f, what); }
+  std::string name() const override { return "stream"; }
+  const StreamFrameStats& last() const { return last_; }
+  double update_ms() const { return update_ms_; }
+
+ private:
+  StreamingTiles& tiles_;
+  VoxelRenderer r_;
+  StreamFrameStats last_;
+  double update_ms_ = 0;
+};
+
+struct PerFrame {
+  double ms = 0, update_ms = 0;
+  StreamFrameStats st;
+  std::uint64_t hash = 0;
+};
+
+struct StreamRun {
+  std::vector<PerFrame> frames;
+  double first_frame_ms = 0, wall_ms = 0, peak_rss_mb = 0;
+  int faults_injected = 0, faults_survived = 0;
+  std::size_t pinned_bytes = 0;
+  double open_ms = 0, path_ms = 0, pinned_ms = 0;  // before the first frame
+};
+
+StreamRun run_streamed(const BenchStreamOpts& o, const TileSetInfo& set, Clock::time_point t_start,
+                       int w, int h, const std::vector<Camera>& path) {
+  StreamOptions so;
+  so.cache_bytes = std::size_t(o.cache_mb) << 20;
+  so.io_threads = o.io_threads;
+  so.image_height = h;
+  const auto t0 = Clock::now();
+  StreamingTiles tiles(set, so);
+  const double pinned_ms = ms_since(t0);
+  VoxelOptions vo;
+  vo.threads = o.threads;
+  StreamedVoxel renderer(tiles, w, h, vo);
+  StreamRun run;
+  run.pinned_bytes = tiles.pinned_bytes();
+  run.pinned_ms = pinned_ms;
+  Experiment ex;
+  ex.add({.renderer = &renderer,
+          .name = "stream",
+          .warmup_draws = 0,  // the first frame is part of the figures (time to first frame)
+          .annotate = [&](const Frame& f, FrameResult& r) {
+            if (run.frames.empty()) run.first_frame_ms = ms_since(t_start);
+            const StreamFrameStats& st = renderer.last();
+            run.frames.push_back({f.ms, renderer.update_ms(), st, image_hash(f.color)});
+            r.counters["degraded_samples"] = double(st.degraded_samples);
+            r.counters["tiles_loaded"] = st.loaded;
+          }});
+  ExperimentOptions eo;
+  eo.warmup_draws = 0;
+  Progress progress("bench stream");
+  eo.progress = std::ref(progress);
+  PathSource cameras(path);
+  const auto t_run = Clock::now();
+  ex.run(cameras, eo);
+  run.wall_ms = ms_since(t_run);
+  run.peak_rss_mb = peak_rss_mb();
+  run.faults_injected = tiles.injected_faults();
+  run.faults_survived = tiles.failed_tiles();  // the run went on past every one
+  return run;
+}
+
+// The in-memory half (in its own process): every level resident, the same frames.
+void run_in_memory_child(const BenchStreamOpts& o, const TileSetInfo& set, int w, int h,
+                         const std::vector<Camera>& path) {
+  ResidentTiles tiles(set);
+  VoxelOptions vo;
+  vo.threads = o.threads;
+  VoxelRenderer r(tiles, w, h, vo);
+  nlohmann::json ms = nlohmann::json::array(), hashes = nlohmann::json::array();
+  Experiment ex;
+  ex.add({.renderer = &r, .name = "in_memory", .annotate = [&](const Frame& f, FrameResult& fr) {
+            ms.push_back(fr.ms);
+            hashes.push_back(fmt::format("{:016x}", image_hash(f.color)));
+          }});
+  PathSource cameras(path);
+  ex.run(cameras, {});
+  std::ofstream(o.child_json) << nlohmann::json{{"ms", ms}, {"hash", hashes}, {"peak_rss_mb", peak_rss_mb()}}.dump();
+}
+
+// Runs this program again with --in-memory-child; its figures, or null when it failed.
+nlohmann::json spawn_in_memory(const BenchStreamOpts& o, const std::string& child_json) {
+  std::vector<std::string> args = {"/proc/self/exe", "bench", "stream", "--tiles", o.tiles,
+                                   "--size", o.size, "--path", o.path,
+                                   "--frames", std::to_string(o.frames), "--threads",
+                                   std::to_string(o.threads), "--in-memory-child", child_json};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv.data(), environ) != 0) return nullptr;
+  int status = 0;
+  waitpid(pid, &status, 0);
+  std::ifstream f(child_json);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !f) {
+    fmt::print(stderr, "warning: the in-memory run failed; reporting the streamed run alone\n");
+    return nullptr;
+  }
+  return nlohmann::json::parse(f);
+}
+
+// Frames over twice their in-memory time, or (without one) over twice the
+// median of the 21 frames around them.
+int stall_frames(const std::vector<double>& ms, const std::vector<double>& mem) {
+  int n = 0;
+  for (std::size_t i = 0; i < ms.size(); ++i) {
+    double ref;
+    if (!mem.empty()) {
+      ref = mem[i];
+    } else {
+      const std::size_t a = i >= 10 ? i - 10 : 0, b = std::min(ms.size(), i + 11);
+      ref = median(std::vector<double>(ms.begin() + std::ptrdiff_t(a), ms.begin() + std::ptrdiff_t(b)));
+    }
+    n += ms[i] > 2 * ref;
+  }
+  return n;
+}
+
+void write_plot(const OutputDir& out, const StreamRun& run, const std::vector<double>& mem) {
+  std::ofstream dat(out.file("stream_frames.dat"));
+  dat << "# frame stream_ms in_memory_ms degraded_samples\n";
+  for (std::size_t i = 0; i < run.frames.size(); ++i)
+    dat << i << ' ' << run.frames[i].ms << ' ' << (mem.empty() ? NAN : mem[i]) << ' '
+        << run.frames[i].st.degraded_samples << '\n';
+  dat.close();
+  std::ofstream gp(out.file("stream_frames.gp"));
+  gp << "set terminal pngcairo size 1000,700\nset output 'stream_frames.png'\nset multiplot layout 2,1\n"
+     << "set grid\nset ylabel 'ms per frame'\nplot 'stream_frames.dat' using 1:2 with lines title "
+        "'streamed', '' using 1:3 with lines title 'in memory'\n"
+     << "set xlabel 'frame along the path'\nset ylabel 'log10(1 + degraded reads)'\n"
+        "plot 'stream_frames.dat' using 1:(log10(1 + $4)) with impulses title 'degraded reads'\n"
+        "unset multiplot\n";
+  gp.close();
+  const std::string error = run_gnuplot(out.partial().string(), "stream_frames.gp");
+  if (!error.empty()) fmt::print(stderr, "warning: {}; stream_frames.dat kept without a plot\n", error);
+}
+
+nlohmann::json summary_json(const BenchStreamOpts& o, const TileSetInfo& set, const StreamRun& run,
+                            const nlohmann::json& mem, int w, int h) {
+  std::vector<double> ms, mem_ms;
+  long long degraded = 0, degraded_late = 0, lookups = 0, misses = 0, bytes = 0;
+  long long lookups_late = 0, misses_late = 0;
+  for (std::size_t i = 0; i < run.frames.size(); ++i) {
+    const PerFrame& f = run.frames[i];
+    ms.push_back(f.ms);
+    degraded += f.st.degraded_samples;
+    if (i >= 30) {
+      degraded_late += f.st.degraded_samples;
+      lookups_late += f.st.lookups;
+      misses_late += f.st.misses;
+    }
+    lookups += f.st.lookups;
+    misses += f.st.misses;
+    bytes += f.st.bytes_read;
+  }
+  if (!mem.is_null()) mem_ms = mem["ms"].get<std::vector<double>>();
+  const Summary s = summarize(ms);
+  const double late_pixels = double(w) * h * double(std::max<std::size_t>(1, ms.size() > 30 ? ms.size() - 30 : 0));
+  nlohmann::json in_memory = nullptr;
+  int compared = 0, equal = 0;
+  if (!mem.is_null()) {
+    const Summary m = summarize(mem_ms);
+    in_memory = {{"median_ms", m.median}, {"p99_ms", m.p99}, {"peak_rss_mb", mem["peak_rss_mb"]}};
+    for (std::size_t i = 0; i < run.frames.size() && i < mem["hash"].size(); ++i)
+      if (run.frames[i].st.degraded_samples == 0) {
+        ++compared;
+        equal += mem["hash"][i] == fmt::format("{:016x}", run.frames[i].hash);
+      }
+  }
+  return {
+      {"terrain", {{"samples", {set.grid.width, set.grid.height}},
+                   {"bytes_on_disk", set.bytes_on_disk},
+                   {"levels", set.grid.coarsest_level + 1},
+                   {"tile_cells", 1 << set.grid.tile_log2}}},
+      {"tiles", o.tiles},
+      {"cache_mb", o.cache_mb},
+      {"io_threads", o.io_threads},
+      {"size", {w, h}},
+      {"path", o.path},
+      {"frames", int(ms.size())},
+      {"stream",
+       {{"median_ms", s.median},
+        {"p99_ms", s.p99},
+        {"stall_frames", stall_frames(ms, mem_ms)},
+        {"degraded_samples_total", degraded},
+        {"degraded_fraction_after_warmup", double(degraded_late) / late_pixels},
+        {"hit_rate", lookups ? 1.0 - double(misses) / double(lookups) : 1.0},
+        {"hit_rate_after_warmup", lookups_late ? 1.0 - double(misses_late) / double(lookups_late) : 1.0},
+        {"io_mb_s", double(bytes) / 1e6 / std::max(run.wall_ms / 1e3, 1e-9)},
+        {"bytes_read_mb", double(bytes) / 1e6},
+        {"peak_rss_mb", run.peak_rss_mb},
+        {"pinned_mb", double(run.pinned_bytes) / (1 << 20)},
+        {"first_frame_ms", run.first_frame_ms},
+        {"first_frame_parts_ms",
+         {{"open", run.open_ms}, {"path", run.path_ms}, {"pinned_levels", run.pinned_ms}}}}},
+      {"in_memory", in_memory},
+      {"ratio_median", mem.is_null() ? nlohmann::json(nullptr)
+                                     : nlohmann::json(s.median / std::max(in_memory["median_ms"].get<double>(), 1e-9))},
+      {"images_equal_when_resident", {{"frames_compared", compared}, {"frames_equal", equal}}},
+      {"faults_injected", run.faults_injected},
+      {"faults_survived", run.faults_survived}};
+}
+
+nlohmann::json per_frame_json(const StreamRun& run, const std::vector<double>& mem) {
+  nlohmann::json a = nlohmann::json::array();
+  for (std::size_t i = 0; i < run.frames.size(); ++i) {
+    const PerFrame& f = run.frames[i];
+    a.push_back({{"frame", i},
+                 {"ms", f.ms},
+                 {"update_ms", f.update_ms},
+                 {"in_memory_ms", mem.empty() ? nlohmann::json(nullptr) : nlohmann::json(mem[i])},
+                 {"degraded_samples", f.st.degraded_samples},
+                 {"tiles_requested", f.st.requested},
+                 {"tiles_loaded", f.st.loaded},
+                 {"tiles_evicted", f.st.evicted},
+                 {"tiles_failed", f.st.failed},
+                 {"bytes_read", f.st.bytes_read},
+                 {"resident_mb", double(f.st.resident_bytes) / (1 << 20)}});
+  }
+  return a;
+}
+
+// Whether the in-memory half should run: "auto" when the decoded pyramid
+// (about 16 bytes a sample) takes under half the memory available now.
+bool want_in_memory(const BenchStreamOpts& o, const TileSetInfo& set) {
+  if (o.in_memory == "yes") return true;
+  if (o.in_memory == "no") return false;
+  const double need = 16.0 * 4 / 3 * double(set.grid.width) * set.grid.height;
+  const double avail = double(sysconf(_SC_AVPHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+  return need < 0.5 * avail;
+}
+
+void run(const BenchStreamOpts& o) {
+  const auto t_start = Clock::now();
+  auto [w, h] = parse_size(o.size, "--size");
+  if (!o.cog.empty())
+    throw InputError(fmt::format("--cog {}: not supported yet; tile it with `terrasprite tile --dem {}`", o.cog, o.cog));
+  if (o.tiles.empty()) throw InputError("--tiles: required (a directory written by terrasprite tile)");
+  if (o.frames < 1 || o.frames > 100000)
+    throw InputError(fmt::format("--frames {}: must be between 1 and 100000", o.frames));
+  if (o.cache_mb < 1 || o.cache_mb > 1 << 20)
+    throw InputError(fmt::format("--cache-mb {}: must be between 1 and 1048576", o.cache_mb));
+  const bool child = !o.child_json.empty();
+  const std::string out_dir = o.out.empty() ? std::string("out/bench_stream") : o.out;
+  if (!child) check_outputs(out_dir, {o.json});
+  const TileSetInfo set = read_tile_set(o.tiles);
+  const double open_ms = ms_since(t_start);
+  const std::vector<Camera> path = make_path(o.path, path_proxy(set), o.frames, double(w) / h);
+  const double path_ms = ms_since(t_start) - open_ms;
+  if (child) return run_in_memory_child(o, set, w, h, path);
+  OutputDir out(out_dir, output_policy());
+  StreamRun run = run_streamed(o, set, t_start, w, h, path);
+  run.open_ms = open_ms;
+  run.path_ms = path_ms;
+  const nlohmann::json mem = want_in_memory(o, set) ? spawn_in_memory(o, out.file("in_memory.json")) : nullptr;
+  std::vector<double> mem_ms;
+  if (!mem.is_null()) mem_ms = mem["ms"].get<std::vector<double>>();
+  write_plot(out, run, mem_ms);
+  nlohmann::json j = summary_json(o, set, run, mem, w, h);
+  nlohmann::json full = j;
+  full["per_frame"] = per_frame_json(run, mem_ms);
+  write_json(full, out.file("bench_stream.json"));  // JSON last: the directory is complete
+  out.commit();
+  if (!o.json.empty()) write_json(full, o.json);
+  fmt::print("{}\n", j.dump(2));
+}
+
+}  // namespace
+
+void add_bench_stream(CLI::App& bench) {
+  auto* cmd = bench.add_subcommand(
+      "stream", "streamed terrain: frame times, stalls and degraded reads vs the terrain in memory");
+  auto o = std::make_shared<BenchStreamOpts>();
+  cmd->add_option("--tiles", o->tiles, "tiled terrain directory (terrasprite tile --out DIR)");
+  cmd->add_option("--cog", o->cog, "an existing COG (not supported yet: tile it first)");
+  cmd->add_option("--cache-mb", o->cache_mb, "tile cache budget, MB (default 256)");
+  cmd->add_option("--io-threads", o->io_threads, "loader threads (default 2)");
+  cmd->add_option("--size", o->size, "image size WxH (default 1920x1080)");
+  cmd->add_option("--path", o->path, "'low-fast' (default), 'paper' or a JSON path file");
+  cmd->add_option("--frames", o->frames, "frames along the path (default 300)");
+  cmd->add_option("--threads", o->threads, "ray-caster threads (default 0: all)");
+  cmd->add_option("--in-memory", o->in_memory,
+                  "also fly the terrain wholly in memory, in another process: auto (default: when "
+                  "it fits in half the free memory), yes, no")
+      ->check(CLI::IsMember({"auto", "yes", "no"}));
+  cmd->add_option("--in-memory-child", o->child_json)->group("");  // internal
+  cmd->add_option("--json", o->json, "also write the JSON here");
+  cmd->add_option("--out", o->out, "output directory: plot, JSON (default out/bench_stream)");
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace terrasprite::cli

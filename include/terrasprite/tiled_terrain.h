@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: MIT
+// A terrain pyramid on disk as Cloud-Optimized GeoTIFFs: the ray caster's own
+// vertex-aligned levels (see TerrainGrid) written as each file's overviews,
+// so a reader fetches any tile of any level with one windowed read.
+//
+//   DIR/height.tif  Float32 heights, level 0 + levels 1.. as overviews
+//   DIR/color.tif   Byte RGB, the same levels
+//   DIR/bound.tif   Float32 max-height bounds per cell, bound levels as overviews
+//   DIR/tiles.json  grid, levels, per-tile max-height bounds, georeferencing
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "terrasprite/image.h"
+#include "terrasprite/terrain_tiles.h"
+#include "terrasprite/voxel_renderer.h"
+
+namespace terrasprite {
+
+/// How `write_tiled_terrain` encodes the files.
+struct TileWriteOptions {
+  int tile_log2 = 7;                    ///< tiles of 2^tile_log2 cells (4..9: 16..512)
+  std::string color_compress = "JPEG";  ///< JPEG, WEBP or DEFLATE (lossless)
+  int color_quality = 90;               ///< JPEG / WEBP quality, 1..100
+  std::string height_compress = "DEFLATE";  ///< DEFLATE or ZSTD, with PREDICTOR=3
+};
+
+/// What tiles.json says: the grid and the per-tile max-height bounds.
+struct TileSetInfo {
+  std::string dir;
+  TerrainGrid grid;  ///< finest_level 0, coarsest_level, bound_levels, tile_log2
+  /// Per bound level: tiles across and down, and each tile's max height
+  /// (row-major, metres): every sample and cell bound of the tile is below it.
+  std::vector<int> tiles_x, tiles_y;
+  std::vector<std::vector<float>> tile_max;
+  std::optional<GeoTransform> geo;
+  long long bytes_on_disk = 0;  ///< the three .tif files
+
+  std::string height_file() const { return dir + "/height.tif"; }
+  std::string color_file() const { return dir + "/color.tif"; }
+  std::string bound_file() const { return dir + "/bound.tif"; }
+  /// Samples (or, past coarsest_level, cells + 1) of `level` along x / y.
+  int level_w(int level) const { return tiles_cells_w(level) + 1; }
+  int level_h(int level) const { return tiles_cells_h(level) + 1; }
+  int tiles_cells_w(int level) const;  ///< cells of `level` along x (bound grid)
+  int tiles_cells_h(int level) const;
+};
+
+/// Writes `terrain`'s pyramids into the partial output directory `dir` (it
+/// must exist): height.tif, color.tif, bound.tif as COGs, then tiles.json.
+/// `geo` (optional) georeferences level 0. Throws InputError naming a file
+/// GDAL could not write. Memory: the files are written from the pyramid in
+/// place (GDAL reads it through MEM datasets), plus GDAL's block cache.
+void write_tiled_terrain(const VoxelTerrain& terrain, const std::optional<GeoTransform>& geo,
+                         const std::string& dir, const TileWriteOptions& options = {});
+
+/// Reads DIR/tiles.json and checks that the three files exist and open as
+/// rasters of the stated sizes. Throws InputError naming the file otherwise.
+TileSetInfo read_tile_set(const std::string& dir);
+
+}  // namespace terrasprite

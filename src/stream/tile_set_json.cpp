@@ -1,0 +1,153 @@
+// SPDX-License-Identifier: MIT
+#include "stream/tile_set_json.h"
+
+#include <fmt/format.h>
+#include <gdal_priv.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "terrain/gdal_util.h"
+#include "terrasprite/error.h"
+
+namespace terrasprite {
+namespace {
+
+constexpr const char* kFormat = "terrasprite-tiles";
+constexpr int kVersion = 1;
+
+int cells_at(int n0, int level) {
+  const int c0 = std::max(1, n0 - 1);
+  return int((std::int64_t(c0) + (std::int64_t(1) << level) - 1) >> level);
+}
+
+// Opens `path` and checks its size and overview count; throws InputError.
+void check_raster(const std::string& path, int w, int h, int overviews, int bands) {
+  detail::GdalErrorCapture capture;
+  GDALDatasetH ds = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+  if (!ds) throw InputError(fmt::format("{}: cannot open: {}", path, capture.last()));
+  const int rw = GDALGetRasterXSize(ds), rh = GDALGetRasterYSize(ds), rb = GDALGetRasterCount(ds);
+  const int ro = rb > 0 ? GDALGetOverviewCount(GDALGetRasterBand(ds, 1)) : 0;
+  GDALClose(ds);
+  if (rw != w || rh != h || rb < bands || ro != overviews)
+    throw InputError(fmt::format(
+        "{}: {}x{} with {} bands and {} overviews; tiles.json says {}x{}, {} bands, {} overviews",
+        path, rw, rh, rb, ro, w, h, bands, overviews));
+}
+
+}  // namespace
+
+int TileSetInfo::tiles_cells_w(int level) const {
+  return cells_at(grid.width, level);
+}
+int TileSetInfo::tiles_cells_h(int level) const {
+  return cells_at(grid.height, level);
+}
+
+void write_tile_set_json(const VoxelTerrain& terrain, const std::optional<GeoTransform>& geo,
+                         const TileWriteOptions& o, const std::string& path) {
+  const TerrainGrid& g = terrain.grid();
+  nlohmann::json j;
+  j["format"] = kFormat;
+  j["version"] = kVersion;
+  j["samples"] = {g.width, g.height};
+  j["spacing_m"] = {g.spacing_x, g.spacing_y};
+  j["extent_m"] = {g.spacing_x * (g.width - 1), g.spacing_y * (g.height - 1)};
+  j["height_min"] = g.min_height;
+  j["height_max"] = g.max_height;
+  j["tile_cells"] = 1 << o.tile_log2;
+  j["coarsest_level"] = g.coarsest_level;
+  j["bound_levels"] = g.bound_levels;
+  j["color_compress"] = o.color_compress;
+  j["height_compress"] = o.height_compress;
+  j["files"] = {{"height", "height.tif"}, {"color", "color.tif"}, {"bound", "bound.tif"}};
+  if (geo) {
+    j["geotransform"] = std::vector<double>(geo->gt, geo->gt + 6);
+    j["srs_wkt"] = geo->wkt;
+  }
+  nlohmann::json levels = nlohmann::json::array();
+  const int T = 1 << o.tile_log2;
+  for (int L = 0; L < g.bound_levels; ++L) {
+    const int cw = cells_at(g.width, L), ch = cells_at(g.height, L);
+    const int nx = (cw + T - 1) / T, ny = (ch + T - 1) / T;
+    std::vector<float> maxes;
+    maxes.reserve(std::size_t(nx) * ny);
+    // The in-memory pyramid's own tiles are 2^7 cells; recompute per tile of T.
+    const TileBlock* whole = terrain.level_block(L);
+    for (int ty = 0; ty < ny; ++ty)
+      for (int tx = 0; tx < nx; ++tx) {
+        float m = -std::numeric_limits<float>::infinity();
+        for (int b = ty * T; b < std::min(ch, (ty + 1) * T); ++b)
+          for (int a = tx * T; a < std::min(cw, (tx + 1) * T); ++a)
+            m = std::max(m, whole->bound[std::size_t(b) * whole->bound_stride + a]);
+        maxes.push_back(m);
+      }
+    levels.push_back({{"level", L},
+                      {"samples", {cw + 1, ch + 1}},
+                      {"has_samples", L <= g.coarsest_level},
+                      {"tiles", {nx, ny}},
+                      {"tile_max_height", maxes}});
+  }
+  j["levels"] = levels;
+  std::ofstream f(path);
+  f << j.dump(1) << '\n';
+  if (!f) throw InputError(fmt::format("{}: cannot write", path));
+}
+
+TileSetInfo read_tile_set(const std::string& dir) {
+  detail::ensure_gdal();
+  const std::string path = dir + "/tiles.json";
+  std::ifstream f(path);
+  if (!f) throw InputError(fmt::format("{}: cannot open (is {} a directory written by terrasprite tile?)", path, dir));
+  TileSetInfo t;
+  t.dir = dir;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(f);
+    if (j.at("format") != kFormat || j.at("version") != kVersion)
+      throw InputError(fmt::format("{}: not a terrasprite tile set of version {}", path, kVersion));
+    TerrainGrid& g = t.grid;
+    g.width = j.at("samples")[0];
+    g.height = j.at("samples")[1];
+    g.spacing_x = j.at("spacing_m")[0];
+    g.spacing_y = j.at("spacing_m")[1];
+    g.min_height = j.at("height_min");
+    g.max_height = j.at("height_max");
+    g.finest_level = 0;
+    g.coarsest_level = j.at("coarsest_level");
+    g.bound_levels = j.at("bound_levels");
+    const int T = j.at("tile_cells");
+    g.tile_log2 = 0;
+    while ((1 << g.tile_log2) < T) ++g.tile_log2;
+    if (g.width < 2 || g.height < 2 || (1 << g.tile_log2) != T || g.bound_levels < 1 ||
+        g.bound_levels > 31 || g.coarsest_level < 0 || g.coarsest_level >= g.bound_levels ||
+        int(j.at("levels").size()) != g.bound_levels)
+      throw InputError(fmt::format("{}: inconsistent grid or levels", path));
+    for (const auto& l : j.at("levels")) {
+      t.tiles_x.push_back(l.at("tiles")[0]);
+      t.tiles_y.push_back(l.at("tiles")[1]);
+      t.tile_max.push_back(l.at("tile_max_height").get<std::vector<float>>());
+      if (t.tile_max.back().size() != std::size_t(t.tiles_x.back()) * t.tiles_y.back())
+        throw InputError(fmt::format("{}: tile_max_height of level {} has the wrong length", path,
+                                     int(t.tile_max.size()) - 1));
+    }
+    if (j.contains("geotransform")) {
+      GeoTransform gt;
+      for (int k = 0; k < 6; ++k) gt.gt[k] = j["geotransform"][k];
+      gt.wkt = j.value("srs_wkt", "");
+      t.geo = gt;
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: malformed: {}", path, e.what()));
+  }
+  const TerrainGrid& g = t.grid;
+  check_raster(t.height_file(), g.width, g.height, g.coarsest_level, 1);
+  check_raster(t.color_file(), g.width, g.height, g.coarsest_level, 3);
+  check_raster(t.bound_file(), t.tiles_cells_w(0), t.tiles_cells_h(0), g.bound_levels - 1, 1);
+  std::error_code ec;
+  for (const std::string& p : {t.height_file(), t.color_file(), t.bound_file()})
+    t.bytes_on_disk += (long long)std::filesystem::file_size(p, ec);
+  return t;
+}
+
+}  // namespace terrasprite

@@ -40,6 +40,8 @@ void add_bench_lodsprite(CLI::App& bench) {
     std::string lod_sweep = "8,16,32,64";
     std::string out = "out/lodsprite";
     std::string json;
+    double cache_mb = 0;
+    std::string cache_policy = "lru";
   };
   auto o = std::make_shared<Opts>();
   o->terrain.resample = 513;  // the paper's 512 x 512 quads
@@ -61,6 +63,22 @@ void add_bench_lodsprite(CLI::App& bench) {
   cmd->add_option("--sharp-px", o->config.sharp_px,
                   "quads whose coarse geometry errs less than this many pixels take the drape "
                   "texture (default 0.5; 0 = off)");
+  cmd->add_flag("--there-and-back", o->config.there_and_back,
+                "fly the path there and back: its frames, then the same cameras reversed");
+  cmd->add_flag_function(
+      "--cache",
+      [o](std::int64_t) {
+        if (o->cache_mb == 0) o->cache_mb = 256;
+      },
+      "keep past keyframes and reuse one when it fits the view (budget --cache-mb)");
+  cmd->add_option("--cache-mb", o->cache_mb,
+                  "keyframe cache budget in MB, colour + depth of every keyframe held "
+                  "(default 256 with --cache; 0 = off)");
+  cmd->add_option("--cache-accept", o->config.cache_accept,
+                  "reuse a cached keyframe while its error is at most this fraction of the "
+                  "threshold (default 0.5)");
+  cmd->add_option("--cache-policy", o->cache_policy,
+                  "which cached keyframe is evicted: lru (default) | farthest");
   cmd->add_option("--thresholds", o->thresholds, "threshold sweep (default 0.25,0.5,1,2,4,8)");
   cmd->add_option("--frame-counts", o->frame_counts,
                   "frame-count sweep (default 115,230,460,920,1840)");
@@ -74,6 +92,10 @@ void add_bench_lodsprite(CLI::App& bench) {
     LodspriteConfig c = o->config;
     std::tie(c.width, c.height) = parse_size(o->size, "--size");
     c.metric = parse_metric(o->metric);
+    if (!(o->cache_mb >= 0 && o->cache_mb <= 1 << 20))
+      throw InputError(fmt::format("--cache-mb {}: must be between 0 and 1048576", o->cache_mb));
+    c.cache_bytes = std::size_t(o->cache_mb * (1 << 20));
+    c.cache_policy = parse_cache_policy(o->cache_policy);
     if (!(c.max_resample_scale >= 1.0))
       throw InputError(fmt::format("--scale-trigger {}: must be at least 1 (inf disables it)",
                                    c.max_resample_scale));

@@ -43,6 +43,7 @@ struct PassResult {
   double total_ms = 0;
   double key_median_ms = 0, sprite_median_ms = 0;
   double mean_ssim = 0;
+  int cache_hits = 0;
 };
 
 // One timed LOD-sprite pass over `path`; the kept frames are SSIM-scored
@@ -61,6 +62,7 @@ PassResult sprite_pass(Scene& scene, std::span<const Camera> path, int w, int h,
     Frame f = r.render(path[i]);
     p.total_ms += f.ms;
     (f.cls == "key" ? key_ms : sprite_ms).push_back(f.ms);
+    p.cache_hits += r.last_cache_hit();
     if (i % every == 0) kept.push_back(std::move(f.color));
   }
   p.keyframes = int(key_ms.size());
@@ -109,6 +111,13 @@ void validate(const LodspriteConfig& c) {
       throw InputError(fmt::format("--frame-counts: {} must be between 1 and 100000", n));
   for (int q : c.lod_sweep)
     if (q < 1) throw InputError(fmt::format("--lod-sweep: {} quads must be at least 1", q));
+  if (c.cache_bytes > 0 && c.cache_bytes < std::size_t(2) * c.width * c.height * 8)
+    throw InputError(
+        fmt::format("--cache-mb {:.3g}: must hold at least two {}x{} keyframes ({:.3g} MB)",
+                    double(c.cache_bytes) / (1 << 20), c.width, c.height,
+                    2.0 * c.width * c.height * 8 / (1 << 20)));
+  if (!(c.cache_accept > 0 && c.cache_accept <= 1))
+    throw InputError(fmt::format("--cache-accept {}: must be in (0, 1]", c.cache_accept));
   if (c.sweep_score_every < 1)
     throw InputError(
         fmt::format("--sweep-score-every {}: must be at least 1", c.sweep_score_every));
@@ -126,12 +135,19 @@ const char* metric_name(ErrorMetric m) {
   return m == ErrorMetric::kPaper ? "paper" : "exact";
 }
 
+CachePolicy parse_cache_policy(const std::string& text) {
+  if (text == "lru") return CachePolicy::kLeastRecentlyUsed;
+  if (text == "farthest") return CachePolicy::kFarthest;
+  throw InputError(fmt::format("--cache-policy {}: must be 'lru' or 'farthest'", text));
+}
+
 nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain, OutputDir& out,
                              const std::string& label) {
   validate(cfg);
   const int w = cfg.width, h = cfg.height, every = cfg.sweep_score_every;
   const double aspect = double(w) / h;
   std::vector<Camera> path = make_path(cfg.path, terrain.heights, cfg.frames, aspect);
+  if (cfg.there_and_back) path.insert(path.end(), path.rbegin(), path.rend());
   const int n = int(path.size());
 
   GlContext gl;
@@ -144,6 +160,9 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
   so.max_fallback_fraction = cfg.max_fallback_fraction;
   so.max_resample_scale = cfg.max_resample_scale;
   so.sharp_px = cfg.sharp_px;
+  so.cache_bytes = cfg.cache_bytes;
+  so.cache_policy = cfg.cache_policy;
+  so.cache_accept = cfg.cache_accept;
   SpriteRenderer sprite(scene, w, h, so);
   // ---- main run: interleaved, timed, then scored outside the timed spans ----
   Experiment experiment;
@@ -160,9 +179,11 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
                                       {"error_px_exact", e.exact_px},
                                       {"error_samples", double(e.samples)},
                                       {"fallback_fraction", e.fallback_fraction()},
-                                      {"resample_scale", e.resample_scale}};
+                                      {"resample_scale", e.resample_scale},
+                                      {"decision_cpu_ms", sprite.last_decision_ms()}};
                         if (sprite.last_trigger())
                           r.tags["trigger"] = to_string(*sprite.last_trigger());
+                        if (sprite.last_cache_hit()) r.tags["trigger"] = "cache";
                       }});
   std::vector<Image> refs;
   ExperimentOptions eo;
@@ -179,7 +200,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
   const RendererRun &full_run = run.run("full"), &lod_run = run.run("lod"),
                     &sprite_run = run.run("sprite");
 
-  std::vector<double> full_ms(n), lod_ms(n), sprite_ms(n), key_ms, spr_ms;
+  std::vector<double> full_ms(n), lod_ms(n), sprite_ms(n), key_ms, spr_ms, decision_ms;
   std::vector<double> lod_psnr, lod_ssim, lod_flip, sp_psnr, sp_ssim, sp_flip, sp_psnr_sprite_only,
       lod_psnr_sprite_only;
   std::vector<int> key_of(n, 0);
@@ -191,6 +212,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
     lod_ms[i] = b.ms;
     sprite_ms[i] = c.ms;
     const bool key = c.cls == "key";
+    decision_ms.push_back(c.counters.at("decision_cpu_ms"));
     if (key) {
       ++keyframes;
       current_key = i;
@@ -224,6 +246,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
                          {"error_samples", int(c.counters.at("error_samples"))},
                          {"fallback_fraction", c.counters.at("fallback_fraction")},
                          {"resample_scale", c.counters.at("resample_scale")},
+                         {"decision_cpu_ms", c.counters.at("decision_cpu_ms")},
                          {"trigger", trigger == c.tags.end() ? "" : trigger->second},
                          {"keyframe", current_key},
                          {"psnr", ss.psnr},
@@ -302,6 +325,35 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
     sweep_progress(++sweep_done, sweep_total);
   }
 
+  // ---- keyframe cache: the same path without it, a separate timed pass ----
+  nlohmann::json cache = nullptr;
+  if (cfg.cache_bytes > 0) {
+    SpriteOptions o = so;
+    o.cache_bytes = 0;
+    const PassResult without = sprite_pass(scene, path, w, h, o, refs, every);
+    int hits = 0;
+    for (const FrameResult& fr : sprite_run.frames) {
+      auto t = fr.tags.find("trigger");
+      hits += t != fr.tags.end() && t->second == "cache";
+    }
+    cache = {{"size", cfg.cache_bytes},
+             {"size_mb", double(cfg.cache_bytes) / (1 << 20)},
+             {"policy", to_string(cfg.cache_policy)},
+             {"accept", cfg.cache_accept},
+             {"capacity_keyframes", int(cfg.cache_bytes / (std::size_t(w) * h * 8))},
+             {"keyframes", keyframes},
+             {"keyframes_without_cache", without.keyframes},
+             {"hits", hits},
+             {"saving", without.keyframes > 0 ? 1.0 - double(keyframes) / without.keyframes : 0.0},
+             {"mean_ssim", mean_every(sp_ssim)},
+             {"mean_ssim_without_cache", without.mean_ssim},
+             {"total_ms", sprite_total},
+             {"total_ms_without_cache", without.total_ms},
+             {"method",
+              "keyframes_without_cache and mean_ssim_without_cache: a separate timed pass "
+              "with the cache off on the same path, scored on the same frames as mean_ssim"}};
+  }
+
   // ---- the paper's Figs. 13 and 14: one frame full / LOD / sprite, checker and real texture ----
   int fig_frame = 0;
   double worst = -1;
@@ -366,6 +418,9 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
                                  ? nlohmann::json(cfg.max_resample_scale)
                                  : nlohmann::json(nullptr)},
       {"psnr_cap_db", kPsnrCapDb},
+      {"there_and_back", cfg.there_and_back},
+      {"async", false},
+      {"mesh", "uniform"},
       {"full", {{"total_ms", full_total}, {"median_ms", median(full_ms)}}},
       {"lod",
        {{"total_ms", sum(lod_ms)},
@@ -378,6 +433,9 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
       {"sprite",
        {{"total_ms", sprite_total},
         {"median_ms", median(sprite_ms)},
+        {"p99_ms", percentile(sprite_ms, 99)},
+        {"decision_cpu_median_ms", median(decision_ms)},
+        {"decision_cpu_p99_ms", percentile(decision_ms, 99)},
         {"keyframes", keyframes},
         {"sprite_frames", sprite_run.count("sprite")},
         {"key_median_ms", key_median},
@@ -426,6 +484,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
       {"figures", figures},
       {"per_frame", per_frame}};
   if (!cfg.video.empty()) j["video"] = cfg.video;
+  if (!cache.is_null()) j["cache"] = cache;
   write_lodsprite_report(j, out);
   return j;
 }

@@ -3,6 +3,7 @@
 // LOD and LOD-sprite timed on one path, scored against the full-resolution
 // reference, plus the sweeps and figures of the paper's section 4.
 #pragma once
+#include <cstddef>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -11,6 +12,7 @@
 #include "terrasprite/frame.h"
 #include "terrasprite/output_dir.h"
 #include "terrasprite/sprite_metric.h"
+#include "terrasprite/sprite_renderer.h"
 #include "terrasprite/terrain.h"
 
 namespace terrasprite::cli {
@@ -28,6 +30,14 @@ struct LodspriteConfig {
   std::vector<double> thresholds = {0.25, 0.5, 1, 2, 4, 8};
   std::vector<int> frame_counts = {115, 230, 460, 920, 1840};
   std::vector<int> lod_sweep = {8, 16, 32, 64};
+  /// The path flown there and back: its `frames` cameras, then the same
+  /// cameras in reverse order (2 x frames in all).
+  bool there_and_back = false;
+  /// Keyframe cache budget in bytes (0 = off) and eviction policy; with the
+  /// cache on, a separate timed pass without it gives keyframes_without_cache.
+  std::size_t cache_bytes = 0;
+  CachePolicy cache_policy = CachePolicy::kLeastRecentlyUsed;
+  double cache_accept = 0.5;
   int sweep_score_every = 1;  ///< sweeps score SSIM on every n-th frame
   bool flip = true;           ///< FLIP per frame in the main run
   /// Called with (frame, sprite frame) after scoring, e.g. to save it.
@@ -46,5 +56,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& config, const Terrain& terra
 /// "paper" | "exact" -> metric; throws InputError naming --metric.
 ErrorMetric parse_metric(const std::string& text);
 const char* metric_name(ErrorMetric m);
+/// "lru" | "farthest" -> policy; throws InputError naming --cache-policy.
+CachePolicy parse_cache_policy(const std::string& text);
 
 }  // namespace terrasprite::cli

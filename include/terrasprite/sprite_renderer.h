@@ -3,6 +3,7 @@
 // full-resolution keyframes rendered into textures, in-between frames drawn
 // from a coarse grid projectively textured with the keyframe.
 #pragma once
+#include <cstddef>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,6 +13,14 @@
 #include "terrasprite/sprite_metric.h"
 
 namespace terrasprite {
+
+/// Which cached keyframe makes room for a new one.
+enum class CachePolicy {
+  kLeastRecentlyUsed,  ///< the one that stopped being current longest ago
+  kFarthest,           ///< the one whose camera is farthest from the current camera
+};
+/// "lru", "farthest".
+const char* to_string(CachePolicy policy);
 
 struct SpriteOptions {
   int lod_quads = 16;         ///< coarse grid quads per side (>= 1)
@@ -35,6 +44,18 @@ struct SpriteOptions {
   /// drape texture, as plain LOD would: there the coarse geometry is already
   /// right and the drape is sharper than a resampled keyframe. 0 disables.
   double sharp_px = 0.5;
+  /// Keyframe cache: memory budget in bytes for all keyframes held (the
+  /// current one and the cached ones, width x height x 8 bytes each: colour
+  /// and depth). When a keyframe is due, a cached keyframe that no trigger
+  /// rejects for the current view (the least error wins) becomes current
+  /// instead of rendering a new one. Below two keyframes' worth the cache is off.
+  std::size_t cache_bytes = 0;
+  CachePolicy cache_policy = CachePolicy::kLeastRecentlyUsed;
+  /// A cached keyframe is reused only while its error for the view is at most
+  /// this fraction of threshold_px (and no other trigger fires): one reused at
+  /// the edge of the threshold would serve fewer frames, and worse ones, than
+  /// a fresh keyframe. In (0, 1].
+  double cache_accept = 0.5;
   bool lighting = false;  ///< same sun as RasterOptions::lighting, on keyframes and fallback alike
 };
 
@@ -79,7 +100,15 @@ class SpriteRenderer : public GlRenderer {
   /// simulations of the keyframe sequence: sweeps of thresholds and frame counts).
   void make_keyframe(const Camera& camera);
 
-  /// Forgets the keyframe: the next draw() is a keyframe (e.g. after a warm-up).
+  /// Keyframe cache: keyframes held now besides the current one, the bytes
+  /// all held keyframes take (never above SpriteOptions::cache_bytes when
+  /// the cache is on), and whether the last draw() reused a cached keyframe.
+  int cached_keyframes() const;
+  std::size_t keyframe_bytes_held() const;
+  bool last_cache_hit() const;
+
+  /// Forgets the keyframe and empties the cache: the next draw() is a keyframe (e.g. after a
+  /// warm-up).
   void reset();
   bool has_keyframe() const;
   /// Error of `camera` against the current keyframe (zero without one).
@@ -91,6 +120,9 @@ class SpriteRenderer : public GlRenderer {
   bool keyframe_due(const SpriteError& e) const { return trigger_for(e).has_value(); }
   /// The error measured by the last draw() (both variants; zero on the first keyframe).
   const SpriteError& last_error() const;
+  /// CPU time (ms) the last draw() spent deciding: the error metric against
+  /// the keyframe, and against cached keyframes when one was due (inside Frame::ms).
+  double last_decision_ms() const;
   /// Why the last draw drew a keyframe; none for a sprite frame.
   std::optional<Trigger> last_trigger() const;
   const SpriteOptions& options() const;

@@ -7,9 +7,6 @@
 namespace terrasprite {
 
 Keyframe::Keyframe(int width, int height, const CoarseGrid& grid) : target(width, height) {
-  glTextureStorage2D(flags.id(), 1, GL_R8UI, grid.quads_x, grid.quads_y);
-  glTextureParameteri(flags.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTextureParameteri(flags.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   fallback.assign(static_cast<std::size_t>(grid.quad_count()), 1);
 }
 
@@ -44,9 +41,6 @@ void Keyframe::capture(TerrainGpu& scene, const CoarseGrid& grid, const Camera& 
       fallback[q] = (corners && (centre || !grid.has_centre[q])) ? 0 : 1;
     }
   samples = make_keyframe_samples(grid, c, target.width(), target.height(), centre_visible);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTextureSubImage2D(flags.id(), 0, 0, 0, grid.quads_x, grid.quads_y, GL_RED_INTEGER,
-                      GL_UNSIGNED_BYTE, fallback.data());
   valid = true;
 }
 

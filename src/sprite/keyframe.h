@@ -14,12 +14,12 @@ namespace terrasprite {
 struct Keyframe {
   gl::RenderTarget
       target;  // colour (transparent black on sky) + depth textures, sampled by sprite frames
-  gl::Texture flags{GL_TEXTURE_2D};  // R8UI, quads_x x quads_y: 1 = quad takes the drape texture
   Camera camera;
   glm::mat4 view_projection{1.f};      // reversed-Z GL matrix the keyframe was drawn with
   KeyframeSamples samples;             // the error metric's per-quad C' and visibility
-  std::vector<std::uint8_t> fallback;  // per quad, as uploaded to `flags`
+  std::vector<std::uint8_t> fallback;  // per quad: 1 = takes the drape texture
   bool valid = false;
+  long long used = 0;  // when it last stopped being the current keyframe (cache policy)
 
   Keyframe(int width, int height, const CoarseGrid& grid);
   /// Renders `camera` from the full-resolution mesh into the textures, reads

@@ -3,63 +3,41 @@
 // al. 1999, section 3.1), with the visibility fallback of section 3.3.
 #include "sprite/sprite_pass.h"
 
+#include <algorithm>
 #include <glm/gtc/type_ptr.hpp>
 #include <string>
+#include <utility>
 
 #include "terrasprite/frame.h"
 
 namespace terrasprite {
 namespace {
 
+// Keyframe-textured quads: the keyframe's clip coordinates, already biased
+// to texture space, divided per fragment by the one projective fetch. No
+// drape, no derivatives, no per-quad lookup: llvmpipe keeps its fast path.
 const char* kVertex = R"(#version 450 core
 layout(location = 0) in vec3 a_pos;
-layout(location = 1) in vec3 a_normal;
 uniform mat4 u_vp;
-uniform mat4 u_key_vp;
-out vec4 v_key;     // keyframe clip coordinates, divided per fragment
-out vec2 v_xy;
-out vec3 v_normal;
+uniform mat4 u_key_vp;  // texture-space bias * keyframe view-projection
+out vec3 v_key;
 void main() {
-  v_key = u_key_vp * vec4(a_pos, 1.0);
-  v_xy = a_pos.xy;
-  v_normal = a_normal;
+  vec4 k = u_key_vp * vec4(a_pos, 1.0);
+  v_key = k.xyw;
   gl_Position = u_vp * vec4(a_pos, 1.0);
 }
 )";
 
-const char* kFragment = R"(
-in vec4 v_key;
-in vec2 v_xy;
-in vec3 v_normal;
+const char* kFragment = R"(#version 450 core
+in vec3 v_key;
 uniform sampler2D u_key;
-uniform sampler2D u_drape;
-uniform usampler2D u_flags;
-uniform int u_qx;
-uniform int u_lighting;
 out vec4 o_color;
 void main() {
-  // Drape derivatives here, in uniform control flow.
-  vec2 uv_drape = drape_uv(v_xy);
-  vec2 gx = dFdx(uv_drape), gy = dFdy(uv_drape);
-  // Two triangles per coarse quad, in row order: the primitive names the quad.
-  int q = gl_PrimitiveID >> 1;
-  if (texelFetch(u_flags, ivec2(q % u_qx, q / u_qx), 0).r == 0u && v_key.w > 0.0) {
-    vec2 uv = v_key.xy / v_key.w * 0.5 + 0.5;
-    if (uv == clamp(uv, 0.0, 1.0)) {
-      // Keyframe sky (alpha 0) behind a coarse point means the full surface
-      // is not there: the coarse mesh sticks out past the true silhouette.
-      vec4 k = texture(u_key, uv);
-      if (k.a < 0.5) discard;
-      o_color = vec4(k.rgb / k.a, 1.0);  // undo the blend with sky at silhouette texels
-      return;
-    }
-  }
-  vec4 c = drape_hand_filtered(u_drape, uv_drape, gx, gy);
-  if (u_lighting != 0) {
-    const vec3 sun = normalize(vec3(-0.5, 0.5, 0.7071));
-    c.rgb *= 0.45 + 0.75 * max(dot(normalize(v_normal), sun), 0.0);
-  }
-  o_color = vec4(c.rgb, 1.0);
+  vec4 k = textureProj(u_key, v_key);
+  // Keyframe sky (alpha 0) behind a coarse point means the full surface is
+  // not there: the coarse mesh sticks out past the true silhouette.
+  if (k.a < 0.5) discard;
+  o_color = vec4(k.rgb / k.a, 1.0);  // undo the blend with sky at silhouette texels
 }
 )";
 
@@ -88,18 +66,11 @@ void main() {
 
 }  // namespace
 
-SpritePass::SpritePass()
-    : program_(gl::link_program(kVertex, std::string("#version 450 core\n") + kDrapeUvGlsl +
-                                             kHandFilterGlsl + kFragment)) {
+SpritePass::SpritePass() : program_(gl::link_program(kVertex, kFragment)) {
   const GLuint p = program_.id();
   u_vp_ = glGetUniformLocation(p, "u_vp");
   u_key_vp_ = glGetUniformLocation(p, "u_key_vp");
-  u_uv_ = glGetUniformLocation(p, "u_uv");
-  u_qx_ = glGetUniformLocation(p, "u_qx");
-  u_lighting_ = glGetUniformLocation(p, "u_lighting");
   glProgramUniform1i(p, glGetUniformLocation(p, "u_key"), 0);
-  glProgramUniform1i(p, glGetUniformLocation(p, "u_drape"), 1);
-  glProgramUniform1i(p, glGetUniformLocation(p, "u_flags"), 2);
   composite_ = gl::link_program(kCompositeVertex, kCompositeFragment);
   const GLuint c = composite_.id();
   glProgramUniform1i(c, glGetUniformLocation(c, "u_key"), 0);
@@ -118,22 +89,56 @@ void SpritePass::composite_keyframe(const Keyframe& key) {
   glDepthFunc(GL_GREATER);
 }
 
-void SpritePass::draw(TerrainGpu& scene, const GpuMesh& coarse, int quads_x, const Keyframe& key,
-                      const glm::mat4& vp, bool lighting) {
-  const GLuint p = program_.id();
-  glUseProgram(p);
-  glUniformMatrix4fv(u_vp_, 1, GL_FALSE, glm::value_ptr(vp));
-  glUniformMatrix4fv(u_key_vp_, 1, GL_FALSE, glm::value_ptr(key.view_projection));
-  glUniform4fv(u_uv_, 1, glm::value_ptr(scene.uv_transform()));
-  glUniform1i(u_qx_, quads_x);
-  glUniform1i(u_lighting_, lighting ? 1 : 0);
-  glBindTextureUnit(0, key.target.color_texture());
-  glBindTextureUnit(1, scene.drape());
-  glBindSampler(1, scene.trilinear_sampler());
-  glBindTextureUnit(2, key.flags.id());
-  glBindVertexArray(coarse.vao.id());
-  glDrawElements(GL_TRIANGLES, coarse.index_count, GL_UNSIGNED_INT, nullptr);
-  glBindSampler(1, 0);
+void SpritePass::split(const GpuMesh& coarse, std::span<const std::uint8_t> drape) {
+  if (source_ != coarse.vertices.id()) {
+    source_ = coarse.vertices.id();
+    indices_.resize(static_cast<std::size_t>(coarse.index_count));
+    glGetNamedBufferSubData(coarse.indices.id(), 0,
+                            GLsizeiptr(indices_.size() * sizeof(std::uint32_t)), indices_.data());
+    for (GpuMesh* m : {&key_mesh_, &drape_mesh_}) {
+      const GLuint vao = m->vao.id();
+      glVertexArrayVertexBuffer(vao, 0, source_, 0, 6 * sizeof(float));
+      glVertexArrayElementBuffer(vao, m->indices.id());
+      for (GLuint a = 0; a < 2; ++a) {
+        glEnableVertexArrayAttrib(vao, a);
+        glVertexArrayAttribFormat(vao, a, 3, GL_FLOAT, GL_FALSE, a * 3 * sizeof(float));
+        glVertexArrayAttribBinding(vao, a, 0);
+      }
+    }
+    last_drape_.clear();
+  }
+  if (std::equal(drape.begin(), drape.end(), last_drape_.begin(), last_drape_.end())) return;
+  last_drape_.assign(drape.begin(), drape.end());
+  std::vector<std::uint32_t> key, rest;
+  key.reserve(indices_.size());
+  rest.reserve(indices_.size());
+  for (std::size_t q = 0; q < drape.size() && 6 * q + 6 <= indices_.size(); ++q)
+    (drape[q] ? rest : key)
+        .insert((drape[q] ? rest : key).end(), indices_.begin() + 6 * q,
+                indices_.begin() + 6 * q + 6);
+  key_quads_ = int(key.size() / 6);
+  for (auto [m, v] : {std::pair{&key_mesh_, &key}, std::pair{&drape_mesh_, &rest}}) {
+    glNamedBufferData(m->indices.id(), GLsizeiptr(v->size() * sizeof(std::uint32_t)),
+                      v->empty() ? nullptr : v->data(), GL_DYNAMIC_DRAW);
+    m->index_count = GLsizei(v->size());
+  }
+}
+
+void SpritePass::draw(TerrainGpu& scene, const GpuMesh& coarse, const Keyframe& key,
+                      const glm::mat4& vp, std::span<const std::uint8_t> drape, bool lighting) {
+  split(coarse, drape);
+  if (key_mesh_.index_count > 0) {
+    // Clip space [-1, 1] to texture space [0, 1], folded into the matrix.
+    const glm::mat4 bias(0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 1, 0, 0.5f, 0.5f, 0, 1);
+    const glm::mat4 key_vp = bias * key.view_projection;
+    glUseProgram(program_.id());
+    glUniformMatrix4fv(u_vp_, 1, GL_FALSE, glm::value_ptr(vp));
+    glUniformMatrix4fv(u_key_vp_, 1, GL_FALSE, glm::value_ptr(key_vp));
+    glBindTextureUnit(0, key.target.color_texture());
+    glBindVertexArray(key_mesh_.vao.id());
+    glDrawElements(GL_TRIANGLES, key_mesh_.index_count, GL_UNSIGNED_INT, nullptr);
+  }
+  if (drape_mesh_.index_count > 0) scene.draw(drape_mesh_, vp, lighting, /*hand_filter=*/true);
 }
 
 SpritePass::~SpritePass() = default;

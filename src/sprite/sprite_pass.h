@@ -1,7 +1,12 @@
 // SPDX-License-Identifier: MIT
-// The sprite frame's one draw: the coarse grid with projective texture
-// coordinates from the keyframe's matrix.
+// The sprite frame's draws: the coarse grid split by class. Quads the
+// keyframe can texture take one projective fetch; the rest take the drape
+// texture, filtered by hand, through the plain terrain shader.
 #pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
 #include "scene/terrain_gpu.h"
 #include "sprite/keyframe.h"
 
@@ -13,19 +18,33 @@ class SpritePass {
   ~SpritePass();
   SpritePass(const SpritePass&) = delete;
   SpritePass& operator=(const SpritePass&) = delete;
-  /// Draws `coarse` (a scene grid mesh of quads_x quads per row) into the
-  /// bound target, textured from `key`; quads flagged in key.flags, and
-  /// fragments outside the keyframe or on its sky, take the drape texture.
-  void draw(TerrainGpu& scene, const GpuMesh& coarse, int quads_x, const Keyframe& key,
-            const glm::mat4& view_projection, bool lighting);
+  /// Draws `coarse` (a single-part scene grid mesh, two triangles per quad in
+  /// row order) into the bound target. Quads with drape[q] == 0 are textured
+  /// from `key` by projection (their corners and centre were visible in it, so
+  /// every fragment lands inside it; a fragment on its sky is discarded, where
+  /// the coarse mesh sticks out past the true silhouette); the others take the
+  /// hand-filtered drape. The split index lists are re-uploaded only when
+  /// `drape` differs from the last call's.
+  void draw(TerrainGpu& scene, const GpuMesh& coarse, const Keyframe& key,
+            const glm::mat4& view_projection, std::span<const std::uint8_t> drape, bool lighting);
   /// Copies `key` into the bound target: colour over the sky, and its depth.
   void composite_keyframe(const Keyframe& key);
+  /// Quads drawn from the keyframe by the last draw().
+  int keyframe_quads() const { return key_quads_; }
 
  private:
-  gl::Program program_;
+  void split(const GpuMesh& coarse, std::span<const std::uint8_t> drape);
+
+  gl::Program program_;  // keyframe-textured quads: one projective fetch
   gl::Program composite_;
   gl::VertexArray empty_vao_;  // attribute-less draws still need a bound VAO in core profile
-  GLint u_vp_, u_key_vp_, u_uv_, u_qx_, u_lighting_;
+  GLint u_vp_, u_key_vp_;
+  // The coarse mesh's vertices with two index lists: keyframe quads, drape quads.
+  GpuMesh key_mesh_, drape_mesh_;
+  GLuint source_ = 0;                   // vertex buffer the split meshes point at
+  std::vector<std::uint32_t> indices_;  // the coarse mesh's own index list
+  std::vector<std::uint8_t> last_drape_;
+  int key_quads_ = 0;
 };
 
 }  // namespace terrasprite

@@ -6,8 +6,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
 #include "gl/frame_timer.h"
 #include "sprite/keyframe.h"
+#include "sprite/keyframe_cache.h"
 #include "sprite/sprite_pass.h"
 #include "terrasprite/error.h"
 
@@ -29,11 +34,24 @@ const char* to_string(Trigger t) {
   return "?";
 }
 
+const char* to_string(CachePolicy p) {
+  return p == CachePolicy::kLeastRecentlyUsed ? "lru" : "farthest";
+}
+
+// At most this fraction of the in-view coarse-quad centres may be missing
+// from a reused cached keyframe.
+constexpr double kCacheMaxFallback = 0.25;
+
 struct SpriteRenderer::State {
   Scene& scene;
   SpriteOptions options;
   CoarseGrid grid;
-  Keyframe key;
+  int width, height;
+  std::unique_ptr<Keyframe> key;  // the current keyframe (always allocated)
+  KeyframeCache cache;
+  long long tick = 0;  // draws so far (the cache's clock)
+  bool cache_hit = false;
+  double decision_ms = 0;
   SpritePass pass;
   SpriteError last;
   std::optional<Trigger> trigger;
@@ -44,13 +62,31 @@ struct SpriteRenderer::State {
       : scene(s),
         options(o),
         grid(make_coarse_grid(s.terrain().heights, o.lod_quads)),
-        key(w, h, grid) {}
+        width(w),
+        height(h),
+        key(std::make_unique<Keyframe>(w, h, grid)),
+        cache(cache_capacity(o, w, h), o.cache_policy) {}
+
+  static std::size_t keyframe_bytes(int w, int h) { return std::size_t(w) * std::size_t(h) * 8; }
+  static int cache_capacity(const SpriteOptions& o, int w, int h) {
+    return int(std::max<std::size_t>(o.cache_bytes / keyframe_bytes(w, h), 1) - 1);
+  }
+  /// A keyframe to render into: the current one goes to the cache, and the
+  /// cache's evicted one (or a new one) comes back.
+  void retire_current(const Camera& now) {
+    if (cache.capacity() == 0 || !key->valid) return;
+    std::unique_ptr<Keyframe> spare = cache.put(std::move(key), tick, now);
+    key = spare ? std::move(spare) : std::make_unique<Keyframe>(width, height, grid);
+    key->valid = false;
+  }
 };
 
 namespace {
 const SpriteOptions& validated(const SpriteOptions& o) {
   if (o.lod_quads < 1)
     throw InputError(fmt::format("lod_quads {}: must be at least 1", o.lod_quads));
+  if (!(o.cache_accept > 0 && o.cache_accept <= 1))
+    throw InputError(fmt::format("cache_accept {}: must be in (0, 1]", o.cache_accept));
   if (!(o.threshold_px > 0))
     throw InputError(
         fmt::format("threshold_px {}: must be a positive number of pixels", o.threshold_px));
@@ -72,10 +108,12 @@ std::string SpriteRenderer::name() const {
   return fmt::format("sprite{}", s_->options.lod_quads);
 }
 bool SpriteRenderer::has_keyframe() const {
-  return s_->key.valid;
+  return s_->key->valid;
 }
 void SpriteRenderer::reset() {
-  s_->key.valid = false;
+  s_->key->valid = false;
+  s_->cache.clear();
+  s_->cache_hit = false;
   s_->last = {};
   s_->trigger.reset();
 }
@@ -92,12 +130,25 @@ const CoarseGrid& SpriteRenderer::grid() const {
   return s_->grid;
 }
 const std::vector<std::uint8_t>& SpriteRenderer::fallback_quads() const {
-  return s_->key.fallback;
+  return s_->key->fallback;
+}
+
+int SpriteRenderer::cached_keyframes() const {
+  return s_->cache.size();
+}
+std::size_t SpriteRenderer::keyframe_bytes_held() const {
+  return std::size_t(s_->cache.size() + 1) * State::keyframe_bytes(s_->width, s_->height);
+}
+double SpriteRenderer::last_decision_ms() const {
+  return s_->decision_ms;
+}
+bool SpriteRenderer::last_cache_hit() const {
+  return s_->cache_hit;
 }
 
 SpriteError SpriteRenderer::error(const Camera& camera) const {
-  if (!s_->key.valid) return {};
-  return sprite_error(s_->grid, s_->key.samples, camera);
+  if (!s_->key->valid) return {};
+  return sprite_error(s_->grid, s_->key->samples, camera);
 }
 
 std::optional<Trigger> SpriteRenderer::trigger_for(const SpriteError& e) const {
@@ -110,53 +161,78 @@ std::optional<Trigger> SpriteRenderer::trigger_for(const SpriteError& e) const {
 }
 
 void SpriteRenderer::make_keyframe(const Camera& camera) {
-  s_->key.capture(s_->scene.terrain_gpu(), s_->grid, camera, s_->options.lighting);
+  s_->retire_current(camera);
+  s_->key->capture(s_->scene.terrain_gpu(), s_->grid, camera, s_->options.lighting);
 }
 
 void SpriteRenderer::draw_sprite_pass(const Camera& camera) {
   State& s = *s_;
   TerrainGpu& terrain = s.scene.terrain_gpu();
+  s.flags = s.key->fallback;
   if (s.options.sharp_px > 0) {
     // Quads whose coarse geometry is already right at this distance take the drape texture.
-    const double pixel = camera.pixel_angle(height());
-    s.flags = s.key.fallback;
-    for (std::size_t q = 0; q < s.flags.size(); ++q) {
-      const double d = glm::length(s.grid.centre[q] - camera.position);
-      if (s.grid.max_deviation[q] < s.options.sharp_px * pixel * d) s.flags[q] = 1;
-    }
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage2D(s.key.flags.id(), 0, 0, 0, s.grid.quads_x, s.grid.quads_y, GL_RED_INTEGER,
-                        GL_UNSIGNED_BYTE, s.flags.data());
+    const double limit = s.options.sharp_px * camera.pixel_angle(height());
+    for (std::size_t q = 0; q < s.flags.size(); ++q)
+      if (!s.flags[q] &&
+          s.grid.max_deviation[q] < limit * glm::length(s.grid.centre[q] - camera.position))
+        s.flags[q] = 1;
   }
   begin_output();
-  s.pass.draw(terrain, terrain.mesh(s.options.lod_quads), s.grid.quads_x, s.key,
-              glm::mat4(gl::view_projection_reversed_z(camera)), s.options.lighting);
+  s.pass.draw(terrain, terrain.mesh(s.options.lod_quads), *s.key,
+              glm::mat4(gl::view_projection_reversed_z(camera)), s.flags, s.options.lighting);
 }
 
 Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
   State& s = *s_;
   TerrainGpu& terrain = s.scene.terrain_gpu();
   timer().begin();
+  ++s.tick;
+  s.cache_hit = false;
+  const auto decision_start = std::chrono::steady_clock::now();
   SpriteError e = error(camera);
-  if (!s.key.valid) {
+  if (!s.key->valid) {
     e = {};
     s.trigger = Trigger::kFirst;
   } else if (d == Decision::kKeyframe) {
     s.trigger = Trigger::kForced;
   } else if (d == Decision::kAuto) {
     s.trigger = trigger_for(e);
+    if (s.trigger && s.cache.size() > 0) {
+      // A cached keyframe that no trigger rejects for this view, least error first.
+      std::unique_ptr<Keyframe> hit = s.cache.take_best([&](const Keyframe& k) {
+        const SpriteError ek = sprite_error(s.grid, k.samples, camera);
+        const double v = ek.value(s.options.metric);
+        // A keyframe from elsewhere may see the view only in part: the
+        // quads it lacks would take the drape texture, so few may be missing.
+        const bool accept = !trigger_for(ek) &&
+                            v <= s.options.cache_accept * s.options.threshold_px &&
+                            ek.fallback_fraction() <= kCacheMaxFallback;
+        return accept ? ek.fallback_fraction() + 0.01 * v : INFINITY;
+      });
+      if (hit) {
+        s.cache.put(std::move(s.key), s.tick, camera);  // an evicted keyframe is freed
+        s.key = std::move(hit);
+        s.cache_hit = true;
+        s.trigger.reset();
+        e = error(camera);
+      }
+    }
   } else {
     s.trigger.reset();
   }
   const bool key = s.trigger.has_value();
+  s.decision_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - decision_start)
+          .count();
   long long triangles = 0;
   if (key) {
-    s.key.capture(terrain, s.grid, camera, s.options.lighting);
+    s.retire_current(camera);
+    s.key->capture(terrain, s.grid, camera, s.options.lighting);
     // The keyframe textures are the frame; a caller's target, or a frame
     // with objects over the terrain, gets a copy (keyframes hold terrain only).
     if (output().framebuffer != own_target().framebuffer() || s.scene.has_objects()) {
       begin_output();
-      s.pass.composite_keyframe(s.key);
+      s.pass.composite_keyframe(*s.key);
     }
     triangles = terrain.mesh(0).triangles;
   } else {
@@ -177,7 +253,7 @@ void SpriteRenderer::read_back(Frame& f, ReadBack what) {
     GlRenderer::read_back(f, what);
     return;
   }
-  const gl::RenderTarget& t = s.key.target;
+  const gl::RenderTarget& t = s.key->target;
   read_framebuffer(t.framebuffer(), t.width(), t.height(), f.camera, f, what);
   if (has(what, ReadBack::kColor))
     for (std::size_t i = 0; i < f.color.rgba.size(); i += 4)  // keyframe sky is transparent black

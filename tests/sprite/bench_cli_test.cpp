@@ -37,6 +37,10 @@ TEST(BenchLodsprite, WritesTheJsonContractAndTheReport) {
   for (const char* k : {"total_ms", "median_ms", "keyframes", "sprite_frames", "key_median_ms",
                         "sprite_median_ms", "mean_psnr", "mean_ssim", "min_ssim", "mean_flip"})
     EXPECT_TRUE(d["sprite"].contains(k)) << k;
+  EXPECT_TRUE(d["sprite"].contains("p99_ms"));
+  EXPECT_EQ(d["async"], false);
+  EXPECT_EQ(d["mesh"], "uniform");
+  EXPECT_FALSE(d.contains("cache"));  // only with the cache on
   for (const char* k : {"f", "r", "speedup_bound", "efficiency"})
     EXPECT_TRUE(d["bound"].contains(k)) << k;
   ASSERT_EQ(d["per_frame"].size(), 6u);
@@ -59,7 +63,29 @@ TEST(BenchLodsprite, WritesTheJsonContractAndTheReport) {
     EXPECT_TRUE(fs::exists(fs::path(out) / file)) << file;
 }
 
+TEST(BenchLodsprite, CacheThereAndBackReportsTheSaving) {
+  tstest::TempDir tmp;
+  const std::string json = (tmp.path / "c.json").string(), out = (tmp.path / "report").string();
+  ASSERT_EQ(
+      run("bench lodsprite --synthetic-size 65 --resample 65 --frames 8 --size 96x96 --lod-quads 4 "
+          "--there-and-back --cache --thresholds 1 --frame-counts 8 --lod-sweep 4 --json " +
+          json + " --out " + out),
+      0);
+  std::ifstream f(json);
+  const nlohmann::json d = nlohmann::json::parse(f);
+  EXPECT_EQ(d["per_frame"].size(), 16u);
+  EXPECT_EQ(d["there_and_back"], true);
+  ASSERT_TRUE(d.contains("cache"));
+  EXPECT_EQ(d["cache"]["size"], 256u << 20);
+  EXPECT_EQ(d["cache"]["keyframes"], d["sprite"]["keyframes"]);
+  EXPECT_LE(int(d["cache"]["keyframes"]), int(d["cache"]["keyframes_without_cache"]));
+}
+
 TEST(BenchLodsprite, BadOptionsExitWithStatus2) {
+  EXPECT_EQ(run("bench lodsprite --cache-policy oldest"), 2);
+  EXPECT_EQ(run("bench lodsprite --cache-mb -1"), 2);
+  EXPECT_EQ(run("bench lodsprite --cache-mb 0.5"), 2);  // under two 512x512 keyframes
+  EXPECT_EQ(run("bench lodsprite --cache --cache-accept 0"), 2);
   EXPECT_EQ(run("bench lodsprite --metric fancy"), 2);
   EXPECT_EQ(run("bench lodsprite --thresholds 1,abc"), 2);
   EXPECT_EQ(run("bench lodsprite --frame-counts 2.5"), 2);

@@ -46,28 +46,31 @@ struct PassResult {
   int cache_hits = 0;
 };
 
-// One timed LOD-sprite pass over `path`; the kept frames are SSIM-scored
-// against the references after the whole pass, so scoring threads never
-// overlap a timed frame.
+// One timed LOD-sprite pass over `path` through the experiment driver; the
+// kept frames are SSIM-scored against the references after the whole pass,
+// so scoring threads never overlap a timed frame.
 PassResult sprite_pass(Scene& scene, std::span<const Camera> path, int w, int h, SpriteOptions o,
                        const std::vector<Image>& refs, int every) {
   SpriteRenderer r(scene, w, h, o);
-  r.render_keyframe(path[0]);  // warm-up, then start afresh
-  r.render_sprite(path[0]);
-  r.reset();
   PassResult p;
-  std::vector<double> key_ms, sprite_ms;
   std::vector<Image> kept;
-  for (std::size_t i = 0; i < path.size(); ++i) {
-    Frame f = r.render(path[i]);
-    p.total_ms += f.ms;
-    (f.cls == "key" ? key_ms : sprite_ms).push_back(f.ms);
-    p.cache_hits += r.last_cache_hit();
-    if (i % every == 0) kept.push_back(std::move(f.color));
-  }
-  p.keyframes = int(key_ms.size());
-  p.key_median_ms = median(key_ms);
-  p.sprite_median_ms = median(sprite_ms);
+  Experiment pass;
+  pass.add({.renderer = &r,
+            .name = "sprite",
+            .warmup_draws = 2,  // a keyframe, then a sprite frame; then start afresh
+            .read = ReadBack::kColor,
+            .after_warmup = [&] { r.reset(); },
+            .annotate = [&](const Frame&, FrameResult&) { p.cache_hits += r.last_cache_hit(); }});
+  ExperimentOptions eo;
+  eo.on_frame = [&](int i, const std::string&, const Frame& f) {
+    if (i % every == 0) kept.push_back(f.color);
+  };
+  PathSource cameras(std::vector<Camera>(path.begin(), path.end()));
+  const RendererRun run = pass.run(cameras, eo).run("sprite");
+  p.total_ms = run.ms().total;
+  p.keyframes = run.count("key");
+  p.key_median_ms = run.ms("key").median;
+  p.sprite_median_ms = run.ms("sprite").median;
   std::vector<double> ssims;
   for (std::size_t k = 0; k < kept.size(); ++k) ssims.push_back(ssim_only(refs[k], kept[k]));
   p.mean_ssim = mean(ssims);

@@ -17,12 +17,6 @@
 namespace terrasprite::cli {
 namespace {
 
-void write_text(const std::string& path, const std::string& text) {
-  std::ofstream f(path);
-  f << text;
-  if (!f) throw InputError(fmt::format("{}: cannot write", path));
-}
-
 std::string dat_name(const std::string& scenario) {
   return "frames_" + scenario + ".dat";
 }

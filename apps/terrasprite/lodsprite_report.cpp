@@ -16,12 +16,6 @@
 namespace terrasprite::cli {
 namespace {
 
-void write_text(const std::string& path, const std::string& text) {
-  std::ofstream f(path);
-  f << text;
-  if (!f) throw InputError(fmt::format("{}: cannot write", path));
-}
-
 double num(const nlohmann::json& v) {
   return v.is_number() ? v.get<double>() : 0.0;
 }

@@ -7,7 +7,15 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "terrasprite/error.h"
+
 namespace terrasprite::cli {
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream f(path);
+  f << text;
+  if (!f) throw InputError(fmt::format("{}: cannot write", path));
+}
 
 std::string run_gnuplot(const std::string& dir, const std::string& script) {
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The one plot runner: gnuplot on a script in an output directory.
+// The one plot runner: gnuplot on a script in an output directory, and the
+// text writer for its data, scripts and report pages.
 #pragma once
 #include <string>
 
@@ -10,5 +11,9 @@ namespace terrasprite::cli {
 /// (gnuplot missing, or its exit status and first error line), which the
 /// caller reports; a failed plot never fails the run (the .dat files stay).
 std::string run_gnuplot(const std::string& dir, const std::string& script);
+
+/// Writes `text` to `path` (a file inside an output directory being built);
+/// throws InputError naming the path when it cannot be written.
+void write_text(const std::string& path, const std::string& text);
 
 }  // namespace terrasprite::cli

@@ -158,8 +158,8 @@ void run(const RenderOpts& o) {
       [&](const FrameStats& s) {
         auto c = std::find(classes.begin(), classes.end(), s.cls);
         if (c == classes.end()) c = classes.insert(c, s.cls);
-        records.push_back({first + s.frame, std::uint8_t(c - classes.begin()), s.ms, s.gpu_ms,
-                           s.triangles});
+        records.push_back(
+            {first + s.frame, std::uint8_t(c - classes.begin()), s.ms, s.gpu_ms, s.triangles});
         ms.push_back(s.ms);
       },
       std::ref(progress));

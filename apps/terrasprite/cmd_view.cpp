@@ -52,10 +52,9 @@ class VoxelViewRenderer : public viewer::ViewRenderer {
       so.warp.method = *warp;
       warp_ = std::make_unique<WarpScheduler>(*voxel_, w, h, so);
     }
-    device_ = fmt::format("cpu voxel {}, ratio {:.2f}{}", to_string(voxel_->options().variant),
-                          s.voxel_ratio,
-                          warp ? fmt::format(", {} warp, real every {}", s.warp, s.real_every)
-                               : std::string());
+    device_ = fmt::format(
+        "cpu voxel {}, ratio {:.2f}{}", to_string(voxel_->options().variant), s.voxel_ratio,
+        warp ? fmt::format(", {} warp, real every {}", s.warp, s.real_every) : std::string());
   }
   Renderer& renderer() override { return warp_ ? *warp_ : static_cast<Renderer&>(*voxel_); }
   std::string device() const override { return device_; }

@@ -169,7 +169,8 @@ void RenderWorker::loop() {
       {
         std::lock_guard lock(m_);
         // A frame not yet taken is replaced by the newer one, but not its comparison.
-        if (done_ && done_->comparison && !r.comparison) r.comparison = std::move(done_->comparison);
+        if (done_ && done_->comparison && !r.comparison)
+          r.comparison = std::move(done_->comparison);
         done_ = std::move(r);
       }
       cv_.notify_all();

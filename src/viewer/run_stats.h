@@ -23,7 +23,7 @@ struct RunStats {
   std::vector<double> frame_ms;   ///< intervals between swaps showing newly rendered frames
   std::vector<double> render_ms;  ///< the renderer's own Frame::ms per displayed frame
   std::vector<EventLatency> events;
-  Camera camera_start, camera_end;  ///< the flight's first and last pose
+  Camera camera_start, camera_end;     ///< the flight's first and last pose
   std::map<std::string, int> classes;  ///< displayed new frames by class (key, sprite, warp, ...)
   struct Compared {
     std::string mode;

@@ -81,9 +81,8 @@ TEST(Experiment, DrawsReadsAndScoresInOrderAgainstTheReference) {
   EXPECT_EQ(r.runs[1].frames.size(), 4u);
   EXPECT_EQ(r.runs[2].frames.size(), 2u) << "every = 2";
   // Frame 0: warm-ups first (one draw each, no read), then ref, a, b; frame 1: only a.
-  const std::vector<std::string> head = {"ref draw", "a draw",  "b draw", "ref draw",
-                                         "ref read", "a draw",  "a read", "b draw",
-                                         "a draw"};
+  const std::vector<std::string> head = {"ref draw", "a draw", "b draw", "ref draw", "ref read",
+                                         "a draw",   "a read", "b draw", "a draw"};
   ASSERT_GE(log.size(), head.size());
   EXPECT_EQ(std::vector<std::string>(log.begin(), log.begin() + head.size()), head);
   // a is scored on frames 0 and 2 against that frame's reference: 1 apart.

@@ -71,8 +71,9 @@ TEST(TerrainTiles, InMemoryTilesViewTheHeightFieldAndBoundIt) {
         const TileBlock* b = vt.tile(L, tx, ty);
         tiles_max = std::max(tiles_max, b->max_height);
         ASSERT_EQ(b->bound, all->bound + std::ptrdiff_t(b->y0) * all->bound_stride + b->x0);
-        if (b->height)
+        if (b->height) {
           ASSERT_EQ(b->height, all->height + std::ptrdiff_t(b->y0) * all->stride + b->x0);
+        }
       }
     EXPECT_EQ(all->max_height, tiles_max);
   }

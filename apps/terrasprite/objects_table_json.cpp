@@ -14,7 +14,7 @@
 namespace terrasprite::cli {
 namespace {
 
-constexpr const char* kFormat = "terrasprite-objects-table-1";
+constexpr const char* kFormat = "terrasprite-objects-table-2";
 
 // Infinite PSNR (identical images) is written as the string "inf": JSON has no infinity.
 nlohmann::json number(double v) {

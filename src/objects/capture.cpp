@@ -42,11 +42,32 @@ void main() {
   bool front = gl_FrontFacing != (u_mirrored != 0);
   vec3 n = normalize(front ? v_normal : -v_normal);
   o_albedo = vec4(c.rgb, 1.0);
-  o_geometry = vec4(u_pack_normal != 0 ? n * 0.5 + 0.5 : n, v_depth);
+  if (u_pack_normal != 0) {
+    // 8-bit channels: the normal octahedron-encoded in r, g; depth in 16 bits over b, a.
+    n /= abs(n.x) + abs(n.y) + abs(n.z);
+    vec2 e = n.z >= 0.0 ? n.xy : (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    float d16 = floor(clamp(v_depth, 0.0, 1.0) * 65535.0 + 0.5);
+    float hi = floor(d16 / 256.0);
+    o_geometry = vec4(e * 0.5 + 0.5, hi / 255.0, (d16 - hi * 256.0) / 255.0);
+  } else {
+    o_geometry = vec4(n, v_depth);
+  }
 }
 )";
 
 }  // namespace
+
+const char* const kPackedGeometryGlsl = R"(
+float packed_depth(vec4 g) {
+  return (round(g.b * 255.0) * 256.0 + round(g.a * 255.0)) / 65535.0;
+}
+vec3 packed_normal(vec4 g) {
+  vec2 e = g.rg * 2.0 - 1.0;
+  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+  return normalize(n);
+}
+)";
 
 gl::Program make_capture_program() {
   return gl::link_program(std::string("#version 450 core\n") + kObjectGlsl + kCaptureVertex,

@@ -28,9 +28,16 @@ class GlStateGuard {
 /// Draws LOD level `level` of `m` with `local_to_clip` (an orthographic map whose clip
 /// z is the depth in [0, 1], w = 1) into the bound framebuffer's attachments
 /// 0 (albedo) and 1 (normal, depth), depth-tested nearest-first. The caller
-/// sets the viewport and clears. `pack_normal` writes n * 0.5 + 0.5.
+/// sets the viewport and clears. `pack_normal` is for RGBA8 attachments: the
+/// normal octahedron-encoded in r, g and the depth in 16 bits over b (high
+/// byte) and a (low byte); decode with kPackedGeometryGlsl. Otherwise the
+/// attachment gets (normal, depth) as floats.
 void capture_view(GlModel::Impl& m, const glm::mat4& local_to_clip, bool pack_normal,
                   int level = 0);
+
+/// GLSL: float packed_depth(vec4 g) and vec3 packed_normal(vec4 g), the
+/// inverse of capture_view's packing (depth 1 = nothing recorded).
+extern const char* const kPackedGeometryGlsl;
 
 /// Rows of an affine map: clip = (dot(r0, p) + r0.w, ...).
 glm::mat4 from_rows(glm::vec4 r0, glm::vec4 r1, glm::vec4 r2);

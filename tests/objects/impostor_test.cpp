@@ -97,7 +97,8 @@ TEST_F(ImpostorTest, OctahedralMatchesMesh) {
       target, cam, [&] { gl_box.draw(oct, std::span(&at_origin, 1), cam); }, "oct_impostor");
   const auto mask = coverage(a, b);
   const double s = ts::quality::ssim(a.color.view(), b.color.view(), {}, mask).ssim;
-  EXPECT_GT(s, 0.75);  // measured 0.79: three blended views soften the edges
+  RecordProperty("ssim", std::to_string(s));
+  EXPECT_GT(s, 0.88);  // measured 0.92 (0.79 before the fixes of issue-10-s9): blended views soften edges
 }
 
 TEST_F(ImpostorTest, HalfHiddenBehindAWall) {

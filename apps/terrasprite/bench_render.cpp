@@ -5,6 +5,7 @@
 
 #include "bench_commands.h"
 #include "cli_common.h"
+#include "scene_objects.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/experiment.h"
 #include "terrasprite/gl_context.h"
@@ -22,6 +23,7 @@ void add_bench_render(CLI::App& bench) {
     int frames = 460;
     std::string size = "512x512";
     std::string json;
+    ObjectsOptions objects;
   };
   auto o = std::make_shared<Opts>();
   add_terrain_options(*cmd, o->terrain);
@@ -30,6 +32,7 @@ void add_bench_render(CLI::App& bench) {
   cmd->add_option("--frames", o->frames, "frames (default 460)");
   cmd->add_option("--size", o->size, "image size WxH (default 512x512)");
   cmd->add_option("--json", o->json, "also write the JSON here");
+  add_objects_options(*cmd, o->objects);
   cmd->callback([o] {
     auto [w, h] = parse_size(o->size, "--size");
     check_outputs("", {o->json});
@@ -38,6 +41,7 @@ void add_bench_render(CLI::App& bench) {
     std::vector<Camera> path = make_path(o->path, terrain.heights, o->frames, double(w) / h);
     GlContext gl;
     Scene scene(terrain);
+    const std::unique_ptr<ObjectSet> objects = attach_objects(o->objects, terrain, &scene, "full");
     MeshRenderer full(scene, w, h, 0), lod(scene, w, h, o->lod_quads);
     Experiment experiment;
     experiment.add({.renderer = &full, .name = "full"});
@@ -61,6 +65,7 @@ void add_bench_render(CLI::App& bench) {
                         {"size", {w, h}},
                         {"frames", r.frames},
                         {"path", o->path},
+                        {"objects", objects ? objects->instance_count() : 0},
                         {"full", entry(f)},
                         {"lod", lod_json},
                         {"full_over_lod_median", f.ms().median / std::max(l.ms().median, 1e-9)}};

@@ -17,6 +17,7 @@
 #include "terrasprite/error.h"
 #include "terrasprite/flythrough.h"
 #include "terrasprite/output_dir.h"
+#include "scene_objects.h"
 #include "terrasprite/warp_renderer.h"
 #include "terrasprite/output_file.h"
 #include "terrasprite/video_writer.h"
@@ -44,6 +45,7 @@ struct RenderOpts {
   bool frames_png = false;
   bool no_images = false;
   std::string frame_range;
+  ObjectsOptions objects;
 };
 
 /// "A:B" -> [A, B) within [0, frames]; empty text: the whole run.
@@ -106,6 +108,8 @@ void run(const RenderOpts& o) {
   const int my = warp ? int(std::lround(o.warp_margin * h)) : 0;
   RenderStack stack =
       make_render_stack(o.mode, terrain, w + 2 * mx, h + 2 * my, o.lod_quads, o.lighting);
+  const std::unique_ptr<ObjectSet> objects =
+      attach_objects(o.objects, terrain, stack.scene.get(), o.mode);
   std::unique_ptr<WarpScheduler> scheduler;
   if (warp) {
     WarpScheduleOptions so;
@@ -243,6 +247,7 @@ void add_render(CLI::App& app) {
   cmd->add_option("--frame-range", o->frame_range,
                   "render only frames A to B-1 of the --frames run (A:B), for splitting a long "
                   "run across machines");
+  add_objects_options(*cmd, o->objects);
   cmd->callback([o] { run(*o); });
 }
 

@@ -6,10 +6,12 @@
 #include "terrasprite/quality_table.h"
 
 #include <fmt/format.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include "gl/render_target.h"
 #include "terrasprite/error.h"
@@ -152,24 +154,49 @@ QualityTable measure_quality_table(GlModel& model, const TableOptions& o,
   const Representation full{ObjectKind::kMesh, 0};
   int done = 0;
   const int total = int(angles.size() * o.sizes_px.size());
+  for (RepresentationQuality& q : t.representations)
+    q.samples.resize(angles.size() * o.sizes_px.size());
+  // The GL thread renders view after view; each view's scores are computed
+  // on TBB's threads while the next view renders (read-backs wait for the
+  // rasteriser threads anyway). Level 0 is the reference itself: scored
+  // against its own shot, as rendering it again gives the same pixels.
+  tbb::task_group scoring;
+  // A throw on the GL thread must not leave a task writing into `t`.
+  struct WaitOnExit {
+    tbb::task_group& g;
+    ~WaitOnExit() { g.wait(); }
+  } wait_on_exit{scoring};
+  std::size_t slot = 0;
   for (int size : o.sizes_px) {
     const int side = image_side(size);
     gl::RenderTarget target(side, side);
     for (auto [phi, theta] : angles) {
       const Camera cam = view_camera(m, phi, theta, size, side);
-      const Shot ref = render(target, model, full, cam);
-      for (RepresentationQuality& q : t.representations) {
-        const Shot s = render(target, model, q.rep, cam);
-        std::vector<std::uint8_t> mask(ref.covered.size());
-        for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = ref.covered[i] | s.covered[i];
-        const double psnr = quality::psnr(ref.color.view(), s.color.view(), mask).rgb;
-        const double ssim = quality::ssim(ref.color.view(), s.color.view(),
-                                          {quality::SsimMode::kWang, false, false}, mask)
-                                .ssim;
-        q.samples.push_back({phi, theta, size, psnr, ssim});
-      }
+      auto shots = std::make_shared<std::vector<Shot>>();
+      shots->push_back(render(target, model, full, cam));
+      for (const RepresentationQuality& q : t.representations)
+        if (!(q.rep.kind == ObjectKind::kMesh && q.rep.level == 0))
+          shots->push_back(render(target, model, q.rep, cam));
+      scoring.wait();
+      scoring.run([&t, shots, slot, phi, theta, size] {
+        const Shot& ref = shots->front();
+        std::size_t next = 1;
+        for (RepresentationQuality& q : t.representations) {
+          const bool same = q.rep.kind == ObjectKind::kMesh && q.rep.level == 0;
+          const Shot& s = same ? ref : (*shots)[next++];
+          std::vector<std::uint8_t> mask(ref.covered.size());
+          for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = ref.covered[i] | s.covered[i];
+          const double psnr = quality::psnr(ref.color.view(), s.color.view(), mask).rgb;
+          const double ssim = quality::ssim(ref.color.view(), s.color.view(),
+                                            {quality::SsimMode::kWang, false, false}, mask)
+                                  .ssim;
+          q.samples[slot] = {phi, theta, size, psnr, ssim};
+        }
+      });
+      ++slot;
       if (progress) progress(++done, total);
     }
+    scoring.wait();
     const Camera timing_cam = view_camera(m, 30.0, 60.0, size, side);
     for (RepresentationQuality& q : t.representations)
       q.cost.push_back(

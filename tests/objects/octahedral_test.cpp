@@ -63,8 +63,8 @@ class OctahedralTest : public ::testing::Test {
     const double elev = glm::degrees(std::asin(std::clamp(v.z, -1.0, 1.0)));
     const double phi = glm::degrees(std::atan2(-v.x, -v.y));
     const ts::Camera cam = tstest::orbit(glm::dvec3(box.center()), 60.0, phi, elev, 2.0);
-    const ts::Representation mesh{ts::ObjectKind::kMesh}, oct{ts::ObjectKind::kOctahedral, 0, res,
-                                                               kViews};
+    const ts::Representation mesh{ts::ObjectKind::kMesh},
+        oct{ts::ObjectKind::kOctahedral, 0, res, kViews};
     gl_box.prepare(oct);
     const Shot a = shoot(cam, mesh, name + "_mesh"), b = shoot(cam, oct, name + "_oct");
     auto px = [&](const ts::Image& im, int x, int y, int c) {

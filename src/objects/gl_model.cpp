@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstring>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/render_target.h"
@@ -190,12 +191,20 @@ void GlModel::Impl::upload_instances(std::span<const ObjectInstance> instances, 
   if (!instance_buffer || instance_capacity < data.size()) {
     instance_capacity = std::max<std::size_t>(64, data.size() * 2);
     instance_buffer.emplace();
+    uploaded.clear();
     glNamedBufferStorage(instance_buffer->id(),
                          GLsizeiptr(instance_capacity * sizeof(objects::GpuInstance)), nullptr,
                          GL_DYNAMIC_STORAGE_BIT);
   }
-  glNamedBufferSubData(instance_buffer->id(), 0,
-                       GLsizeiptr(data.size() * sizeof(objects::GpuInstance)), data.data());
+  // Writing a buffer that a queued draw reads makes llvmpipe drain its
+  // pipeline: skip the write when the buffer already holds these instances
+  // (impostor captures and quality tables draw the same one again and again).
+  const std::size_t bytes = data.size() * sizeof(objects::GpuInstance);
+  if (uploaded.size() != bytes || std::memcmp(uploaded.data(), data.data(), bytes) != 0) {
+    glNamedBufferSubData(instance_buffer->id(), 0, GLsizeiptr(bytes), data.data());
+    uploaded.assign(reinterpret_cast<const std::uint8_t*>(data.data()),
+                    reinterpret_cast<const std::uint8_t*>(data.data()) + bytes);
+  }
   glVertexArrayVertexBuffer(vao, 1, instance_buffer->id(), 0, sizeof(objects::GpuInstance));
 }
 

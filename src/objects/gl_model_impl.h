@@ -65,6 +65,7 @@ struct GlModel::Impl {
   gl::VertexArray instance_vao;  // impostors: instance attributes only
   std::optional<gl::Buffer> instance_buffer;
   std::size_t instance_capacity = 0;
+  std::vector<std::uint8_t> uploaded;  // what instance_buffer holds (GpuInstance bytes)
   std::map<int, objects::ReliefImpostor> relief;
   std::map<std::pair<int, int>, objects::OctahedralImpostor> octahedral;
 

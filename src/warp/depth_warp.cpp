@@ -63,8 +63,43 @@ struct SplatMap {
   }
 };
 
-std::uint64_t pack(float depth, std::uint32_t index) {
-  return (std::uint64_t(std::bit_cast<std::uint32_t>(depth)) << 32) | index;
+// A winner's key: depth bits above the real pixel (i, j) as j << 14 | i (both
+// < 16384), so the smallest key is the nearest, ties to the first in row
+// order, and decoding needs no division.
+constexpr int kIndexBits = 14;
+// Output pixel -> where its direction (a point at infinity) lies in the
+// real frame: a homography of the rotation alone, linear along a row in
+// homogeneous coordinates, d = row + x step in the real camera's
+// (right, up, forward).
+struct SkyMap {
+  glm::dvec3 r, u, f;  // output camera's axes in the real camera's frame
+  double omx, omy, ofx, ofy;
+  float smx, smy, sfx, sfy;
+  SkyMap(const Pinhole& s, const Pinhole& t) {
+    auto in_s = [&](const glm::dvec3& v) {
+      return glm::dvec3(glm::dot(v, s.r), glm::dot(v, s.u), glm::dot(v, s.f));
+    };
+    r = in_s(t.r), u = in_s(t.u), f = in_s(t.f);
+    omx = t.mx, omy = t.my, ofx = t.fx, ofy = t.fy;
+    smx = float(s.mx), smy = float(s.my), sfx = float(s.fx), sfy = float(s.fy);
+  }
+  // Homogeneous direction of output pixel (0.5, y + 0.5) and its step per pixel.
+  void row(int y, glm::vec3& base, glm::vec3& step) const {
+    const glm::dvec3 b = f + ((0.5 - omx) / ofx) * r - ((y + 0.5 - omy) / ofy) * u;
+    base = glm::vec3(b);
+    step = glm::vec3(r / ofx);
+  }
+};
+
+std::uint64_t pack(float depth, int i, int j) {
+  return (std::uint64_t(std::bit_cast<std::uint32_t>(depth)) << 32) |
+         (std::uint32_t(j) << kIndexBits) | std::uint32_t(i);
+}
+int key_i(std::uint64_t key) {
+  return int(key & ((1u << kIndexBits) - 1));
+}
+int key_j(std::uint64_t key) {
+  return int(std::uint32_t(key) >> kIndexBits);
 }
 
 void splat(const Reference& ref, const SplatMap& map, int w, int h,
@@ -83,7 +118,7 @@ void splat(const Reference& ref, const SplatMap& map, int w, int h,
             const float inv = 1.0f / q.z;
             const float x = map.mx + map.fx * q.x * inv, y = map.my - map.fy * q.y * inv;
             if (!(x >= 0.f && y >= 0.f && x < float(w) && y < float(h))) continue;
-            const std::uint64_t key = pack(q.z, std::uint32_t(std::size_t(j) * sw + i));
+            const std::uint64_t key = pack(q.z, i, j);
             std::atomic_ref<std::uint64_t> slot(win[std::size_t(int(y)) * w + int(x)]);
             std::uint64_t cur = slot.load(std::memory_order_relaxed);
             while (key < cur && !slot.compare_exchange_weak(cur, key, std::memory_order_relaxed)) {
@@ -133,10 +168,9 @@ struct Resolver {
 
   // Where winner `key` says new pixel (x, y) reads the reference; its depth.
   bool from_winner(std::uint64_t key, double x, double y, double& sx, double& sy, float& zt) const {
-    const std::uint32_t idx = std::uint32_t(key);
-    const int i = int(idx % std::uint32_t(ref.cam.w)), j = int(idx / std::uint32_t(ref.cam.w));
+    const int i = key_i(key), j = key_j(key);
     float lx, ly;
-    if (!map.land(i, j, ref.frame.depth[idx], lx, ly, zt)) return false;
+    if (!map.land(i, j, ref.frame.depth[std::size_t(j) * ref.cam.w + i], lx, ly, zt)) return false;
     sx = i + 0.5 + (x - lx) * (ref.cam.fx / out.fx);
     sy = j + 0.5 + (y - ly) * (ref.cam.fy / out.fy);
     return true;
@@ -160,14 +194,34 @@ struct Resolver {
     return best;
   }
 
-  // Resolves pixel (px, py); false when neither reference sees it.
-  bool pixel(int px, int py, bool& hole) {
+  void write(std::size_t at, double sx, double sy, double zt) {
+    ref.color_at(sx, sy, result.frame.color.rgba.data() + at * 4);
+    result.frame.depth[at] = float(zt);
+    result.holes[at] = 0;
+    if (keep_sources) {
+      result.source_x[at] = float(sx);
+      result.source_y[at] = float(sy);
+    }
+  }
+
+  // Pixel (px, py) with a winner whose landing point says where to read.
+  bool winner(std::uint64_t key, int px, int py) {
+    double sx, sy;
+    float zt;
+    if (!from_winner(key, px + 0.5, py + 0.5, sx, sy, zt)) return false;
+    write(std::size_t(py) * out.w + px, sx, sy, zt);
+    return true;
+  }
+
+  // Pixel (px, py) without a winner: iterate from the farthest neighbouring
+  // winner to the real-frame point that lands on it, or sky where the real
+  // frame sees sky in its direction; else a hole, read from the second
+  // reference when there is one. False when neither reference sees it.
+  bool search(int px, int py) {
     const std::size_t at = std::size_t(py) * out.w + px;
     const double x = px + 0.5, y = py + 0.5;
-    std::uint8_t* rgba = result.frame.color.px(px, py);
     double sx, sy, zt = Frame::kSky;
     float zf;
-    hole = false;
     const std::uint64_t key = win[at];
     bool ok = key != kEmpty && from_winner(key, x, y, sx, sy, zf);
     if (ok) {
@@ -182,16 +236,22 @@ struct Resolver {
       }
     }
     if (ok) {
-      ref.color_at(sx, sy, rgba);
-      result.frame.depth[at] = float(zt);
-      if (keep_sources) {
-        result.source_x[at] = float(sx);
-        result.source_y[at] = float(sy);
-      }
+      write(at, sx, sy, zt);
       return true;
     }
-    hole = true;
-    return second && from_second(px, py, rgba);
+    return hole(px, py);
+  }
+
+  // A pixel neither the real frame's surfaces nor its sky cover.
+  bool hole(int px, int py) {
+    const std::size_t at = std::size_t(py) * out.w + px;
+    result.holes[at] = 1;
+    result.frame.depth[at] = Frame::kSky;
+    std::memset(result.frame.color.rgba.data() + at * 4, 0, 4);
+    if (keep_sources) {
+      result.source_x[at] = result.source_y[at] = std::numeric_limits<float>::quiet_NaN();
+    }
+    return second && from_second(px, py, result.frame.color.rgba.data() + at * 4);
   }
 
   // A hole of the primary reference read from the second one: start where
@@ -246,22 +306,71 @@ void extend_background(WarpedFrame& r, int y, const std::vector<std::uint8_t>& u
 }  // namespace
 
 void warp_depth(const Reference& ref, const Reference* second, const Pinhole& out,
-                const WarpOptions& options, WarpedFrame& result) {
+                const WarpOptions& options, WarpedFrame& result, Warper::Scratch& scratch) {
   const SplatMap map(ref.cam, out);
-  std::vector<std::uint64_t> win(std::size_t(out.w) * out.h, kEmpty);
+  const SkyMap sky(ref.cam, out);
+  const std::size_t n = std::size_t(out.w) * out.h;
+  std::vector<std::uint64_t>& win = scratch.win;
+  std::vector<std::uint8_t>& unresolved = scratch.unresolved;
+  win.resize(n);
+  unresolved.resize(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 16),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      std::fill(win.begin() + r.begin(), win.begin() + r.end(), kEmpty);
+                    });
   splat(ref, map, out.w, out.h, win);
-  std::vector<std::uint8_t> unresolved(win.size(), 0);
-  Resolver res{ref, second, out, map, win, options.keep_sources, result};
+  const Resolver res{ref, second, out, map, win, options.keep_sources, result};
+  const int sw = ref.cam.w, sh = ref.cam.h;
   tbb::parallel_for(tbb::blocked_range<int>(0, out.h, 4), [&](const tbb::blocked_range<int>& rows) {
     Resolver local = res;
+    std::vector<std::uint8_t> column(std::size_t(out.w));  // a winner in the column's 5 rows
     for (int y = rows.begin(); y < rows.end(); ++y) {
+      const std::uint64_t* keys = win.data() + std::size_t(y) * out.w;
+      std::uint8_t* miss = unresolved.data() + std::size_t(y) * out.w;
+      // A row with empty pixels: which of them have a winner within 2 px
+      // (those search); the others are sky or a hole, read directly.
+      bool empty = false;
+      for (int x = 0; x < out.w; ++x) empty |= keys[x] == kEmpty;
+      if (empty) {
+        std::fill(column.begin(), column.end(), 0);
+        for (int b = std::max(y - 2, 0); b <= std::min(y + 2, out.h - 1); ++b) {
+          const std::uint64_t* k = win.data() + std::size_t(b) * out.w;
+          for (int x = 0; x < out.w; ++x) column[std::size_t(x)] |= k[x] != kEmpty;
+        }
+      }
+      glm::vec3 dir, step;
+      sky.row(y, dir, step);
       bool any = false;
-      for (int x = 0; x < out.w; ++x) {
-        bool hole;
-        const bool ok = local.pixel(x, y, hole);
-        const std::size_t at = std::size_t(y) * out.w + x;
-        result.holes[at] = hole;
-        unresolved[at] = !ok;
+      for (int x = 0; x < out.w; ++x, dir += step) {
+        const std::uint64_t key = keys[x];
+        bool ok;
+        if (key != kEmpty) {
+          ok = local.winner(key, x, y) || local.search(x, y);
+        } else {
+          bool near = false;
+          for (int a = std::max(x - 2, 0); a <= std::min(x + 2, out.w - 1); ++a)
+            near |= column[std::size_t(a)] != 0;
+          if (near) {
+            ok = local.search(x, y);
+          } else {
+            // Sky where the real frame sees sky in this direction (three
+            // probes, as sees_sky); else a hole.
+            const float sx = sky.smx + sky.sfx * dir.x / dir.z;
+            const float sy = sky.smy - sky.sfy * dir.y / dir.z;
+            auto sky_at = [&](float px, float py) {
+              const int i = std::clamp(int(px), 0, sw - 1), j = std::clamp(int(py), 0, sh - 1);
+              return !(ref.frame.depth[std::size_t(j) * sw + i] < Frame::kSky);
+            };
+            if (dir.z > 1e-12f && sx >= 0.f && sy >= 0.f && sx <= float(sw) && sy <= float(sh) &&
+                (sky_at(sx, sy) || sky_at(sx + 0.5f, sy + 0.5f) || sky_at(sx - 0.5f, sy - 0.5f))) {
+              local.write(std::size_t(y) * out.w + x, sx, sy, Frame::kSky);
+              ok = true;
+            } else {
+              ok = local.hole(x, y);
+            }
+          }
+        }
+        miss[x] = !ok;
         any = any || !ok;
       }
       if (any) extend_background(result, y, unresolved);

@@ -13,11 +13,8 @@
 #include <cstring>
 #include <limits>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include "common/simd.h"
+#include "warp/bilinear.h"
 #include "warp/warp_internal.h"
 
 namespace terrasprite::warp {
@@ -132,31 +129,6 @@ RowMap row_map(const Coeffs& cx, const Coeffs& cy, const Pinhole& out, int y) {
   return m;
 }
 
-// Bilinear RGBA8 of the 2 x 2 block whose top-left texel is src[o] (row
-// stride sw), 8-bit weights fi, fj in 0..256 (0: exactly the top-left texel).
-inline std::uint32_t bilinear_block(const std::uint32_t* src, int o, int sw, std::uint32_t fi,
-                                    std::uint32_t fj) {
-#if defined(__SSE2__)
-  // Both columns at once in 16-bit lanes: vertical lerp, then the two halves.
-  const __m128i z = _mm_setzero_si128(), half = _mm_set1_epi16(128);
-  const __m128i ab = _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(src + o)), z);
-  const __m128i cd =
-      _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(src + o + sw)), z);
-  const __m128i v = _mm_srli_epi16(
-      _mm_add_epi16(_mm_add_epi16(_mm_mullo_epi16(ab, _mm_set1_epi16(short(256 - fj))),
-                                  _mm_mullo_epi16(cd, _mm_set1_epi16(short(fj)))),
-                    half),
-      8);
-  const __m128i wi = _mm_unpacklo_epi64(_mm_set1_epi16(short(256 - fi)), _mm_set1_epi16(short(fi)));
-  __m128i h = _mm_mullo_epi16(v, wi);
-  h = _mm_srli_epi16(_mm_add_epi16(_mm_add_epi16(h, _mm_srli_si128(h, 8)), half), 8);
-  return std::uint32_t(_mm_cvtsi128_si32(_mm_packus_epi16(h, h)));
-#else
-  return lerp_packed(lerp_packed(src[o], src[o + 1], fi),
-                     lerp_packed(src[o + sw], src[o + sw + 1], fi), fj);
-#endif
-}
-
 // Pixels [x0, x1) of one row (x1 - x0 <= kSpan): bilinear colour (8-bit
 // weights, exact at pixel centres), nearest depth and the outside-the-image
 // mask. The coordinates and clamps come first, in a loop without branches
@@ -168,7 +140,7 @@ TS_CLONES_AVX2
 void poly2_span(const RowMap& m, int x0, int x1, const std::uint32_t* __restrict src,
                 const float* __restrict src_depth, int sw, int sh, std::uint32_t* __restrict color,
                 float* __restrict depth, std::uint8_t* __restrict hole) {
-  const float wmax = float(sw - 1), hmax = float(sh - 1), fw = float(sw), fh = float(sh);
+  const float fw = float(sw), fh = float(sh);
   int off[kSpan], near[kSpan];
   std::uint32_t wx[kSpan], wy[kSpan];
   const int n = x1 - x0;
@@ -176,12 +148,7 @@ void poly2_span(const RowMap& m, int x0, int x1, const std::uint32_t* __restrict
     const float fx = float(x0 + k);
     const float rx = m.ax + fx * (m.bx + fx * m.cx), ry = m.ay + fx * (m.by + fx * m.cy);
     hole[x0 + k] = std::uint8_t((rx < 0.f) | (ry < 0.f) | (rx > fw) | (ry > fh));
-    const float px = std::min(std::max(rx - 0.5f, 0.f), wmax);
-    const float py = std::min(std::max(ry - 0.5f, 0.f), hmax);
-    const int i0 = std::min(int(px), sw - 2), j0 = std::min(int(py), sh - 2);
-    wx[k] = std::uint32_t(int((px - float(i0)) * 256.f + 0.5f));
-    wy[k] = std::uint32_t(int((py - float(j0)) * 256.f + 0.5f));
-    off[k] = j0 * sw + i0;
+    tap(rx, ry, sw, sh, off[k], wx[k], wy[k]);
     const int ni = std::min(std::max(int(rx), 0), sw - 1);
     const int nj = std::min(std::max(int(ry), 0), sh - 1);
     near[k] = nj * sw + ni;

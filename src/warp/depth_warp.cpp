@@ -307,9 +307,8 @@ struct Resolver {
 
 // Fills the unresolved pixels of one row from the farther of their resolved
 // neighbours on the row (background extension); rows with none stay sky.
-void extend_background(WarpedFrame& r, int y, const std::vector<std::uint8_t>& unresolved) {
+void extend_background(WarpedFrame& r, int y, const std::uint8_t* miss) {
   const int w = r.frame.width();
-  const std::uint8_t* miss = unresolved.data() + std::size_t(y) * w;
   float* depth = r.frame.depth.data() + std::size_t(y) * w;
   for (int x = 0; x < w;) {
     if (!miss[x]) {
@@ -419,9 +418,7 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
   const SkyMap sky(ref.cam, out);
   const std::size_t n = std::size_t(out.w) * out.h;
   std::vector<std::uint64_t>& win = scratch.win;
-  std::vector<std::uint8_t>& unresolved = scratch.unresolved;
   win.resize(n);
-  unresolved.resize(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 16),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       std::fill(win.begin() + r.begin(), win.begin() + r.end(), kEmpty);
@@ -435,11 +432,12 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
   tbb::parallel_for(tbb::blocked_range<int>(0, out.h, 4), [&](const tbb::blocked_range<int>& rows) {
     Resolver local = res;
     std::vector<std::uint8_t> column(std::size_t(out.w));  // a winner in the column's 5 rows
+    std::vector<std::uint8_t> unresolved(std::size_t(out.w));  // this row's, for extend_background
     SpanMap m;
     for (int y = rows.begin(); y < rows.end(); ++y) {
       const std::size_t row = std::size_t(y) * out.w;
       const std::uint64_t* keys = win.data() + row;
-      std::uint8_t* miss = unresolved.data() + row;
+      std::uint8_t* miss = unresolved.data();
       // A row with empty pixels: which of them have a winner within 2 px
       // (those search as before); the others are sky or a hole, directly.
       bool empty = false;
@@ -503,7 +501,7 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
           any = any || !ok;
         }
       }
-      if (any) extend_background(result, y, unresolved);
+      if (any) extend_background(result, y, miss);
     }
   });
 }

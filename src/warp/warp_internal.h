@@ -14,9 +14,7 @@ namespace terrasprite {
 
 /// Per-Warper scratch the depth warp reuses between calls.
 struct Warper::Scratch {
-  std::vector<std::uint64_t> win;       ///< splat winners, one per output pixel
-  std::vector<std::uint8_t> near;       ///< 1 where a winner lies within 2 px
-  std::vector<std::uint8_t> unresolved;  ///< 1 where neither reference saw the pixel
+  std::vector<std::uint64_t> win;  ///< splat winners, one per output pixel
 };
 
 namespace warp {

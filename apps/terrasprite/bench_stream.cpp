@@ -17,6 +17,7 @@
 
 #include "bench_commands.h"
 #include "cli_common.h"
+#include "process_memory.h"
 #include "plot.h"
 #include "stream/tile_file.h"
 #include "terrasprite/camera_path.h"
@@ -51,12 +52,6 @@ struct BenchStreamOpts {
 
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-double peak_rss_mb() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_maxrss) / 1024.0;  // kilobytes on Linux
 }
 
 // FNV-1a over the colour bytes: frames compared across processes by hash.
@@ -159,7 +154,7 @@ StreamRun run_streamed(const BenchStreamOpts& o, const TileSetInfo& set, Clock::
   const auto t_run = Clock::now();
   ex.run(cameras, eo);
   run.wall_ms = ms_since(t_run);
-  run.peak_rss_mb = peak_rss_mb();
+  run.peak_rss_mb = peak_resident_mb();
   run.faults_injected = tiles.injected_faults();
   run.faults_survived = tiles.failed_tiles();  // the run went on past every one
   return run;
@@ -180,7 +175,7 @@ void run_in_memory_child(const BenchStreamOpts& o, const TileSetInfo& set, int w
           }});
   PathSource cameras(path);
   ex.run(cameras, {});
-  std::ofstream(o.child_json) << nlohmann::json{{"ms", ms}, {"hash", hashes}, {"peak_rss_mb", peak_rss_mb()}}.dump();
+  std::ofstream(o.child_json) << nlohmann::json{{"ms", ms}, {"hash", hashes}, {"peak_rss_mb", peak_resident_mb()}}.dump();
 }
 
 // Runs this program again with --in-memory-child; its figures, or null when it failed.

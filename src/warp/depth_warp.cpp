@@ -438,11 +438,10 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
       const std::size_t row = std::size_t(y) * out.w;
       const std::uint64_t* keys = win.data() + row;
       std::uint8_t* miss = unresolved.data();
-      // A row with empty pixels: which of them have a winner within 2 px
-      // (those search as before); the others are sky or a hole, directly.
-      bool empty = false;
-      for (int x = 0; x < out.w; ++x) empty |= keys[x] == kEmpty;
-      if (empty) winner_columns(win.data(), out.w, out.h, y, column.data());
+      // At the row's first empty pixel: which columns hold a winner within
+      // 2 rows, so an empty pixel knows whether one lies within 2 px (it
+      // searches as before) or not (sky or a hole, directly).
+      bool columns = false;
       glm::vec3 dir, step;
       sky.row(y, dir, step);
       auto* color = reinterpret_cast<std::uint32_t*>(result.frame.color.rgba.data() + row * 4);
@@ -469,6 +468,8 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
           } else if (m.kind[k] == kSearch) {
             ok = local.search(x, y);
           } else {
+            if (!columns) winner_columns(win.data(), out.w, out.h, y, column.data());
+            columns = true;
             bool near = false;
             for (int a = std::max(x - 2, 0); a <= std::min(x + 2, out.w - 1); ++a)
               near |= column[std::size_t(a)] != 0;

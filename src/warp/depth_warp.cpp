@@ -468,11 +468,15 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
           } else if (m.kind[k] == kSearch) {
             ok = local.search(x, y);
           } else {
-            if (!columns) winner_columns(win.data(), out.w, out.h, y, column.data());
-            columns = true;
-            bool near = false;
-            for (int a = std::max(x - 2, 0); a <= std::min(x + 2, out.w - 1); ++a)
-              near |= column[std::size_t(a)] != 0;
+            // A crack has a winner beside it (checked first); otherwise the
+            // row's column summary answers for the 5 x 5 neighbourhood.
+            bool near = (x > 0 && keys[x - 1] != kEmpty) || (x + 1 < out.w && keys[x + 1] != kEmpty);
+            if (!near) {
+              if (!columns) winner_columns(win.data(), out.w, out.h, y, column.data());
+              columns = true;
+              for (int a = std::max(x - 2, 0); a <= std::min(x + 2, out.w - 1); ++a)
+                near |= column[std::size_t(a)] != 0;
+            }
             if (near) {
               ok = local.search(x, y);
             } else {

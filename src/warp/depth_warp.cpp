@@ -13,6 +13,14 @@
 //      frame, sky; otherwise it is a hole: read from the second reference
 //      by the same iteration, or else
 //   3. extend the background: along the row, from the farther side.
+//
+// Speed: both passes work in spans of a row, first a loop without branches
+// that vectorises (where each real pixel lands; where each output pixel
+// reads, from its winner or, for an empty pixel, from its direction: sky is
+// a homography of the rotation alone), then one pixel at a time. An empty
+// pixel with no winner within 2 px is sky or a hole at once; only those near
+// winners (cracks, silhouettes) pay the neighbour search and iteration. The
+// buffers come from the caller's Warper.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 

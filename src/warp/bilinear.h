@@ -16,8 +16,7 @@ namespace terrasprite::warp {
 /// Position (x, y) in pixels (centres at +0.5) of a w x h image (w, h >= 2),
 /// clamped to it: the block's top-left texel index and weights in 0..256
 /// (0: exactly that texel). NaN reads the top-left corner.
-inline void tap(float x, float y, int w, int h, int& offset, std::uint32_t& fi,
-                std::uint32_t& fj) {
+inline void tap(float x, float y, int w, int h, int& offset, std::uint32_t& fi, std::uint32_t& fj) {
   const float wmax = float(w - 1), hmax = float(h - 1);
   float px = x - 0.5f, py = y - 0.5f;
   px = px > 0.f ? px : 0.f;
@@ -48,14 +47,13 @@ inline std::uint32_t bilinear_block(const std::uint32_t* src, int o, int w, std:
                                   _mm_mullo_epi16(cd, _mm_set1_epi16(short(fj)))),
                     half),
       8);
-  const __m128i wi =
-      _mm_unpacklo_epi64(_mm_set1_epi16(short(256 - fi)), _mm_set1_epi16(short(fi)));
+  const __m128i wi = _mm_unpacklo_epi64(_mm_set1_epi16(short(256 - fi)), _mm_set1_epi16(short(fi)));
   __m128i h = _mm_mullo_epi16(v, wi);
   h = _mm_srli_epi16(_mm_add_epi16(_mm_add_epi16(h, _mm_srli_si128(h, 8)), half), 8);
   return std::uint32_t(_mm_cvtsi128_si32(_mm_packus_epi16(h, h)));
 #else
-  return lerp_packed(lerp_packed(src[o], src[o + 1], fi), lerp_packed(src[o + w], src[o + w + 1], fi),
-                     fj);
+  return lerp_packed(lerp_packed(src[o], src[o + 1], fi),
+                     lerp_packed(src[o + w], src[o + w + 1], fi), fj);
 #endif
 }
 

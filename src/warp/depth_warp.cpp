@@ -43,7 +43,7 @@ constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
 // q = z (row_base(j) + i step) + offset, in the new camera's (right, up, forward).
 struct SplatMap {
   glm::vec3 rr, ru, rf, step, offset;
-  glm::vec3 base0, base_j;  // row_base(j) = base0 + j base_j
+  glm::vec3 base0, base_j;   // row_base(j) = base0 + j base_j
   float mx, my, fx, fy;      // new camera
   float smx, smy, sfx, sfy;  // real camera
   SplatMap(const Pinhole& s, const Pinhole& t) {
@@ -130,7 +130,8 @@ void land_span(const SplatMap& map, const float* __restrict depth, int i0, int i
     const float inv = 1.0f / std::max(qz, 1e-3f);
     const float x = mx + fx * qx * inv, y = my - fy * qy * inv;
     // z = +inf (sky) makes q infinite or NaN: every test below fails.
-    const bool in = (z < Frame::kSky) & (qz > 1e-3f) & (x >= 0.f) & (y >= 0.f) & (x < fw) & (y < fh);
+    const bool in =
+        (z < Frame::kSky) & (qz > 1e-3f) & (x >= 0.f) & (y >= 0.f) & (x < fw) & (y < fh);
     const int xi = int(in ? x : 0.f), yi = int(in ? y : 0.f);
     target[i - i0] = in ? std::uint32_t(yi * w + xi) : kNowhere;
     zt[i - i0] = qz;
@@ -155,7 +156,8 @@ void splat(const Reference& ref, const SplatMap& map, int w, int h,
               const std::uint64_t key = pack(zt[i - i0], i, j);
               std::atomic_ref<std::uint64_t> slot(win[target[i - i0]]);
               std::uint64_t cur = slot.load(std::memory_order_relaxed);
-              while (key < cur && !slot.compare_exchange_weak(cur, key, std::memory_order_relaxed)) {
+              while (key < cur &&
+                     !slot.compare_exchange_weak(cur, key, std::memory_order_relaxed)) {
               }
             }
           }
@@ -439,7 +441,7 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
   const float kx = float(ref.cam.fx / out.fx), ky = float(ref.cam.fy / out.fy);
   tbb::parallel_for(tbb::blocked_range<int>(0, out.h, 4), [&](const tbb::blocked_range<int>& rows) {
     Resolver local = res;
-    std::vector<std::uint8_t> column(std::size_t(out.w));  // a winner in the column's 5 rows
+    std::vector<std::uint8_t> column(std::size_t(out.w));      // a winner in the column's 5 rows
     std::vector<std::uint8_t> unresolved(std::size_t(out.w));  // this row's, for extend_background
     SpanMap m;
     for (int y = rows.begin(); y < rows.end(); ++y) {
@@ -458,7 +460,8 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
       bool any = false;
       for (int x0 = 0; x0 < out.w; x0 += kSpan) {
         const int x1 = std::min(x0 + kSpan, out.w);
-        if (!tiny) map_span(map, dir, step, keys, ref.frame.depth.data(), sw, sh, kx, ky, x0, x1, y, m);
+        if (!tiny)
+          map_span(map, dir, step, keys, ref.frame.depth.data(), sw, sh, kx, ky, x0, x1, y, m);
         for (int x = x0; x < x1; ++x) {
           const int k = x - x0;
           bool ok;
@@ -478,7 +481,8 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
           } else {
             // A crack has a winner beside it (checked first); otherwise the
             // row's column summary answers for the 5 x 5 neighbourhood.
-            bool near = (x > 0 && keys[x - 1] != kEmpty) || (x + 1 < out.w && keys[x + 1] != kEmpty);
+            bool near =
+                (x > 0 && keys[x - 1] != kEmpty) || (x + 1 < out.w && keys[x + 1] != kEmpty);
             if (!near) {
               if (!columns) winner_columns(win.data(), out.w, out.h, y, column.data());
               columns = true;
@@ -495,8 +499,8 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
                 const int i = std::clamp(int(px), 0, sw - 1), j = std::clamp(int(py), 0, sh - 1);
                 return !(ref.frame.depth[std::size_t(j) * sw + i] < Frame::kSky);
               };
-              if (m.sky[k] &&
-                  (sky_at(sx, sy) || sky_at(sx + 0.5f, sy + 0.5f) || sky_at(sx - 0.5f, sy - 0.5f))) {
+              if (m.sky[k] && (sky_at(sx, sy) || sky_at(sx + 0.5f, sy + 0.5f) ||
+                               sky_at(sx - 0.5f, sy - 0.5f))) {
                 color[x] = bilinear_block(src, m.off[k], sw, m.wx[k], m.wy[k]);
                 depth[x] = Frame::kSky;
                 hole[x] = 0;

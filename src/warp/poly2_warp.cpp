@@ -174,34 +174,35 @@ void warp_poly2(const Reference& ref, const Pinhole& out, const WarpOptions& opt
   const int sw = ref.cam.w, sh = ref.cam.h;
   const bool tiny = sw < 2 || sh < 2;  // the span kernel reads a 2 x 2 block
   const auto* src = reinterpret_cast<const std::uint32_t*>(ref.frame.color.rgba.data());
-  tbb::parallel_for(tbb::blocked_range<int>(0, out.h, 16), [&](const tbb::blocked_range<int>& rows) {
-    for (int y = rows.begin(); y < rows.end(); ++y) {
-      const RowMap m = row_map(cx, cy, out, y);
-      auto* color = reinterpret_cast<std::uint32_t*>(f.color.px(0, y));
-      float* depth = f.depth.data() + std::size_t(y) * out.w;
-      std::uint8_t* hole = result.holes.data() + std::size_t(y) * out.w;
-      if (!tiny) {
-        for (int x = 0; x < out.w; x += kSpan)
-          poly2_span(m, x, std::min(x + kSpan, out.w), src, ref.frame.depth.data(), sw, sh, color,
-                     depth, hole);
-      }
-      if (!tiny && !options.keep_sources) continue;
-      for (int x = 0; x < out.w; ++x) {
-        const float fx = float(x);
-        const float rx = m.ax + fx * (m.bx + fx * m.cx), ry = m.ay + fx * (m.by + fx * m.cy);
-        if (tiny) {
-          color[x] = Reference::bilinear_packed(ref.frame.color, rx, ry);
-          depth[x] = ref.depth_nearest(rx, ry);
-          hole[x] = !ref.inside(rx, ry);
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, out.h, 16), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+          const RowMap m = row_map(cx, cy, out, y);
+          auto* color = reinterpret_cast<std::uint32_t*>(f.color.px(0, y));
+          float* depth = f.depth.data() + std::size_t(y) * out.w;
+          std::uint8_t* hole = result.holes.data() + std::size_t(y) * out.w;
+          if (!tiny) {
+            for (int x = 0; x < out.w; x += kSpan)
+              poly2_span(m, x, std::min(x + kSpan, out.w), src, ref.frame.depth.data(), sw, sh,
+                         color, depth, hole);
+          }
+          if (!tiny && !options.keep_sources) continue;
+          for (int x = 0; x < out.w; ++x) {
+            const float fx = float(x);
+            const float rx = m.ax + fx * (m.bx + fx * m.cx), ry = m.ay + fx * (m.by + fx * m.cy);
+            if (tiny) {
+              color[x] = Reference::bilinear_packed(ref.frame.color, rx, ry);
+              depth[x] = ref.depth_nearest(rx, ry);
+              hole[x] = !ref.inside(rx, ry);
+            }
+            if (options.keep_sources) {
+              const std::size_t i = std::size_t(y) * out.w + x;
+              result.source_x[i] = hole[x] ? std::numeric_limits<float>::quiet_NaN() : rx;
+              result.source_y[i] = hole[x] ? std::numeric_limits<float>::quiet_NaN() : ry;
+            }
+          }
         }
-        if (options.keep_sources) {
-          const std::size_t i = std::size_t(y) * out.w + x;
-          result.source_x[i] = hole[x] ? std::numeric_limits<float>::quiet_NaN() : rx;
-          result.source_y[i] = hole[x] ? std::numeric_limits<float>::quiet_NaN() : ry;
-        }
-      }
-    }
-  });
+      });
 }
 
 }  // namespace terrasprite::warp

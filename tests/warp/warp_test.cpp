@@ -326,12 +326,10 @@ TEST(Warp, WarperReuseMatchesAFreshWarp) {
     bool sources;
     const Frame* second;
   };
-  const Call calls[] = {{WarpMethod::kDepth, W, H, true, nullptr},
-                        {WarpMethod::kPoly2, W, H, false, nullptr},
-                        {WarpMethod::kDepth, W, H, false, &second},
-                        {WarpMethod::kDepth, W / 2, H / 2, true, nullptr},
-                        {WarpMethod::kPoly2, W, H, true, nullptr},
-                        {WarpMethod::kDepth, W, H, true, nullptr}};
+  const Call calls[] = {
+      {WarpMethod::kDepth, W, H, true, nullptr},  {WarpMethod::kPoly2, W, H, false, nullptr},
+      {WarpMethod::kDepth, W, H, false, &second}, {WarpMethod::kDepth, W / 2, H / 2, true, nullptr},
+      {WarpMethod::kPoly2, W, H, true, nullptr},  {WarpMethod::kDepth, W, H, true, nullptr}};
   Warper warper;
   for (const Call& c : calls) {
     WarpOptions o;

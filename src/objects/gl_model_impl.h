@@ -37,10 +37,12 @@ struct ReliefImpostor {
 
 /// views x views orthographic views on the upper hemi-octahedron, one atlas.
 struct OctahedralImpostor {
-  gl::Texture albedo{GL_TEXTURE_2D};    // RGBA8: base colour, alpha = coverage
-  gl::Texture geometry{GL_TEXTURE_2D};  // RGBA8: octahedron-encoded normal, 16-bit depth (capture.h)
+  gl::Texture albedo{GL_TEXTURE_2D};  // RGBA8: base colour, alpha = coverage
+  gl::Texture geometry{
+      GL_TEXTURE_2D};  // RGBA8: octahedron-encoded normal, 16-bit depth (capture.h)
   int resolution = 0, views = 0;
-  float radius = 0;  ///< model metres: the views frame the sphere around the centre through the farthest vertex
+  float radius = 0;  ///< model metres: the views frame the sphere around the centre through the
+                     ///< farthest vertex
   std::size_t bytes = 0;
 };
 

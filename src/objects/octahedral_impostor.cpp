@@ -197,8 +197,9 @@ glm::mat4 view_capture(int i, int j, int views, glm::vec3 c, float r) {
 
 gl::Program make_octahedral_program() {
   const std::string head = std::string("#version 450 core\n") + kObjectGlsl + kOctGlsl;
-  return gl::link_program(head + kOctVertex,
-                          std::string("#version 450 core\n") + kSunGlsl + kOctGlsl + objects::kPackedGeometryGlsl + kOctFragment);
+  return gl::link_program(head + kOctVertex, std::string("#version 450 core\n") + kSunGlsl +
+                                                 kOctGlsl + objects::kPackedGeometryGlsl +
+                                                 kOctFragment);
 }
 
 }  // namespace objects

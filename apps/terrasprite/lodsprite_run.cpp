@@ -14,6 +14,7 @@
 #include <numeric>
 
 #include "cli_common.h"
+#include "lodsprite_async.h"
 #include "lodsprite_report.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/error.h"
@@ -121,6 +122,8 @@ void validate(const LodspriteConfig& c) {
                     2.0 * c.width * c.height * 8 / (1 << 20)));
   if (!(c.cache_accept > 0 && c.cache_accept <= 1))
     throw InputError(fmt::format("--cache-accept {}: must be in (0, 1]", c.cache_accept));
+  if (c.async && c.cache_bytes > 0)
+    throw InputError("--async with --cache: the keyframe cache is not used with async keyframes");
   if (c.sweep_score_every < 1)
     throw InputError(
         fmt::format("--sweep-score-every {}: must be at least 1", c.sweep_score_every));
@@ -270,6 +273,15 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
     for (int i = 0; i < n; i += every) s.push_back(v[i]);
     return mean(s);
   };
+
+  // ---- the display simulated with asynchronous keyframes, beside a synchronous one ----
+  nlohmann::json async_run = nullptr;
+  if (cfg.async) {
+    AsyncComparison ac = run_async_display(gl, scene, path, w, h, so, refs, every);
+    ac.main_run_mean_ssim = mean_every(sp_ssim);
+    ac.main_run_mean_psnr = mean_every(sp_psnr);
+    async_run = async_json(ac);
+  }
 
   // ---- sweeps (paper Figs. 10-12 and the coarse-mesh size) ----
   nlohmann::json threshold_sweep = nlohmann::json::array(),
@@ -422,7 +434,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
                                  : nlohmann::json(nullptr)},
       {"psnr_cap_db", kPsnrCapDb},
       {"there_and_back", cfg.there_and_back},
-      {"async", false},
+      {"async", cfg.async},
       {"mesh", "uniform"},
       {"full", {{"total_ms", full_total}, {"median_ms", median(full_ms)}}},
       {"lod",
@@ -488,6 +500,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
       {"per_frame", per_frame}};
   if (!cfg.video.empty()) j["video"] = cfg.video;
   if (!cache.is_null()) j["cache"] = cache;
+  if (!async_run.is_null()) j["async_run"] = async_run;
   write_lodsprite_report(j, out);
   return j;
 }

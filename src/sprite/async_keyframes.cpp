@@ -3,12 +3,19 @@
 // the renderer's, a pool of keyframes, fences both ways (see the header).
 #include "sprite/async_keyframes.h"
 
+#include <algorithm>
 #include <cassert>
 #include <utility>
 
 #include "terrasprite/scene.h"
 
 namespace terrasprite {
+
+// llvmpipe rasterizes the flushed batches of all contexts in turn on one
+// thread pool, so a keyframe drawn in one batch holds up every sprite frame
+// queued behind it for its whole raster time. Drawn in pieces of about this
+// many triangles, each drained before the next, the wait is one piece.
+constexpr long long kTrianglesPerPiece = 16384;
 
 struct AsyncKeyframes::Slot {
   enum class State { kFree, kRendering, kLanded, kHeld };
@@ -109,7 +116,9 @@ void AsyncKeyframes::render(Slot& slot, const Camera& camera, TerrainGpu& terrai
   // capture() reads the depth back, so the worker's pipeline is drained; the
   // fence still orders the caller's sampling after it, and the flush makes
   // sure the fence reaches the GL server before the caller waits on it.
-  slot.key->capture(terrain, grid_, camera, lighting_);
+  const long long triangles = terrain.mesh(0).triangles;
+  const int pieces = int(std::clamp<long long>(triangles / kTrianglesPerPiece, 1, 1024));
+  slot.key->capture(terrain, grid_, camera, lighting_, pieces);
   slot.landed = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
   glFlush();
 }

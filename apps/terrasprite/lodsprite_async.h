@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: MIT
+// `bench lodsprite --async`: a simulated display of the LOD-sprite renderer
+// with keyframes on a second thread, beside the same display drawn
+// synchronously; frame time is the interval between successive presentations.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <span>
+#include <vector>
+
+#include "terrasprite/camera.h"
+#include "terrasprite/gl_context.h"
+#include "terrasprite/image.h"
+#include "terrasprite/scene.h"
+#include "terrasprite/sprite_renderer.h"
+
+namespace terrasprite::cli {
+
+/// One simulated display: every frame presented as soon as it is drawn.
+struct DisplayRun {
+  std::vector<double> frame_ms;  ///< presentation intervals; frame 0: its own draw time
+  std::vector<double> decision_ms;
+  std::vector<double> sprite_ms;   ///< the intervals ending in a frame of class "sprite"
+  std::vector<int> landed_frames;  ///< frames that took a landed keyframe (async)
+  int keyframes_in_frame = 0;      ///< frames of class "key" (drawn inside the display's frame)
+  AsyncKeyframeStats stats;
+  double mean_ssim = 0, mean_psnr = 0;  ///< scored frames (async only: replayed, see below)
+};
+
+struct AsyncComparison {
+  DisplayRun sync, async;
+  double main_run_mean_ssim = 0, main_run_mean_psnr = 0;  ///< the interleaved synchronous run
+};
+
+/// Flies `path` as a display twice, synchronously and with asynchronous
+/// keyframes (`o` otherwise), through the experiment driver with nothing
+/// read back. The async frames are then scored against `refs` (the
+/// full-resolution frames i with i % every == 0) by replaying them: each
+/// frame's keyframe camera is recorded, and a synchronous renderer draws the
+/// same keyframe and sprite again (the same pixels: same driver and shaders).
+AsyncComparison run_async_display(const GlContext& gl, Scene& scene, std::span<const Camera> path,
+                                  int width, int height, SpriteOptions o,
+                                  const std::vector<Image>& refs, int every);
+
+/// The `async_run` JSON object: figures of both displays, the targets, the method.
+nlohmann::json async_json(const AsyncComparison& c);
+
+}  // namespace terrasprite::cli

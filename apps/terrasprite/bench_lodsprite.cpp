@@ -5,6 +5,7 @@
 
 #include "bench_commands.h"
 #include "cli_common.h"
+#include "lodsprite_report.h"
 #include "lodsprite_run.h"
 #include "terrasprite/error.h"
 
@@ -110,7 +111,9 @@ void add_bench_lodsprite(CLI::App& bench) {
     check_lod_quads(c.lod_quads, terrain.heights);
     for (int q : c.lod_sweep) check_lod_quads(q, terrain.heights, "--lod-sweep");
     OutputDir out(o->out, output_policy());
-    nlohmann::json j = run_lodsprite(c, terrain, out, "bench lodsprite");
+    const LodspriteResult result = run_lodsprite(c, terrain, out, "bench lodsprite");
+    write_lodsprite_report(result, out);
+    const nlohmann::json j = to_json(result);
     write_json(j, out.file("lodsprite.json"));  // JSON last: the directory is complete
     out.commit();
     if (!o->json.empty()) write_json(j, o->json);

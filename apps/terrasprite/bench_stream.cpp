@@ -4,19 +4,24 @@
 // frames with the whole terrain in memory in a separate process (so its
 // memory does not count against the streamed run), compared frame by frame:
 // time, stalls, degraded reads and identical images once tiles are resident.
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <spawn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <optional>
 #include <fstream>
 #include <thread>
 
 #include "bench_commands.h"
 #include "cli_common.h"
+#include "process_memory.h"
 #include "plot.h"
 #include "stream/tile_file.h"
 #include "terrasprite/camera_path.h"
@@ -44,19 +49,13 @@ struct BenchStreamOpts {
   int frames = 300;
   int threads = 0;
   std::string in_memory = "auto";
-  std::string child_json;  // hidden: run the in-memory half and write its figures here
+  bool child = false;  // hidden: be the in-memory peer (frame numbers on fd 3, answers on fd 4)
   std::string json;
   std::string out;
 };
 
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-double peak_rss_mb() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_maxrss) / 1024.0;  // kilobytes on Linux
 }
 
 // FNV-1a over the colour bytes: frames compared across processes by hash.
@@ -111,6 +110,155 @@ class StreamedVoxel final : public Renderer {
   double update_ms_ = 0;
 };
 
+// ---- The in-memory half, in its own process (so its memory is not the
+// streamed run's), run in lockstep with the streamed frames: the parent
+// draws frame i, then asks the child for frame i and waits for it. So each
+// pair is timed seconds apart under the same machine load, and the ratio and
+// the stall count compare like with like. ----
+constexpr int kChildIn = 3, kChildOut = 4;  // the child's ends of the two pipes
+
+struct ChildReply {
+  std::int32_t frame = -1;  ///< -1: ready (its tiles are loaded)
+  double ms = 0;
+  std::uint64_t hash = 0;
+  double peak_rss_mb = 0;
+};
+
+bool write_all(int fd, const void* data, std::size_t n) {
+  const char* p = static_cast<const char*>(data);
+  while (n > 0) {
+    const ssize_t k = ::write(fd, p, n);
+    if (k < 0 && errno == EINTR) continue;
+    if (k <= 0) return false;
+    p += k;
+    n -= std::size_t(k);
+  }
+  return true;
+}
+
+bool read_all(int fd, void* data, std::size_t n) {
+  char* p = static_cast<char*>(data);
+  while (n > 0) {
+    const ssize_t k = ::read(fd, p, n);
+    if (k < 0 && errno == EINTR) continue;
+    if (k <= 0) return false;
+    p += k;
+    n -= std::size_t(k);
+  }
+  return true;
+}
+
+// The child's cameras: frame i once the parent has asked for it; ends when
+// the parent closes the pipe.
+class LockstepSource final : public CameraSource {
+ public:
+  explicit LockstepSource(const std::vector<Camera>& path) : path_(path) {}
+  std::optional<Camera> camera(int frame) override {
+    while (asked_ < frame) {
+      std::int32_t i = 0;
+      if (!read_all(kChildIn, &i, sizeof i) || i < 0 || i >= int(path_.size()))
+        return std::nullopt;
+      asked_ = i;
+    }
+    if (asked_ != frame) return std::nullopt;
+    return path_[std::size_t(frame)];
+  }
+  int frames() const override { return int(path_.size()); }
+
+ private:
+  const std::vector<Camera>& path_;
+  int asked_ = -1;
+};
+
+void run_in_memory_child(const BenchStreamOpts& o, const TileSetInfo& set, int w, int h,
+                         const std::vector<Camera>& path) {
+  ResidentTiles tiles(set);
+  VoxelOptions vo;
+  vo.threads = o.threads;
+  VoxelRenderer r(tiles, w, h, vo);
+  ChildReply ready;
+  if (!write_all(kChildOut, &ready, sizeof ready)) return;
+  LockstepSource cameras(path);
+  Experiment ex;
+  int frame = 0;
+  ex.add({.renderer = &r, .name = "in_memory", .annotate = [&](const Frame& f, FrameResult& fr) {
+            const ChildReply reply{frame++, fr.ms, image_hash(f.color), peak_resident_mb()};
+            if (!write_all(kChildOut, &reply, sizeof reply)) std::exit(0);  // the parent is gone
+          }});
+  ex.run(cameras, {});
+}
+
+// The parent's side: the child process and its two pipes.
+class InMemoryPeer {
+ public:
+  // Starts this program again as the child and waits until its terrain is
+  // resident; ok() is false (with a warning) when it could not start.
+  InMemoryPeer(const BenchStreamOpts& o) {
+    int to_child[2], from_child[2];
+    if (pipe2(to_child, O_CLOEXEC) != 0) return;
+    if (pipe2(from_child, O_CLOEXEC) != 0) {
+      ::close(to_child[0]);
+      ::close(to_child[1]);
+      return;
+    }
+    std::vector<std::string> args = {"/proc/self/exe", "bench", "stream", "--tiles", o.tiles,
+                                     "--size", o.size, "--path", o.path,
+                                     "--frames", std::to_string(o.frames), "--threads",
+                                     std::to_string(o.threads), "--in-memory-child"};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_adddup2(&fa, to_child[0], kChildIn);  // dup2 clears O_CLOEXEC
+    posix_spawn_file_actions_adddup2(&fa, from_child[1], kChildOut);
+    const bool spawned =
+        posix_spawn(&pid_, "/proc/self/exe", &fa, nullptr, argv.data(), environ) == 0;
+    posix_spawn_file_actions_destroy(&fa);
+    ::close(to_child[0]);
+    ::close(from_child[1]);
+    to_ = to_child[1];
+    from_ = from_child[0];
+    ChildReply ready;
+    ok_ = spawned && read_all(from_, &ready, sizeof ready) && ready.frame == -1;
+    if (!spawned) pid_ = 0;
+    if (!ok_) fail();
+  }
+  ~InMemoryPeer() {
+    if (to_ >= 0) ::close(to_);
+    if (from_ >= 0) ::close(from_);
+    if (pid_ > 0) {
+      int status = 0;
+      waitpid(pid_, &status, 0);
+    }
+  }
+  bool ok() const { return ok_; }
+  // Frame i in memory: its ms and image hash; false (once warned) if the child is gone.
+  bool frame(int i, ChildReply& reply) {
+    if (!ok_) return false;
+    const std::int32_t k = i;
+    if (write_all(to_, &k, sizeof k) && read_all(from_, &reply, sizeof reply) && reply.frame == i) {
+      peak_rss_mb_ = std::max(peak_rss_mb_, reply.peak_rss_mb);
+      return true;
+    }
+    fail();
+    return false;
+  }
+  double peak_rss_mb() const { return peak_rss_mb_; }
+
+ private:
+  void fail() {
+    if (ok_ || !warned_)
+      fmt::print(stderr, "warning: the in-memory run failed; reporting the streamed run alone\n");
+    ok_ = false;
+    warned_ = true;
+  }
+  pid_t pid_ = 0;
+  int to_ = -1, from_ = -1;
+  bool ok_ = false, warned_ = false;
+  double peak_rss_mb_ = 0;
+};
+
 struct PerFrame {
   double ms = 0, update_ms = 0;
   StreamFrameStats st;
@@ -123,10 +271,15 @@ struct StreamRun {
   int faults_injected = 0, faults_survived = 0;
   std::size_t pinned_bytes = 0;
   double open_ms = 0, path_ms = 0, pinned_ms = 0;  // before the first frame
+  // The in-memory run's frames, one per streamed frame while its process lives.
+  std::vector<double> in_memory_ms;
+  std::vector<std::uint64_t> in_memory_hash;
+  double in_memory_peak_rss_mb = 0;
+  double peer_wait_ms = 0;  ///< waiting for the peer's frames: not the streamed run's time
 };
 
 StreamRun run_streamed(const BenchStreamOpts& o, const TileSetInfo& set, Clock::time_point t_start,
-                       int w, int h, const std::vector<Camera>& path) {
+                       int w, int h, const std::vector<Camera>& path, InMemoryPeer* peer) {
   StreamOptions so;
   so.cache_bytes = std::size_t(o.cache_mb) << 20;
   so.io_threads = o.io_threads;
@@ -150,6 +303,14 @@ StreamRun run_streamed(const BenchStreamOpts& o, const TileSetInfo& set, Clock::
             run.frames.push_back({f.ms, renderer.update_ms(), st, image_hash(f.color)});
             r.counters["degraded_samples"] = double(st.degraded_samples);
             r.counters["tiles_loaded"] = st.loaded;
+            // After the timed span: the same frame in memory, in the other process.
+            ChildReply m;
+            const auto t_peer = Clock::now();
+            if (peer && peer->frame(int(run.frames.size()) - 1, m)) {
+              run.in_memory_ms.push_back(m.ms);
+              run.in_memory_hash.push_back(m.hash);
+            }
+            run.peer_wait_ms += ms_since(t_peer);
           }});
   ExperimentOptions eo;
   eo.warmup_draws = 0;
@@ -158,50 +319,11 @@ StreamRun run_streamed(const BenchStreamOpts& o, const TileSetInfo& set, Clock::
   PathSource cameras(path);
   const auto t_run = Clock::now();
   ex.run(cameras, eo);
-  run.wall_ms = ms_since(t_run);
-  run.peak_rss_mb = peak_rss_mb();
+  run.wall_ms = ms_since(t_run) - run.peer_wait_ms;
+  run.peak_rss_mb = peak_resident_mb();
   run.faults_injected = tiles.injected_faults();
   run.faults_survived = tiles.failed_tiles();  // the run went on past every one
   return run;
-}
-
-// The in-memory half (in its own process): every level resident, the same frames.
-void run_in_memory_child(const BenchStreamOpts& o, const TileSetInfo& set, int w, int h,
-                         const std::vector<Camera>& path) {
-  ResidentTiles tiles(set);
-  VoxelOptions vo;
-  vo.threads = o.threads;
-  VoxelRenderer r(tiles, w, h, vo);
-  nlohmann::json ms = nlohmann::json::array(), hashes = nlohmann::json::array();
-  Experiment ex;
-  ex.add({.renderer = &r, .name = "in_memory", .annotate = [&](const Frame& f, FrameResult& fr) {
-            ms.push_back(fr.ms);
-            hashes.push_back(fmt::format("{:016x}", image_hash(f.color)));
-          }});
-  PathSource cameras(path);
-  ex.run(cameras, {});
-  std::ofstream(o.child_json) << nlohmann::json{{"ms", ms}, {"hash", hashes}, {"peak_rss_mb", peak_rss_mb()}}.dump();
-}
-
-// Runs this program again with --in-memory-child; its figures, or null when it failed.
-nlohmann::json spawn_in_memory(const BenchStreamOpts& o, const std::string& child_json) {
-  std::vector<std::string> args = {"/proc/self/exe", "bench", "stream", "--tiles", o.tiles,
-                                   "--size", o.size, "--path", o.path,
-                                   "--frames", std::to_string(o.frames), "--threads",
-                                   std::to_string(o.threads), "--in-memory-child", child_json};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  if (posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv.data(), environ) != 0) return nullptr;
-  int status = 0;
-  waitpid(pid, &status, 0);
-  std::ifstream f(child_json);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !f) {
-    fmt::print(stderr, "warning: the in-memory run failed; reporting the streamed run alone\n");
-    return nullptr;
-  }
-  return nlohmann::json::parse(f);
 }
 
 // Frames over twice their in-memory time, or (without one) over twice the
@@ -241,8 +363,9 @@ void write_plot(const OutputDir& out, const StreamRun& run, const std::vector<do
 }
 
 nlohmann::json summary_json(const BenchStreamOpts& o, const TileSetInfo& set, const StreamRun& run,
-                            const nlohmann::json& mem, int w, int h) {
-  std::vector<double> ms, mem_ms;
+                            int w, int h) {
+  const std::vector<double>& mem_ms = run.in_memory_ms;
+  std::vector<double> ms;
   long long degraded = 0, degraded_late = 0, lookups = 0, misses = 0, bytes = 0;
   long long lookups_late = 0, misses_late = 0;
   for (std::size_t i = 0; i < run.frames.size(); ++i) {
@@ -258,18 +381,21 @@ nlohmann::json summary_json(const BenchStreamOpts& o, const TileSetInfo& set, co
     misses += f.st.misses;
     bytes += f.st.bytes_read;
   }
-  if (!mem.is_null()) mem_ms = mem["ms"].get<std::vector<double>>();
   const Summary s = summarize(ms);
   const double late_pixels = double(w) * h * double(std::max<std::size_t>(1, ms.size() > 30 ? ms.size() - 30 : 0));
   nlohmann::json in_memory = nullptr;
   int compared = 0, equal = 0;
-  if (!mem.is_null()) {
+  if (!mem_ms.empty()) {
     const Summary m = summarize(mem_ms);
-    in_memory = {{"median_ms", m.median}, {"p99_ms", m.p99}, {"peak_rss_mb", mem["peak_rss_mb"]}};
-    for (std::size_t i = 0; i < run.frames.size() && i < mem["hash"].size(); ++i)
+    in_memory = {{"median_ms", m.median},
+                 {"p99_ms", m.p99},
+                 {"peak_rss_mb", run.in_memory_peak_rss_mb},
+                 {"method", "another process, in lockstep: each frame drawn right after the "
+                            "streamed one"}};
+    for (std::size_t i = 0; i < run.frames.size(); ++i)
       if (run.frames[i].st.degraded_samples == 0) {
         ++compared;
-        equal += mem["hash"][i] == fmt::format("{:016x}", run.frames[i].hash);
+        equal += run.in_memory_hash[i] == run.frames[i].hash;
       }
   }
   return {
@@ -299,7 +425,7 @@ nlohmann::json summary_json(const BenchStreamOpts& o, const TileSetInfo& set, co
         {"first_frame_parts_ms",
          {{"open", run.open_ms}, {"path", run.path_ms}, {"pinned_levels", run.pinned_ms}}}}},
       {"in_memory", in_memory},
-      {"ratio_median", mem.is_null() ? nlohmann::json(nullptr)
+      {"ratio_median", mem_ms.empty() ? nlohmann::json(nullptr)
                                      : nlohmann::json(s.median / std::max(in_memory["median_ms"].get<double>(), 1e-9))},
       {"images_equal_when_resident", {{"frames_compared", compared}, {"frames_equal", equal}}},
       {"faults_injected", run.faults_injected},
@@ -345,7 +471,7 @@ void run(const BenchStreamOpts& o) {
     throw InputError(fmt::format("--frames {}: must be between 1 and 100000", o.frames));
   if (o.cache_mb < 1 || o.cache_mb > 1 << 20)
     throw InputError(fmt::format("--cache-mb {}: must be between 1 and 1048576", o.cache_mb));
-  const bool child = !o.child_json.empty();
+  const bool child = o.child;
   const std::string out_dir = o.out.empty() ? std::string("out/bench_stream") : o.out;
   if (!child) check_outputs(out_dir, {o.json});
   const TileSetInfo set = read_tile_set(o.tiles);
@@ -354,14 +480,23 @@ void run(const BenchStreamOpts& o) {
   const double path_ms = ms_since(t_start) - open_ms;
   if (child) return run_in_memory_child(o, set, w, h, path);
   OutputDir out(out_dir, output_policy());
-  StreamRun run = run_streamed(o, set, t_start, w, h, path);
+  // The in-memory peer loads its terrain before the streamed run starts, so
+  // its load never competes with the streamed run's first frame.
+  std::optional<InMemoryPeer> peer;
+  if (want_in_memory(o, set)) peer.emplace(o);
+  const auto t_run = Clock::now();
+  StreamRun run = run_streamed(o, set, t_run, w, h, path, peer && peer->ok() ? &*peer : nullptr);
   run.open_ms = open_ms;
   run.path_ms = path_ms;
-  const nlohmann::json mem = want_in_memory(o, set) ? spawn_in_memory(o, out.file("in_memory.json")) : nullptr;
-  std::vector<double> mem_ms;
-  if (!mem.is_null()) mem_ms = mem["ms"].get<std::vector<double>>();
+  run.first_frame_ms += open_ms + path_ms;  // time to first frame: from the start, less the peer's load
+  if (peer) run.in_memory_peak_rss_mb = peer->peak_rss_mb();
+  if (run.in_memory_ms.size() != run.frames.size()) {  // the peer died part way: no comparison
+    run.in_memory_ms.clear();
+    run.in_memory_hash.clear();
+  }
+  const std::vector<double>& mem_ms = run.in_memory_ms;
   write_plot(out, run, mem_ms);
-  nlohmann::json j = summary_json(o, set, run, mem, w, h);
+  nlohmann::json j = summary_json(o, set, run, w, h);
   nlohmann::json full = j;
   full["per_frame"] = per_frame_json(run, mem_ms);
   write_json(full, out.file("bench_stream.json"));  // JSON last: the directory is complete
@@ -388,7 +523,7 @@ void add_bench_stream(CLI::App& bench) {
                   "also fly the terrain wholly in memory, in another process: auto (default: when "
                   "it fits in half the free memory), yes, no")
       ->check(CLI::IsMember({"auto", "yes", "no"}));
-  cmd->add_option("--in-memory-child", o->child_json)->group("");  // internal
+  cmd->add_flag("--in-memory-child", o->child)->group("");  // internal
   cmd->add_option("--json", o->json, "also write the JSON here");
   cmd->add_option("--out", o->out, "output directory: plot, JSON (default out/bench_stream)");
   cmd->callback([o] { run(*o); });

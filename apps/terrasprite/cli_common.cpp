@@ -139,16 +139,25 @@ void write_json(nlohmann::json j, const std::string& path) {
   write_output_file(path, output_policy(), j.dump(2) + "\n");
 }
 
-nlohmann::json terrain_json(const Terrain& t) {
+TerrainInfo terrain_info(const Terrain& t) {
   const Heightfield& h = t.heights;
-  return {{"name", h.name},
-          {"samples", {h.width, h.height}},
-          {"quads", {h.width - 1, h.height - 1}},
-          {"spacing_m", {h.spacing_x, h.spacing_y}},
-          {"extent_m", {h.extent_x(), h.extent_y()}},
-          {"height_min", h.min_height()},
-          {"height_max", h.max_height()},
-          {"texture", t.texture_name}};
+  return {h.name,      t.texture_name, h.width,        h.height,
+          h.spacing_x, h.spacing_y,    h.min_height(), h.max_height()};
+}
+
+nlohmann::json terrain_json(const TerrainInfo& t) {
+  return {{"name", t.name},
+          {"samples", {t.samples_x, t.samples_y}},
+          {"quads", {t.samples_x - 1, t.samples_y - 1}},
+          {"spacing_m", {t.spacing_x, t.spacing_y}},
+          {"extent_m", {(t.samples_x - 1) * t.spacing_x, (t.samples_y - 1) * t.spacing_y}},
+          {"height_min", t.height_min},
+          {"height_max", t.height_max},
+          {"texture", t.texture}};
+}
+
+nlohmann::json terrain_json(const Terrain& t) {
+  return terrain_json(terrain_info(t));
 }
 
 Progress::Progress(std::string label)

@@ -49,7 +49,17 @@ void check_outputs(const std::string& out_dir, std::initializer_list<std::string
 /// Throws InputError naming the file on failure.
 void write_json(nlohmann::json j, const std::string& path);
 
+/// What a report says of a terrain (a copy: it outlives the Terrain).
+struct TerrainInfo {
+  std::string name, texture;
+  int samples_x = 0, samples_y = 0;
+  double spacing_x = 0, spacing_y = 0;    ///< metres
+  double height_min = 0, height_max = 0;  ///< metres
+};
+TerrainInfo terrain_info(const Terrain& t);
+
 /// JSON description of a terrain: name, samples, quads, spacing_m, extent_m, heights.
+nlohmann::json terrain_json(const TerrainInfo& t);
 nlohmann::json terrain_json(const Terrain& t);
 
 /// A one-line progress bar on stderr, drawn only when stderr is a terminal.

@@ -5,6 +5,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "lodsprite_report.h"
 #include "lodsprite_run.h"
 #include "terrasprite/output_dir.h"
 #include "terrasprite/video_writer.h"
@@ -46,25 +47,27 @@ void add_demo(CLI::App& app) {
       save_png(f.color, out.file(fmt::format("frames/frame_{:04d}.png", i)));
       video.push(f.color);
     };
-    nlohmann::json report = run_lodsprite(c, terrain, out, "demo");
+    const LodspriteResult r = run_lodsprite(c, terrain, out, "demo");
     video.finish();
+    write_lodsprite_report(r, out);
+    const nlohmann::json report = to_json(r);
     nlohmann::json frames = nlohmann::json::array();
-    for (const auto& p : report["per_frame"])
-      frames.push_back({{"frame", p["frame"]},
-                        {"class", p["class"]},
-                        {"ms", p["ms"]},
-                        {"error_px", p["error_px"]},
-                        {"error_px_exact", p["error_px_exact"]},
-                        {"psnr", p["psnr"]},
-                        {"ssim", p["ssim"]}});
-    nlohmann::json j = {{"gl_renderer", report["gl_renderer"]},
+    for (const LodspriteFrame& p : r.per_frame)
+      frames.push_back({{"frame", p.frame},
+                        {"class", p.key ? "key" : "sprite"},
+                        {"ms", p.ms},
+                        {"error_px", p.error_px},
+                        {"error_px_exact", p.error_px_exact},
+                        {"psnr", p.sprite.psnr},
+                        {"ssim", p.sprite.ssim}});
+    nlohmann::json j = {{"gl_renderer", r.gl_renderer},
                         {"mode", "sprite"},
                         {"size", {w, h}},
                         {"terrain", report["terrain"]},
                         {"path", "paper"},
-                        {"median_ms", report["sprite"]["median_ms"]},
-                        {"speedup", report["speedup"]},
-                        {"keyframes", report["sprite"]["keyframes"]},
+                        {"median_ms", r.sprite.median_ms},
+                        {"speedup", r.speedup},
+                        {"keyframes", r.sprite.keyframes},
                         {"full", report["full"]},
                         {"lod", report["lod"]},
                         {"sprite", report["sprite"]},
@@ -75,12 +78,10 @@ void add_demo(CLI::App& app) {
     out.commit();
     fmt::print(
         "demo: {} paper-path frames of {} at {}x{} with LOD-sprite: {} keyframes, speed-up {:.2f}x "
-        "over full "
-        "resolution (bound {:.2f}x), SSIM {:.4f} vs plain LOD {:.4f}, on {} -> {}/index.html\n",
-        int(report["frames"]), terrain.heights.name, w, h, int(report["sprite"]["keyframes"]),
-        double(report["speedup"]), double(report["bound"]["speedup_bound"]),
-        double(report["sprite"]["mean_ssim"]), double(report["lod"]["mean_ssim"]),
-        report["gl_renderer"].get<std::string>(), out.final_path().string());
+        "over full resolution (bound {:.2f}x), SSIM {:.4f} vs plain LOD {:.4f}, on {} -> "
+        "{}/index.html\n",
+        r.frames, terrain.heights.name, w, h, r.sprite.keyframes, r.speedup, r.bound.speedup_bound,
+        r.sprite.mean_ssim, r.lod.mean_ssim, r.gl_renderer, out.final_path().string());
   });
 }
 

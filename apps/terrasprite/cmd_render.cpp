@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "cli_common.h"
+#include "process_memory.h"
 #include "commands.h"
 #include "render_modes.h"
 #include "terrasprite/camera_path.h"
@@ -44,7 +45,25 @@ struct RenderOpts {
   bool frames_png = false;
   bool no_images = false;
   std::string frame_range;
+  // Memory along the run (a soak's curve)
+  int memory_every = 100;
+  std::string heap_trim = "on";
 };
+
+// The soak's figures: RSS every `every` frames, its peak, and the growth a
+// long run is judged by (least squares over the frames after the first 1,000,
+// once the renderers' caches and the allocator have settled).
+nlohmann::json memory_json(const MemoryCurve& m, int every, bool trim) {
+  nlohmann::json samples = nlohmann::json::array();
+  for (auto [frame, mb] : m.samples) samples.push_back({frame, mb});
+  return {{"sample_every", every},
+          {"heap_trim", trim},
+          {"trim_ms", m.trim_ms},
+          {"peak_rss_mb", peak_resident_mb()},
+          {"rss_mb_end", m.samples.back().second},
+          {"growth_mb_per_10k_frames_after_1000", m.growth_per_10k(1000)},
+          {"rss_mb", samples}};
+}
 
 /// "A:B" -> [A, B) within [0, frames]; empty text: the whole run.
 std::pair<int, int> parse_frame_range(const std::string& text, int frames) {
@@ -146,6 +165,12 @@ void run(const RenderOpts& o) {
   std::vector<std::string> classes;
   std::vector<Record> records;
   std::vector<double> ms;
+  // Every memory_every frames, outside the timed spans: hand freed heap pages
+  // back (see release_free_heap) and sample RSS, so stats.json carries the
+  // run's memory curve.
+  const bool trim = o.heap_trim == "on";
+  MemoryCurve memory;
+  memory.samples.emplace_back(0, resident_mb());
   fly(
       renderer, std::span(path).subspan(first, last - first),
       o.depth ? ReadBack::kColorDepth : ReadBack::kColor,
@@ -161,6 +186,11 @@ void run(const RenderOpts& o) {
         records.push_back(
             {first + s.frame, std::uint8_t(c - classes.begin()), s.ms, s.gpu_ms, s.triangles});
         ms.push_back(s.ms);
+        const int done = int(records.size());
+        if (done % o.memory_every == 0) {
+          if (trim) memory.trim_ms += release_free_heap();
+          memory.samples.emplace_back(done, resident_mb());
+        }
       },
       std::ref(progress));
   if (video) video->finish();
@@ -184,6 +214,7 @@ void run(const RenderOpts& o) {
                       {"median_ms", median(ms)},
                       {"wall_ms", wall_ms},
                       {"frame_range", {first, last}},
+                      {"memory", memory_json(memory, o.memory_every, trim)},
                       {"frames", frames}};
   if (o.depth) j["depth_m_per_unit"] = m_per_unit;
   if (video)
@@ -243,6 +274,13 @@ void add_render(CLI::App& app) {
   cmd->add_option("--frame-range", o->frame_range,
                   "render only frames A to B-1 of the --frames run (A:B), for splitting a long "
                   "run across machines");
+  cmd->add_option("--memory-every", o->memory_every,
+                  "sample resident memory every N frames into stats.json's memory curve "
+                  "(default 100)")
+      ->check(CLI::Range(1, 1000000));
+  cmd->add_option("--heap-trim", o->heap_trim,
+                  "on: at each memory sample hand freed heap pages back to the OS (default on)")
+      ->check(CLI::IsMember({"on", "off"}));
   cmd->callback([o] { run(*o); });
 }
 

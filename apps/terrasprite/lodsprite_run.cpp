@@ -14,8 +14,6 @@
 #include <numeric>
 
 #include "cli_common.h"
-#include "lodsprite_async.h"
-#include "lodsprite_report.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/error.h"
 #include "terrasprite/experiment.h"
@@ -147,8 +145,8 @@ CachePolicy parse_cache_policy(const std::string& text) {
   throw InputError(fmt::format("--cache-policy {}: must be 'lru' or 'farthest'", text));
 }
 
-nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain, OutputDir& out,
-                             const std::string& label) {
+LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain, OutputDir& out,
+                              const std::string& label) {
   validate(cfg);
   const int w = cfg.width, h = cfg.height, every = cfg.sweep_score_every;
   const double aspect = double(w) / h;
@@ -206,182 +204,210 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
   const RendererRun &full_run = run.run("full"), &lod_run = run.run("lod"),
                     &sprite_run = run.run("sprite");
 
+  LodspriteResult res;
+  res.gl_renderer = gl.renderer();
+  res.terrain = terrain_info(terrain);
+  res.width = w;
+  res.height = h;
+  res.frames = n;
+  res.path = cfg.path;
+  res.lod_quads = cfg.lod_quads;
+  res.threshold_px = cfg.threshold_px;
+  res.metric = metric_name(cfg.metric);
+  res.max_fallback_fraction = cfg.max_fallback_fraction;
+  res.sharp_px = cfg.sharp_px;
+  res.max_resample_scale = cfg.max_resample_scale;
+  res.there_and_back = cfg.there_and_back;
+  res.sweep_score_every = every;
+  res.video = cfg.video;
+
   std::vector<double> full_ms(n), lod_ms(n), sprite_ms(n), key_ms, spr_ms, decision_ms;
   std::vector<double> lod_psnr, lod_ssim, lod_flip, sp_psnr, sp_ssim, sp_flip, sp_psnr_sprite_only,
       lod_psnr_sprite_only;
-  std::vector<int> key_of(n, 0);
-  nlohmann::json per_frame = nlohmann::json::array();
   int keyframes = 0, current_key = 0, ssim_above = 0, ssim_above_sprite_frames = 0;
   for (int i = 0; i < n; ++i) {
     const FrameResult &a = full_run.frames[i], &b = lod_run.frames[i], &c = sprite_run.frames[i];
-    full_ms[i] = a.ms;
-    lod_ms[i] = b.ms;
-    sprite_ms[i] = c.ms;
-    const bool key = c.cls == "key";
-    decision_ms.push_back(c.counters.at("decision_cpu_ms"));
-    if (key) {
+    LodspriteFrame row;
+    row.frame = i;
+    row.key = c.cls == "key";
+    row.ms = sprite_ms[i] = c.ms;
+    row.gpu_ms = c.gpu_ms;
+    row.full_ms = full_ms[i] = a.ms;
+    row.lod_ms = lod_ms[i] = b.ms;
+    row.error_px = c.counters.at("error_px");
+    row.error_px_exact = c.counters.at("error_px_exact");
+    row.error_samples = int(c.counters.at("error_samples"));
+    row.fallback_fraction = c.counters.at("fallback_fraction");
+    row.resample_scale = c.counters.at("resample_scale");
+    row.decision_cpu_ms = c.counters.at("decision_cpu_ms");
+    if (auto t = c.tags.find("trigger"); t != c.tags.end()) row.trigger = t->second;
+    decision_ms.push_back(row.decision_cpu_ms);
+    if (row.key) {
       ++keyframes;
       current_key = i;
       key_ms.push_back(c.ms);
     } else {
       spr_ms.push_back(c.ms);
     }
-    key_of[i] = current_key;
-    const QualityScore ls = *b.quality, ss = *c.quality;
+    row.keyframe = current_key;
+    row.lod = *b.quality;
+    row.sprite = *c.quality;
+    const QualityScore &ls = row.lod, &ss = row.sprite;
     lod_psnr.push_back(ls.psnr);
     lod_ssim.push_back(ls.ssim);
     lod_flip.push_back(ls.flip);
     sp_psnr.push_back(ss.psnr);
     sp_ssim.push_back(ss.ssim);
     sp_flip.push_back(ss.flip);
-    if (!key) {
+    if (!row.key) {
       sp_psnr_sprite_only.push_back(ss.psnr);
       lod_psnr_sprite_only.push_back(ls.psnr);
     }
     ssim_above += ss.ssim > ls.ssim;
-    ssim_above_sprite_frames += !key && ss.ssim > ls.ssim;
-    auto trigger = c.tags.find("trigger");
-    per_frame.push_back({{"frame", i},
-                         {"class", c.cls},
-                         {"ms", c.ms},
-                         {"gpu_ms", c.gpu_ms},
-                         {"full_ms", a.ms},
-                         {"lod_ms", b.ms},
-                         {"error_px", c.counters.at("error_px")},
-                         {"error_px_exact", c.counters.at("error_px_exact")},
-                         {"error_samples", int(c.counters.at("error_samples"))},
-                         {"fallback_fraction", c.counters.at("fallback_fraction")},
-                         {"resample_scale", c.counters.at("resample_scale")},
-                         {"decision_cpu_ms", c.counters.at("decision_cpu_ms")},
-                         {"trigger", trigger == c.tags.end() ? "" : trigger->second},
-                         {"keyframe", current_key},
-                         {"psnr", ss.psnr},
-                         {"ssim", ss.ssim},
-                         {"flip", ss.flip},
-                         {"lod_psnr", ls.psnr},
-                         {"lod_ssim", ls.ssim},
-                         {"lod_flip", ls.flip}});
+    ssim_above_sprite_frames += !row.key && ss.ssim > ls.ssim;
+    res.per_frame.push_back(std::move(row));
   }
 
   const double full_total = sum(full_ms), sprite_total = sum(sprite_ms);
-  const double speedup = full_total / std::max(sprite_total, 1e-9);
-  const double f = double(keyframes) / n;
-  const double r = median(full_ms) / std::max(median(spr_ms), 1e-9);
-  const double bound = 1.0 / (f + (1.0 - f) / r);
+  const double full_median = median(full_ms);
+  const double key_median = median(key_ms), spr_median = median(spr_ms);
   auto mean_every = [&](const std::vector<double>& v) {
     std::vector<double> s;
     for (int i = 0; i < n; i += every) s.push_back(v[i]);
     return mean(s);
   };
+  res.full_total_ms = full_total;
+  res.full_median_ms = full_median;
+  res.lod = {.total_ms = sum(lod_ms),
+             .median_ms = median(lod_ms),
+             .mean_psnr = mean(lod_psnr),
+             .mean_psnr_sprite_frames = mean(lod_psnr_sprite_only),
+             .mean_ssim = mean(lod_ssim),
+             .min_ssim = *std::min_element(lod_ssim.begin(), lod_ssim.end()),
+             .mean_flip = mean(lod_flip)};
+  res.sprite = {.total_ms = sprite_total,
+                .median_ms = median(sprite_ms),
+                .p99_ms = percentile(sprite_ms, 99),
+                .decision_cpu_median_ms = median(decision_ms),
+                .decision_cpu_p99_ms = percentile(decision_ms, 99),
+                .keyframes = keyframes,
+                .sprite_frames = sprite_run.count("sprite"),
+                .key_median_ms = key_median,
+                .sprite_median_ms = spr_median,
+                .mean_psnr = mean(sp_psnr),
+                .mean_psnr_sprite_frames = mean(sp_psnr_sprite_only),
+                .mean_ssim = mean(sp_ssim),
+                .min_ssim = *std::min_element(sp_ssim.begin(), sp_ssim.end()),
+                .mean_flip = mean(sp_flip),
+                .ssim_above_lod_fraction = double(ssim_above) / n,
+                .ssim_above_lod_fraction_sprite_frames =
+                    n > keyframes ? double(ssim_above_sprite_frames) / (n - keyframes) : 1.0};
+  res.speedup = full_total / std::max(sprite_total, 1e-9);
+  res.speedup_from_medians = median_speedup(n, keyframes, full_median, key_median, spr_median);
+  {
+    SpeedupBound& b = res.bound;
+    b.f = double(keyframes) / n;
+    b.r = full_median / std::max(spr_median, 1e-9);
+    b.speedup_bound = 1.0 / (b.f + (1.0 - b.f) / b.r);
+    b.efficiency = res.speedup / b.speedup_bound;
+    b.key_over_full_median = key_median / std::max(full_median, 1e-9);
+  }
+  // Stalls of this shared machine (a frame over 10x its class median) weigh
+  // heavily in totals; count them so a reader can tell noise from cost.
+  auto stalls = [](const std::vector<double>& v) {
+    const double m = median(v);
+    return int(std::count_if(v.begin(), v.end(), [&](double x) { return x > 10 * m; }));
+  };
+  res.stalls = {stalls(full_ms), stalls(lod_ms), stalls(key_ms), stalls(spr_ms)};
 
   // ---- the display simulated with asynchronous keyframes, beside a synchronous one ----
-  nlohmann::json async_run = nullptr;
   if (cfg.async) {
-    AsyncComparison ac = run_async_display(gl, scene, path, w, h, so, refs, every);
+    AsyncComparison& ac = res.async.emplace(run_async_display(gl, scene, path, w, h, so, refs, every));
     ac.main_run_mean_ssim = mean_every(sp_ssim);
     ac.main_run_mean_psnr = mean_every(sp_psnr);
-    async_run = async_json(ac);
+    std::vector<double> sprite_ssim;
+    for (int i = 0; i < n; i += every)
+      if (!res.per_frame[i].key) sprite_ssim.push_back(sp_ssim[i]);
+    ac.main_run_mean_ssim_sprite_frames = mean(sprite_ssim);
   }
 
   // ---- sweeps (paper Figs. 10-12 and the coarse-mesh size) ----
-  nlohmann::json threshold_sweep = nlohmann::json::array(),
-                 frame_count_sweep = nlohmann::json::array(), lod_sweep = nlohmann::json::array();
   Progress sweep_progress(label + " sweeps");
   const int sweep_total =
       int(cfg.thresholds.size() + cfg.frame_counts.size() + cfg.lod_sweep.size());
   int sweep_done = 0;
-  const double full_median = median(full_ms);
-  const double key_median = median(key_ms), spr_median = median(spr_ms);
-  auto sweep_entry = [&](const PassResult& p, const std::string& method) {
-    return nlohmann::json{
-        {"keyframes", p.keyframes},
-        {"keyframe_fraction", double(p.keyframes) / n},
-        {"speedup", full_total / std::max(p.total_ms, 1e-9)},
-        {"speedup_from_medians",
-         median_speedup(n, p.keyframes, full_median, p.key_median_ms, p.sprite_median_ms)},
-        {"total_ms", p.total_ms},
-        {"key_median_ms", p.key_median_ms},
-        {"sprite_median_ms", p.sprite_median_ms},
-        {"mean_ssim", p.mean_ssim},
-        {"measured_in", method}};
+  auto sweep_entry = [&](const PassResult& p, const char* method) {
+    return SweepPass{.keyframes = p.keyframes,
+                     .keyframe_fraction = double(p.keyframes) / n,
+                     .speedup = full_total / std::max(p.total_ms, 1e-9),
+                     .speedup_from_medians = median_speedup(n, p.keyframes, full_median,
+                                                            p.key_median_ms, p.sprite_median_ms),
+                     .total_ms = p.total_ms,
+                     .key_median_ms = p.key_median_ms,
+                     .sprite_median_ms = p.sprite_median_ms,
+                     .mean_ssim = p.mean_ssim,
+                     .measured_in = method};
   };
   const PassResult main_pass{keyframes, sprite_total, key_median, spr_median, mean_every(sp_ssim)};
+  // One sweep point: the main run's figures at the main setting, else a separate timed pass.
+  auto sweep_point = [&](bool is_main, auto&& set) {
+    if (is_main) return sweep_entry(main_pass, "main run");
+    SpriteOptions o = so;
+    set(o);
+    return sweep_entry(sprite_pass(scene, path, w, h, o, refs, every), "separate timed pass");
+  };
   for (double t : cfg.thresholds) {
-    nlohmann::json e;
-    if (t == cfg.threshold_px) {
-      e = sweep_entry(main_pass, "main run");
-    } else {
-      SpriteOptions o = so;
-      o.threshold_px = t;
-      e = sweep_entry(sprite_pass(scene, path, w, h, o, refs, every), "separate timed pass");
-    }
-    e["threshold_px"] = t;
-    threshold_sweep.push_back(e);
+    res.threshold_sweep.push_back(
+        {t, sweep_point(t == cfg.threshold_px, [&](SpriteOptions& o) { o.threshold_px = t; })});
     sweep_progress(++sweep_done, sweep_total);
   }
   for (int frames : cfg.frame_counts) {
     std::vector<Camera> p = make_path(cfg.path, terrain.heights, frames, aspect);
     const int keys = simulate_keyframes(scene, p, w, h, so);
-    frame_count_sweep.push_back(
-        {{"frames", frames}, {"keyframes", keys}, {"keyframe_fraction", double(keys) / frames}});
+    res.frame_count_sweep.push_back({frames, keys, double(keys) / frames});
     sweep_progress(++sweep_done, sweep_total);
   }
   for (int q : cfg.lod_sweep) {
-    nlohmann::json e;
-    if (q == cfg.lod_quads) {
-      e = sweep_entry(main_pass, "main run");
-    } else {
-      SpriteOptions o = so;
-      o.lod_quads = q;
-      e = sweep_entry(sprite_pass(scene, path, w, h, o, refs, every), "separate timed pass");
-    }
-    e["lod_quads"] = q;
-    lod_sweep.push_back(e);
+    res.lod_sweep.push_back(
+        {q, sweep_point(q == cfg.lod_quads, [&](SpriteOptions& o) { o.lod_quads = q; })});
     sweep_progress(++sweep_done, sweep_total);
   }
 
   // ---- keyframe cache: the same path without it, a separate timed pass ----
-  nlohmann::json cache = nullptr;
   if (cfg.cache_bytes > 0) {
     SpriteOptions o = so;
     o.cache_bytes = 0;
     const PassResult without = sprite_pass(scene, path, w, h, o, refs, every);
     int hits = 0;
-    for (const FrameResult& fr : sprite_run.frames) {
-      auto t = fr.tags.find("trigger");
-      hits += t != fr.tags.end() && t->second == "cache";
-    }
-    cache = {{"size", cfg.cache_bytes},
-             {"size_mb", double(cfg.cache_bytes) / (1 << 20)},
-             {"policy", to_string(cfg.cache_policy)},
-             {"accept", cfg.cache_accept},
-             {"capacity_keyframes", int(cfg.cache_bytes / (std::size_t(w) * h * 8))},
-             {"keyframes", keyframes},
-             {"keyframes_without_cache", without.keyframes},
-             {"hits", hits},
-             {"saving", without.keyframes > 0 ? 1.0 - double(keyframes) / without.keyframes : 0.0},
-             {"mean_ssim", mean_every(sp_ssim)},
-             {"mean_ssim_without_cache", without.mean_ssim},
-             {"total_ms", sprite_total},
-             {"total_ms_without_cache", without.total_ms},
-             {"method",
-              "keyframes_without_cache and mean_ssim_without_cache: a separate timed pass "
-              "with the cache off on the same path, scored on the same frames as mean_ssim"}};
+    for (const LodspriteFrame& f : res.per_frame) hits += f.trigger == "cache";
+    res.cache = CacheSummary{
+        .size_bytes = cfg.cache_bytes,
+        .policy = to_string(cfg.cache_policy),
+        .accept = cfg.cache_accept,
+        .capacity_keyframes = int(cfg.cache_bytes / (std::size_t(w) * h * 8)),
+        .keyframes = keyframes,
+        .keyframes_without_cache = without.keyframes,
+        .hits = hits,
+        .saving = without.keyframes > 0 ? 1.0 - double(keyframes) / without.keyframes : 0.0,
+        .mean_ssim = mean_every(sp_ssim),
+        .mean_ssim_without_cache = without.mean_ssim,
+        .total_ms = sprite_total,
+        .total_ms_without_cache = without.total_ms};
   }
 
   // ---- the paper's Figs. 13 and 14: one frame full / LOD / sprite, checker and real texture ----
   int fig_frame = 0;
   double worst = -1;
-  for (int i = 0; i < n; ++i)
-    if (per_frame[i]["class"] == "sprite" && double(per_frame[i]["error_px_exact"]) > worst) {
-      worst = per_frame[i]["error_px_exact"];
-      fig_frame = i;
+  for (const LodspriteFrame& f : res.per_frame)
+    if (!f.key && f.error_px_exact > worst) {
+      worst = f.error_px_exact;
+      fig_frame = f.frame;
     }
+  const int fig_key = res.per_frame[fig_frame].keyframe;
   Terrain checker = terrain;
   checker.texture = checker_texture(32, 1024);
   checker.tex_rect = {0, 0, 1, 1};
   checker.texture_name = "checker";
-  nlohmann::json figures = nlohmann::json::object();
   for (auto [name, t] :
        {std::pair<const char*, const Terrain*>{"fig13", &checker}, {"fig14", &terrain}}) {
     std::unique_ptr<Scene> own;
@@ -392,7 +418,7 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
     }
     MeshRenderer fr(*s, w, h, 0), lr(*s, w, h, cfg.lod_quads);
     SpriteRenderer sr(*s, w, h, so);
-    sr.render_keyframe(path[key_of[fig_frame]]);
+    sr.render_keyframe(path[fig_key]);
     Frame sf = sr.render_sprite(path[fig_frame]);
     Frame ff = fr.render(path[fig_frame]), lf = lr.render(path[fig_frame]);
     const std::string base = name;
@@ -404,105 +430,14 @@ nlohmann::json run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain,
     save_png(quality::difference_image(ff.color.view(), sf.color.view()),
              out.file(base + "_diff_sprite.png"));
     const Scorer score = default_scorer(cfg.flip);
-    const QualityScore ls = score(ff, lf), ss = score(ff, sf);
-    figures[name] = {{"texture", t->texture_name},
-                     {"frame", fig_frame},
-                     {"keyframe", key_of[fig_frame]},
-                     {"lod", {{"psnr", ls.psnr}, {"ssim", ls.ssim}, {"flip", ls.flip}}},
-                     {"sprite", {{"psnr", ss.psnr}, {"ssim", ss.ssim}, {"flip", ss.flip}}}};
+    res.figures.push_back({.name = name,
+                           .texture = t->texture_name,
+                           .frame = fig_frame,
+                           .keyframe = fig_key,
+                           .lod = score(ff, lf),
+                           .sprite = score(ff, sf)});
   }
-
-  // Stalls of this shared machine (a frame over 10x its class median) weigh
-  // heavily in totals; count them so a reader can tell noise from cost.
-  auto stalls = [](const std::vector<double>& v) {
-    const double m = median(v);
-    return int(std::count_if(v.begin(), v.end(), [&](double x) { return x > 10 * m; }));
-  };
-  nlohmann::json j = {
-      {"gl_renderer", gl.renderer()},
-      {"terrain", terrain_json(terrain)},
-      {"size", {w, h}},
-      {"frames", n},
-      {"path", cfg.path},
-      {"lod_quads", cfg.lod_quads},
-      {"threshold_px", cfg.threshold_px},
-      {"metric", metric_name(cfg.metric)},
-      {"max_fallback_fraction", cfg.max_fallback_fraction},
-      {"sharp_px", cfg.sharp_px},
-      {"max_resample_scale", std::isfinite(cfg.max_resample_scale)
-                                 ? nlohmann::json(cfg.max_resample_scale)
-                                 : nlohmann::json(nullptr)},
-      {"psnr_cap_db", kPsnrCapDb},
-      {"there_and_back", cfg.there_and_back},
-      {"async", cfg.async},
-      {"mesh", "uniform"},
-      {"full", {{"total_ms", full_total}, {"median_ms", median(full_ms)}}},
-      {"lod",
-       {{"total_ms", sum(lod_ms)},
-        {"median_ms", median(lod_ms)},
-        {"mean_psnr", mean(lod_psnr)},
-        {"mean_psnr_sprite_frames", mean(lod_psnr_sprite_only)},
-        {"mean_ssim", mean(lod_ssim)},
-        {"min_ssim", *std::min_element(lod_ssim.begin(), lod_ssim.end())},
-        {"mean_flip", mean(lod_flip)}}},
-      {"sprite",
-       {{"total_ms", sprite_total},
-        {"median_ms", median(sprite_ms)},
-        {"p99_ms", percentile(sprite_ms, 99)},
-        {"decision_cpu_median_ms", median(decision_ms)},
-        {"decision_cpu_p99_ms", percentile(decision_ms, 99)},
-        {"keyframes", keyframes},
-        {"sprite_frames", sprite_run.count("sprite")},
-        {"key_median_ms", key_median},
-        {"sprite_median_ms", spr_median},
-        {"mean_psnr", mean(sp_psnr)},
-        {"mean_psnr_sprite_frames", mean(sp_psnr_sprite_only)},
-        {"mean_ssim", mean(sp_ssim)},
-        {"min_ssim", *std::min_element(sp_ssim.begin(), sp_ssim.end())},
-        {"mean_flip", mean(sp_flip)},
-        {"ssim_above_lod_fraction", double(ssim_above) / n},
-        {"ssim_above_lod_fraction_sprite_frames",
-         n > keyframes ? double(ssim_above_sprite_frames) / (n - keyframes) : 1.0}}},
-      {"speedup", speedup},
-      {"speedup_from_medians", median_speedup(n, keyframes, full_median, key_median, spr_median)},
-      {"stalls",
-       {{"full", stalls(full_ms)},
-        {"lod", stalls(lod_ms)},
-        {"key", stalls(key_ms)},
-        {"sprite", stalls(spr_ms)}}},
-      {"bound",
-       {{"f", f},
-        {"r", r},
-        {"speedup_bound", bound},
-        {"efficiency", speedup / bound},
-        {"key_over_full_median", key_median / std::max(median(full_ms), 1e-9)}}},
-      {"targets",
-       {{"keyframes_at_most_28", keyframes <= 28},
-        {"efficiency_at_least_0_9", speedup / bound >= 0.9},
-        {"ssim_above_lod_on_95pct", double(ssim_above) / n >= 0.95},
-        {"mean_psnr_above_lod", mean(sp_psnr) > mean(lod_psnr)},
-        {"mean_psnr_above_lod_on_sprite_frames",
-         mean(sp_psnr_sprite_only) > mean(lod_psnr_sprite_only)},
-        {"paper_speedup", 12.32},
-        {"paper_keyframes", 28}}},
-      {"sweep_score_every", every},
-      {"sweep_speedup_method",
-       "speedup: measured, total frame time of the sprite pass (the main run, or a separate "
-       "timed pass for other settings, scored after the pass) against the main run's "
-       "full-resolution total; speedup_from_medians: derived, n x median full / (k x median "
-       "key + (n - k) x median sprite) with that pass's medians"},
-      {"frame_count_sweep_method",
-       "keyframe decisions only: the metric on every frame, keyframes rendered"},
-      {"threshold_sweep", threshold_sweep},
-      {"frame_count_sweep", frame_count_sweep},
-      {"lod_sweep", lod_sweep},
-      {"figures", figures},
-      {"per_frame", per_frame}};
-  if (!cfg.video.empty()) j["video"] = cfg.video;
-  if (!cache.is_null()) j["cache"] = cache;
-  if (!async_run.is_null()) j["async_run"] = async_run;
-  write_lodsprite_report(j, out);
-  return j;
+  return res;
 }
 
 }  // namespace terrasprite::cli

@@ -5,10 +5,10 @@
 #pragma once
 #include <cstddef>
 #include <functional>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "lodsprite_result.h"
 #include "terrasprite/frame.h"
 #include "terrasprite/output_dir.h"
 #include "terrasprite/sprite_metric.h"
@@ -50,11 +50,11 @@ struct LodspriteConfig {
   std::string video;
 };
 
-/// Runs everything; writes figures (PNG) and plots into `out`, returns the
-/// JSON document (the keys DESIGN.md's bench lodsprite contract names). `label` prefixes the
-/// progress bar.
-nlohmann::json run_lodsprite(const LodspriteConfig& config, const Terrain& terrain, OutputDir& out,
-                             const std::string& label);
+/// Runs everything and writes the figure PNGs (Figs. 13-14) into `out`;
+/// returns what it measured (to_json() and write_lodsprite_report() write it
+/// out). `label` prefixes the progress bar. Bad settings: InputError.
+LodspriteResult run_lodsprite(const LodspriteConfig& config, const Terrain& terrain, OutputDir& out,
+                              const std::string& label);
 
 /// "paper" | "exact" -> metric; throws InputError naming --metric.
 ErrorMetric parse_metric(const std::string& text);

@@ -3,6 +3,9 @@
 // looks like complete output.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <fstream>
 
@@ -64,6 +67,33 @@ TEST(CliErrors, UsageErrorsFromTheParser) {
   expect_usage_error("render --mode bogus --out x", "bogus");
   expect_usage_error("", "subcommand");
   expect_usage_error("info --encoding rgb", "rgb");
+}
+
+// The soak's memory curve: RSS sampled every --memory-every frames (and at
+// frame 0), the peak at least the largest sample, growth a finite number.
+TEST(Cli, RenderRecordsItsMemoryCurve) {
+  tstest::TempDir tmp;
+  tstest::CliResult r = tstest::run_cli(
+      "render --synthetic-size 65 --mode sprite --lod-quads 8 --frames 7 --size 32x32 "
+      "--no-images --memory-every 3 --out " +
+      (tmp / "r"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream js(tmp.path / "r" / "stats.json");
+  const nlohmann::json m = nlohmann::json::parse(js)["memory"];
+  ASSERT_EQ(m["rss_mb"].size(), 3u) << m.dump();  // frames 0, 3, 6
+  double most = 0;
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(m["rss_mb"][k][0], 3 * k);
+    EXPECT_GT(double(m["rss_mb"][k][1]), 1.0);  // a GL process holds megabytes
+    most = std::max(most, double(m["rss_mb"][k][1]));
+  }
+  EXPECT_GE(double(m["peak_rss_mb"]), most);
+  EXPECT_TRUE(m["heap_trim"]);
+  EXPECT_TRUE(m["growth_mb_per_10k_frames_after_1000"].is_number());
+  r = tstest::run_cli("render --synthetic-size 65 --frames 2 --size 8x8 --memory-every 0 --out " +
+                      (tmp / "z"));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--memory-every"), std::string::npos) << r.output;
 }
 
 TEST(CliErrors, AllNodataRasterIsAnError) {

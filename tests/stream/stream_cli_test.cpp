@@ -27,7 +27,13 @@ TEST(StreamCli, TileThenBenchStreamWritesTheContractKeys) {
                         "degraded_fraction_after_warmup", "hit_rate", "io_mb_s", "peak_rss_mb", "first_frame_ms"})
     EXPECT_TRUE(j["stream"].contains(k)) << k;
   EXPECT_EQ(j["images_equal_when_resident"]["frames_compared"], j["images_equal_when_resident"]["frames_equal"]);
-  EXPECT_EQ(j["per_frame"].size(), 8u);
+  EXPECT_GT(j["images_equal_when_resident"]["frames_compared"].get<int>(), 0);
+  ASSERT_EQ(j["per_frame"].size(), 8u);
+  // The in-memory peer answered every streamed frame (lockstep), and the
+  // ratio is the medians' quotient.
+  for (const auto& f : j["per_frame"]) EXPECT_GT(f["in_memory_ms"].get<double>(), 0) << f.dump();
+  EXPECT_NEAR(j["ratio_median"].get<double>(),
+              j["stream"]["median_ms"].get<double>() / j["in_memory"]["median_ms"].get<double>(), 1e-9);
 }
 
 TEST(StreamCli, RefusesADirectoryOfTheUsersAndSurvivesInjectedFaults) {

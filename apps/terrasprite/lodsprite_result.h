@@ -1,0 +1,149 @@
+// SPDX-License-Identifier: MIT
+// What one `bench lodsprite` / `demo` run measured, as typed values: the
+// per-frame rows, the per-renderer summaries, the sweeps, the cache pass and
+// the same-frame figures. run_lodsprite() fills it; to_json() (the contract
+// DESIGN.md names) and write_lodsprite_report() (plots and index.html) are its
+// two edge writers, so the report never reads numbers back out of JSON.
+#pragma once
+#include <array>
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli_common.h"
+#include "lodsprite_async.h"
+#include "terrasprite/experiment.h"
+
+namespace terrasprite::cli {
+
+/// One displayed frame of the main run: the sprite renderer's frame and the
+/// full-resolution and plain-LOD frames of the same camera. Times in ms.
+struct LodspriteFrame {
+  int frame = 0;
+  bool key = false;  ///< a keyframe (class "key"), else a sprite frame
+  double ms = 0, gpu_ms = 0, full_ms = 0, lod_ms = 0;
+  double error_px = 0, error_px_exact = 0;  ///< paper metric / exact reprojection, pixels
+  int error_samples = 0;
+  double fallback_fraction = 0, resample_scale = 1, decision_cpu_ms = 0;
+  std::string trigger;  ///< what made this a keyframe ("" for sprite frames, "cache" for a reuse)
+  int keyframe = 0;     ///< the frame whose keyframe is in use
+  QualityScore sprite, lod;  ///< each against the full-resolution frame
+};
+
+/// One sweep setting's sprite pass (the main run's, or a separate timed pass).
+struct SweepPass {
+  int keyframes = 0;
+  double keyframe_fraction = 0;
+  double speedup = 0;               ///< main run's full total / this pass's total
+  double speedup_from_medians = 0;  ///< n x median full / (k x median key + (n-k) x median sprite)
+  double total_ms = 0, key_median_ms = 0, sprite_median_ms = 0;
+  double mean_ssim = 0;
+  std::string measured_in;  ///< "main run" | "separate timed pass"
+};
+
+struct ThresholdPoint {
+  double threshold_px = 0;
+  SweepPass pass;
+};
+
+struct LodQuadsPoint {
+  int lod_quads = 0;
+  SweepPass pass;
+};
+
+struct FrameCountPoint {
+  int frames = 0, keyframes = 0;
+  double keyframe_fraction = 0;
+};
+
+/// The keyframe cache against a separate timed pass without it (same path).
+struct CacheSummary {
+  std::size_t size_bytes = 0;
+  std::string policy;
+  double accept = 0;
+  int capacity_keyframes = 0;
+  int keyframes = 0, keyframes_without_cache = 0, hits = 0;
+  double saving = 0;  ///< 1 - keyframes / keyframes_without_cache
+  double mean_ssim = 0, mean_ssim_without_cache = 0;
+  double total_ms = 0, total_ms_without_cache = 0;
+};
+
+/// The paper's Figs. 13-14: one frame full / LOD / sprite (PNGs in `out`).
+struct FigureCompare {
+  std::string name;  ///< "fig13" (checker texture) | "fig14" (the terrain's own)
+  std::string texture;
+  int frame = 0, keyframe = 0;
+  QualityScore lod, sprite;
+};
+
+struct LodSummary {
+  double total_ms = 0, median_ms = 0;
+  double mean_psnr = 0, mean_psnr_sprite_frames = 0, mean_ssim = 0, min_ssim = 0, mean_flip = 0;
+};
+
+struct SpriteSummary {
+  double total_ms = 0, median_ms = 0, p99_ms = 0;
+  double decision_cpu_median_ms = 0, decision_cpu_p99_ms = 0;
+  int keyframes = 0, sprite_frames = 0;
+  double key_median_ms = 0, sprite_median_ms = 0;
+  double mean_psnr = 0, mean_psnr_sprite_frames = 0, mean_ssim = 0, min_ssim = 0, mean_flip = 0;
+  double ssim_above_lod_fraction = 0, ssim_above_lod_fraction_sprite_frames = 0;
+};
+
+/// Frames over 10x their class median: this shared machine's stalls.
+struct StallCounts {
+  int full = 0, lod = 0, key = 0, sprite = 0;
+};
+
+/// The speed-up bound 1 / (f + (1 - f) / r) of the measured f and r.
+struct SpeedupBound {
+  double f = 0;  ///< keyframe fraction
+  double r = 0;  ///< median full / median sprite frame
+  double speedup_bound = 0, efficiency = 0, key_over_full_median = 0;
+};
+
+struct LodspriteResult {
+  // ---- what ran ----
+  std::string gl_renderer;
+  TerrainInfo terrain;
+  int width = 0, height = 0;
+  int frames = 0;  ///< displayed frames (2 x the path's with there_and_back)
+  std::string path;
+  int lod_quads = 0;
+  double threshold_px = 0;
+  std::string metric;  ///< "paper" | "exact"
+  double max_fallback_fraction = 0, sharp_px = 0;
+  double max_resample_scale = 0;  ///< may be +inf (the trigger off): JSON null
+  bool there_and_back = false;
+  int sweep_score_every = 1;
+  std::string video;  ///< file name inside the output directory; empty: none
+  // ---- what it measured ----
+  double full_total_ms = 0, full_median_ms = 0;
+  LodSummary lod;
+  SpriteSummary sprite;
+  double speedup = 0, speedup_from_medians = 0;
+  StallCounts stalls;
+  SpeedupBound bound;
+  std::vector<ThresholdPoint> threshold_sweep;
+  std::vector<FrameCountPoint> frame_count_sweep;
+  std::vector<LodQuadsPoint> lod_sweep;
+  std::optional<CacheSummary> cache;
+  std::optional<AsyncComparison> async;  ///< the simulated displays (--async)
+  std::vector<FigureCompare> figures;
+  std::vector<LodspriteFrame> per_frame;
+};
+
+/// How the sweeps' speed-ups are measured: the JSON and the page both say it.
+inline constexpr const char* kSweepSpeedupMethod =
+    "speedup: measured, total frame time of the sprite pass (the main run, or a separate "
+    "timed pass for other settings, scored after the pass) against the main run's "
+    "full-resolution total; speedup_from_medians: derived, n x median full / (k x median "
+    "key + (n - k) x median sprite) with that pass's medians";
+
+/// The `bench lodsprite` JSON document (DESIGN.md's contract), the targets
+/// derived from the summaries.
+nlohmann::json to_json(const LodspriteResult& r);
+
+}  // namespace terrasprite::cli

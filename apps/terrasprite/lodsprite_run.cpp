@@ -322,7 +322,8 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
 
   // ---- the display simulated with asynchronous keyframes, beside a synchronous one ----
   if (cfg.async) {
-    AsyncComparison& ac = res.async.emplace(run_async_display(gl, scene, path, w, h, so, refs, every));
+    AsyncComparison& ac =
+        res.async.emplace(run_async_display(gl, scene, path, w, h, so, refs, every));
     ac.main_run_mean_ssim = mean_every(sp_ssim);
     ac.main_run_mean_psnr = mean_every(sp_psnr);
     std::vector<double> sprite_ssim;

@@ -34,6 +34,16 @@ function(ts_fast_sqrt source)
   endif()
 endfunction()
 
+# A per-pixel loop with a division whose if-conversion GCC refuses while a
+# float operation may trap (it keeps a branch, and the loop does not
+# vectorise): assume no floating-point traps (nothing here enables them).
+# Values stay IEEE.
+function(ts_no_fp_traps source)
+  if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+    set_source_files_properties(${PROJECT_SOURCE_DIR}/${source} PROPERTIES COMPILE_OPTIONS -fno-trapping-math)
+  endif()
+endfunction()
+
 # Every src/<dir> with sources must belong to a module: a new directory that
 # no ts_module() line names fails the configure step instead of silently
 # leaving its code out of the library.

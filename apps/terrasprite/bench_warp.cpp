@@ -83,6 +83,9 @@ PathRun run_path(const BenchWarpOpts& o, const std::string& spec, const Terrain&
   const std::vector<Camera> path = make_path(spec, terrain.heights, o.frames, double(w) / h);
   const int stride = o.k_max + 1;
   std::unique_ptr<Frame> real, previous;
+  // One Warper per method, as a flythrough would hold: buffers reused.
+  std::vector<Warper> warpers(std::size(kMethods));
+  Warper crop;
   renderer.render(with_margin(path[0], w, h, mx, my), ReadBack::kColorDepth);  // warm-up
   for (int i = 0; i < int(path.size()); ++i) {
     Frame f = renderer.render(with_margin(path[i], w, h, mx, my), ReadBack::kColorDepth);
@@ -92,12 +95,12 @@ PathRun run_path(const BenchWarpOpts& o, const std::string& spec, const Terrain&
       previous = std::move(real);
       real = std::make_unique<Frame>(std::move(f));
     } else {
-      const Frame truth = warp_frame(f, path[i], w, h, {WarpOptions{WarpMethod::kPoly2}}).frame;
+      const Frame& truth = crop.warp(f, path[i], w, h, {WarpOptions{WarpMethod::kPoly2}}).frame;
       for (std::size_t m = 0; m < std::size(kMethods); ++m) {
         WarpOptions wo;
         wo.method = kMethods[m];
         const Frame* second = kMethods[m] == WarpMethod::kDepth ? previous.get() : nullptr;
-        const WarpedFrame wf = warp_frame(*real, path[i], w, h, wo, second);
+        const WarpedFrame& wf = warpers[m].warp(*real, path[i], w, h, wo, second);
         run.methods[m].warp_ms.push_back(wf.frame.ms);
         run.methods[m].by_k[std::size_t(k - 1)].push_back(score(truth, wf));
       }

@@ -42,6 +42,7 @@ class WarpScheduler : public Renderer {
   WarpScheduleOptions o_;
   long long count_ = 0;
   std::unique_ptr<Frame> last_, previous_;
+  Warper warper_;  ///< keeps the depth warp's scratch between frames
   double last_holes_ = 0;
 };
 

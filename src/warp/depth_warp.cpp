@@ -13,6 +13,14 @@
 //      frame, sky; otherwise it is a hole: read from the second reference
 //      by the same iteration, or else
 //   3. extend the background: along the row, from the farther side.
+//
+// Speed: both passes work in spans of a row, first a loop without branches
+// that vectorises (where each real pixel lands; where each output pixel
+// reads, from its winner or, for an empty pixel, from its direction: sky is
+// a homography of the rotation alone), then one pixel at a time. An empty
+// pixel with no winner within 2 px is sky or a hole at once; only those near
+// winners (cracks, silhouettes) pay the neighbour search and iteration. The
+// buffers come from the caller's Warper.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -22,6 +30,8 @@
 #include <cstring>
 #include <limits>
 
+#include "common/simd.h"
+#include "warp/bilinear.h"
 #include "warp/warp_internal.h"
 
 namespace terrasprite::warp {
@@ -33,6 +43,7 @@ constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
 // q = z (row_base(j) + i step) + offset, in the new camera's (right, up, forward).
 struct SplatMap {
   glm::vec3 rr, ru, rf, step, offset;
+  glm::vec3 base0, base_j;   // row_base(j) = base0 + j base_j
   float mx, my, fx, fy;      // new camera
   float smx, smy, sfx, sfy;  // real camera
   SplatMap(const Pinhole& s, const Pinhole& t) {
@@ -44,13 +55,12 @@ struct SplatMap {
     rf = in_t(s.f);
     offset = in_t(s.eye - t.eye);
     step = rr / float(s.fx);
+    base0 = rf - float((0.5 - s.my) / s.fy) * ru + float((0.5 - s.mx) / s.fx) * rr;
+    base_j = -ru / float(s.fy);
     mx = float(t.mx), my = float(t.my), fx = float(t.fx), fy = float(t.fy);
     smx = float(s.mx), smy = float(s.my), sfx = float(s.fx), sfy = float(s.fy);
   }
-  glm::vec3 row_base(int j) const {
-    const float b = (j + 0.5f - smy) / sfy, a = (0.5f - smx) / sfx;
-    return rf - b * ru + a * rr;
-  }
+  glm::vec3 row_base(int j) const { return base0 + float(j) * base_j; }
   // New-image position (pixel coordinates) and depth of real pixel (i, j) at depth z.
   bool land(int i, int j, float z, float& x, float& y, float& zt) const {
     const glm::vec3 q = z * (row_base(j) + float(i) * step) + offset;
@@ -63,8 +73,69 @@ struct SplatMap {
   }
 };
 
-std::uint64_t pack(float depth, std::uint32_t index) {
-  return (std::uint64_t(std::bit_cast<std::uint32_t>(depth)) << 32) | index;
+// A winner's key: depth bits above the real pixel (i, j) as j << 14 | i (both
+// < 16384), so the smallest key is the nearest, ties to the first in row
+// order, and decoding needs no division.
+constexpr int kIndexBits = 14;
+// Output pixel -> where its direction (a point at infinity) lies in the
+// real frame: a homography of the rotation alone, linear along a row in
+// homogeneous coordinates, d = row + x step in the real camera's
+// (right, up, forward).
+struct SkyMap {
+  glm::dvec3 r, u, f;  // output camera's axes in the real camera's frame
+  double omx, omy, ofx, ofy;
+  float smx, smy, sfx, sfy;
+  SkyMap(const Pinhole& s, const Pinhole& t) {
+    auto in_s = [&](const glm::dvec3& v) {
+      return glm::dvec3(glm::dot(v, s.r), glm::dot(v, s.u), glm::dot(v, s.f));
+    };
+    r = in_s(t.r), u = in_s(t.u), f = in_s(t.f);
+    omx = t.mx, omy = t.my, ofx = t.fx, ofy = t.fy;
+    smx = float(s.mx), smy = float(s.my), sfx = float(s.fx), sfy = float(s.fy);
+  }
+  // Homogeneous direction of output pixel (0.5, y + 0.5) and its step per pixel.
+  void row(int y, glm::vec3& base, glm::vec3& step) const {
+    const glm::dvec3 b = f + ((0.5 - omx) / ofx) * r - ((y + 0.5 - omy) / ofy) * u;
+    base = glm::vec3(b);
+    step = glm::vec3(r / ofx);
+  }
+};
+
+std::uint64_t pack(float depth, int i, int j) {
+  return (std::uint64_t(std::bit_cast<std::uint32_t>(depth)) << 32) |
+         (std::uint32_t(j) << kIndexBits) | std::uint32_t(i);
+}
+int key_i(std::uint64_t key) {
+  return int(key & ((1u << kIndexBits) - 1));
+}
+int key_j(std::uint64_t key) {
+  return int(std::uint32_t(key) >> kIndexBits);
+}
+
+// Where real pixels [i0, i1) of row j land: the output pixel index (or
+// kNowhere: sky, behind the eye or outside) and depth. No branches, so the
+// loop vectorises; the depth test is the caller's.
+constexpr std::uint32_t kNowhere = ~0u;
+constexpr int kSplatSpan = 256;
+
+TS_CLONES_AVX2
+void land_span(const SplatMap& map, const float* __restrict depth, int i0, int i1, int j, int w,
+               int h, std::uint32_t* __restrict target, float* __restrict zt) {
+  const glm::vec3 base = map.row_base(j), step = map.step, o = map.offset;
+  const float mx = map.mx, my = map.my, fx = map.fx, fy = map.fy, fw = float(w), fh = float(h);
+  for (int i = i0; i < i1; ++i) {
+    const float z = depth[i], fi = float(i);
+    const float qx = z * (base.x + fi * step.x) + o.x, qy = z * (base.y + fi * step.y) + o.y;
+    const float qz = z * (base.z + fi * step.z) + o.z;
+    const float inv = 1.0f / std::max(qz, 1e-3f);
+    const float x = mx + fx * qx * inv, y = my - fy * qy * inv;
+    // z = +inf (sky) makes q infinite or NaN: every test below fails.
+    const bool in =
+        (z < Frame::kSky) & (qz > 1e-3f) & (x >= 0.f) & (y >= 0.f) & (x < fw) & (y < fh);
+    const int xi = int(in ? x : 0.f), yi = int(in ? y : 0.f);
+    target[i - i0] = in ? std::uint32_t(yi * w + xi) : kNowhere;
+    zt[i - i0] = qz;
+  }
 }
 
 void splat(const Reference& ref, const SplatMap& map, int w, int h,
@@ -72,21 +143,22 @@ void splat(const Reference& ref, const SplatMap& map, int w, int h,
   const int sw = ref.cam.w;
   tbb::parallel_for(
       tbb::blocked_range<int>(0, ref.cam.h, 8), [&](const tbb::blocked_range<int>& rows) {
+        std::uint32_t target[kSplatSpan];
+        float zt[kSplatSpan];
         for (int j = rows.begin(); j < rows.end(); ++j) {
-          const glm::vec3 base = map.row_base(j);
           const float* depth = ref.frame.depth.data() + std::size_t(j) * sw;
-          for (int i = 0; i < sw; ++i) {
-            const float z = depth[i];
-            if (!(z < Frame::kSky)) continue;
-            const glm::vec3 q = z * (base + float(i) * map.step) + map.offset;
-            if (!(q.z > 1e-3f)) continue;
-            const float inv = 1.0f / q.z;
-            const float x = map.mx + map.fx * q.x * inv, y = map.my - map.fy * q.y * inv;
-            if (!(x >= 0.f && y >= 0.f && x < float(w) && y < float(h))) continue;
-            const std::uint64_t key = pack(q.z, std::uint32_t(std::size_t(j) * sw + i));
-            std::atomic_ref<std::uint64_t> slot(win[std::size_t(int(y)) * w + int(x)]);
-            std::uint64_t cur = slot.load(std::memory_order_relaxed);
-            while (key < cur && !slot.compare_exchange_weak(cur, key, std::memory_order_relaxed)) {
+          for (int i0 = 0; i0 < sw; i0 += kSplatSpan) {
+            const int i1 = std::min(i0 + kSplatSpan, sw);
+            land_span(map, depth, i0, i1, j, w, h, target, zt);
+            for (int i = i0; i < i1; ++i) {
+              if (target[i - i0] == kNowhere) continue;
+              // The nearest wins: a 64-bit atomic min of (depth | index).
+              const std::uint64_t key = pack(zt[i - i0], i, j);
+              std::atomic_ref<std::uint64_t> slot(win[target[i - i0]]);
+              std::uint64_t cur = slot.load(std::memory_order_relaxed);
+              while (key < cur &&
+                     !slot.compare_exchange_weak(cur, key, std::memory_order_relaxed)) {
+              }
             }
           }
         }
@@ -133,10 +205,9 @@ struct Resolver {
 
   // Where winner `key` says new pixel (x, y) reads the reference; its depth.
   bool from_winner(std::uint64_t key, double x, double y, double& sx, double& sy, float& zt) const {
-    const std::uint32_t idx = std::uint32_t(key);
-    const int i = int(idx % std::uint32_t(ref.cam.w)), j = int(idx / std::uint32_t(ref.cam.w));
+    const int i = key_i(key), j = key_j(key);
     float lx, ly;
-    if (!map.land(i, j, ref.frame.depth[idx], lx, ly, zt)) return false;
+    if (!map.land(i, j, ref.frame.depth[std::size_t(j) * ref.cam.w + i], lx, ly, zt)) return false;
     sx = i + 0.5 + (x - lx) * (ref.cam.fx / out.fx);
     sy = j + 0.5 + (y - ly) * (ref.cam.fy / out.fy);
     return true;
@@ -160,14 +231,34 @@ struct Resolver {
     return best;
   }
 
-  // Resolves pixel (px, py); false when neither reference sees it.
-  bool pixel(int px, int py, bool& hole) {
+  void write(std::size_t at, double sx, double sy, double zt) {
+    ref.color_at(sx, sy, result.frame.color.rgba.data() + at * 4);
+    result.frame.depth[at] = float(zt);
+    result.holes[at] = 0;
+    if (keep_sources) {
+      result.source_x[at] = float(sx);
+      result.source_y[at] = float(sy);
+    }
+  }
+
+  // Pixel (px, py) with a winner whose landing point says where to read.
+  bool winner(std::uint64_t key, int px, int py) {
+    double sx, sy;
+    float zt;
+    if (!from_winner(key, px + 0.5, py + 0.5, sx, sy, zt)) return false;
+    write(std::size_t(py) * out.w + px, sx, sy, zt);
+    return true;
+  }
+
+  // Pixel (px, py) without a winner: iterate from the farthest neighbouring
+  // winner to the real-frame point that lands on it, or sky where the real
+  // frame sees sky in its direction; else a hole, read from the second
+  // reference when there is one. False when neither reference sees it.
+  bool search(int px, int py) {
     const std::size_t at = std::size_t(py) * out.w + px;
     const double x = px + 0.5, y = py + 0.5;
-    std::uint8_t* rgba = result.frame.color.px(px, py);
     double sx, sy, zt = Frame::kSky;
     float zf;
-    hole = false;
     const std::uint64_t key = win[at];
     bool ok = key != kEmpty && from_winner(key, x, y, sx, sy, zf);
     if (ok) {
@@ -182,16 +273,22 @@ struct Resolver {
       }
     }
     if (ok) {
-      ref.color_at(sx, sy, rgba);
-      result.frame.depth[at] = float(zt);
-      if (keep_sources) {
-        result.source_x[at] = float(sx);
-        result.source_y[at] = float(sy);
-      }
+      write(at, sx, sy, zt);
       return true;
     }
-    hole = true;
-    return second && from_second(px, py, rgba);
+    return hole(px, py);
+  }
+
+  // A pixel neither the real frame's surfaces nor its sky cover.
+  bool hole(int px, int py) {
+    const std::size_t at = std::size_t(py) * out.w + px;
+    result.holes[at] = 1;
+    result.frame.depth[at] = Frame::kSky;
+    std::memset(result.frame.color.rgba.data() + at * 4, 0, 4);
+    if (keep_sources) {
+      result.source_x[at] = result.source_y[at] = std::numeric_limits<float>::quiet_NaN();
+    }
+    return second && from_second(px, py, result.frame.color.rgba.data() + at * 4);
   }
 
   // A hole of the primary reference read from the second one: start where
@@ -220,9 +317,8 @@ struct Resolver {
 
 // Fills the unresolved pixels of one row from the farther of their resolved
 // neighbours on the row (background extension); rows with none stay sky.
-void extend_background(WarpedFrame& r, int y, const std::vector<std::uint8_t>& unresolved) {
+void extend_background(WarpedFrame& r, int y, const std::uint8_t* miss) {
   const int w = r.frame.width();
-  const std::uint8_t* miss = unresolved.data() + std::size_t(y) * w;
   float* depth = r.frame.depth.data() + std::size_t(y) * w;
   for (int x = 0; x < w;) {
     if (!miss[x]) {
@@ -243,28 +339,186 @@ void extend_background(WarpedFrame& r, int y, const std::vector<std::uint8_t>& u
   }
 }
 
+// One span of an output row, first mapped in a loop without branches that
+// vectorises (map_span), then read pixel by pixel (resolve_span).
+constexpr int kSpan = 128;
+enum Kind : std::uint8_t { kWinner, kEmptyPixel, kSearch };
+
+struct SpanMap {
+  float sx[kSpan], sy[kSpan], zt[kSpan];  // where to read the reference; target depth
+  int off[kSpan];                         // bilinear taps at (sx, sy)
+  std::uint32_t wx[kSpan], wy[kSpan];
+  std::uint8_t kind[kSpan];  // Kind
+  std::uint8_t sky[kSpan];   // empty pixel: its direction lies inside the reference
+};
+
+// Pixels [x0, x1) of output row y: a winner's pixel reads the reference at
+// the winner's position moved by its sub-pixel landing offset (as
+// Resolver::from_winner); an empty one gets its direction's position in the
+// reference (the sky homography), read only if the reference sees sky there.
+TS_CLONES_AVX2
+void map_span(const SplatMap& map, glm::vec3 dir, glm::vec3 dir_step, const std::uint64_t* keys,
+              const float* __restrict ref_depth, int sw, int sh, float kx, float ky, int x0, int x1,
+              int y, SpanMap& m) {
+  const float py = float(y) + 0.5f, fw = float(sw), fh = float(sh);
+  const int n = x1 - x0;
+  int ii[kSpan], jj[kSpan], vv[kSpan];
+  float zz[kSpan];
+  for (int k = 0; k < n; ++k) {
+    // kEmpty decodes to (0, 0): its lower half is all ones.
+    const std::uint32_t lo = std::uint32_t(keys[x0 + k]);
+    const std::uint32_t index = lo == 0xffffffffu ? 0u : lo;
+    ii[k] = int(index & ((1u << kIndexBits) - 1));
+    jj[k] = int(index >> kIndexBits);
+    vv[k] = lo != 0xffffffffu;
+  }
+  for (int k = 0; k < n; ++k) zz[k] = ref_depth[jj[k] * sw + ii[k]];
+  // Locals, so nothing in the loop can alias the stores.
+  const glm::vec3 b0 = map.base0, bj = map.base_j, bi = map.step, o = map.offset;
+  const float mx = map.mx, my = map.my, mfx = map.fx, mfy = map.fy;
+  const float smx = map.smx, smy = map.smy, sfx = map.sfx, sfy = map.sfy;
+  float* __restrict out_sx = m.sx;
+  float* __restrict out_sy = m.sy;
+  float* __restrict out_zt = m.zt;
+  int* __restrict out_off = m.off;
+  std::uint32_t* __restrict out_wx = m.wx;
+  std::uint32_t* __restrict out_wy = m.wy;
+  std::uint8_t* __restrict out_kind = m.kind;
+  std::uint8_t* __restrict out_sky = m.sky;
+  for (int k = 0; k < n; ++k) {
+    const int valid = vv[k], i = ii[k], j = jj[k];
+    const float z = zz[k], fi = float(i), fj = float(j), fx = float(x0 + k);
+    const float qx = z * (b0.x + fj * bj.x + fi * bi.x) + o.x;
+    const float qy = z * (b0.y + fj * bj.y + fi * bi.y) + o.y;
+    const float qz = z * (b0.z + fj * bj.z + fi * bi.z) + o.z;
+    const int landed = qz > 1e-3f;
+    const float inv = 1.0f / std::max(qz, 1e-3f);  // no division under a condition
+    const float lx = mx + mfx * qx * inv, ly = my - mfy * qy * inv;
+    const float wsx = fi + 0.5f + (fx + 0.5f - lx) * kx, wsy = fj + 0.5f + (py - ly) * ky;
+    const float dx = dir.x + fx * dir_step.x, dy = dir.y + fx * dir_step.y,
+                dz = dir.z + fx * dir_step.z;
+    const int ahead = dz > 1e-12f;
+    const float dinv = 1.0f / std::max(dz, 1e-12f);
+    const float ssx = smx + sfx * dx * dinv, ssy = smy - sfy * dy * dinv;
+    out_sky[k] = std::uint8_t(ahead & (ssx >= 0.f) & (ssy >= 0.f) & (ssx <= fw) & (ssy <= fh));
+    out_kind[k] = std::uint8_t((1 - valid) * kEmptyPixel + valid * (1 - landed) * kSearch);
+    const float sx = valid ? wsx : ssx, sy = valid ? wsy : ssy;
+    out_sx[k] = sx;
+    out_sy[k] = sy;
+    out_zt[k] = qz;
+    tap(sx, sy, sw, sh, out_off[k], out_wx[k], out_wy[k]);
+  }
+}
+
+// column[x] = 1 where output rows y-2..y+2 hold a winner in column x.
+TS_CLONES_AVX2
+void winner_columns(const std::uint64_t* win, int w, int h, int y, std::uint8_t* column) {
+  for (int x = 0; x < w; ++x) column[x] = 0;
+  for (int b = std::max(y - 2, 0); b <= std::min(y + 2, h - 1); ++b) {
+    const std::uint64_t* k = win + std::size_t(b) * w;
+    for (int x = 0; x < w; ++x) column[x] |= std::uint8_t(k[x] != kEmpty);
+  }
+}
+
 }  // namespace
 
 void warp_depth(const Reference& ref, const Reference* second, const Pinhole& out,
-                const WarpOptions& options, WarpedFrame& result) {
+                const WarpOptions& options, WarpedFrame& result, Warper::Scratch& scratch) {
   const SplatMap map(ref.cam, out);
-  std::vector<std::uint64_t> win(std::size_t(out.w) * out.h, kEmpty);
+  const SkyMap sky(ref.cam, out);
+  const std::size_t n = std::size_t(out.w) * out.h;
+  std::vector<std::uint64_t>& win = scratch.win;
+  win.resize(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 16),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      std::fill(win.begin() + r.begin(), win.begin() + r.end(), kEmpty);
+                    });
   splat(ref, map, out.w, out.h, win);
-  std::vector<std::uint8_t> unresolved(win.size(), 0);
-  Resolver res{ref, second, out, map, win, options.keep_sources, result};
+  const Resolver res{ref, second, out, map, win, options.keep_sources, result};
+  const int sw = ref.cam.w, sh = ref.cam.h;
+  const bool tiny = sw < 2 || sh < 2;  // the block reads need 2 x 2 texels
+  const auto* src = reinterpret_cast<const std::uint32_t*>(ref.frame.color.rgba.data());
+  const float kx = float(ref.cam.fx / out.fx), ky = float(ref.cam.fy / out.fy);
   tbb::parallel_for(tbb::blocked_range<int>(0, out.h, 4), [&](const tbb::blocked_range<int>& rows) {
     Resolver local = res;
+    std::vector<std::uint8_t> column(std::size_t(out.w));      // a winner in the column's 5 rows
+    std::vector<std::uint8_t> unresolved(std::size_t(out.w));  // this row's, for extend_background
+    SpanMap m;
     for (int y = rows.begin(); y < rows.end(); ++y) {
+      const std::size_t row = std::size_t(y) * out.w;
+      const std::uint64_t* keys = win.data() + row;
+      std::uint8_t* miss = unresolved.data();
+      // At the row's first empty pixel: which columns hold a winner within
+      // 2 rows, so an empty pixel knows whether one lies within 2 px (it
+      // searches as before) or not (sky or a hole, directly).
+      bool columns = false;
+      glm::vec3 dir, step;
+      sky.row(y, dir, step);
+      auto* color = reinterpret_cast<std::uint32_t*>(result.frame.color.rgba.data() + row * 4);
+      float* depth = result.frame.depth.data() + row;
+      std::uint8_t* hole = result.holes.data() + row;
       bool any = false;
-      for (int x = 0; x < out.w; ++x) {
-        bool hole;
-        const bool ok = local.pixel(x, y, hole);
-        const std::size_t at = std::size_t(y) * out.w + x;
-        result.holes[at] = hole;
-        unresolved[at] = !ok;
-        any = any || !ok;
+      for (int x0 = 0; x0 < out.w; x0 += kSpan) {
+        const int x1 = std::min(x0 + kSpan, out.w);
+        if (!tiny)
+          map_span(map, dir, step, keys, ref.frame.depth.data(), sw, sh, kx, ky, x0, x1, y, m);
+        for (int x = x0; x < x1; ++x) {
+          const int k = x - x0;
+          bool ok;
+          if (tiny) {
+            ok = (keys[x] != kEmpty && local.winner(keys[x], x, y)) || local.search(x, y);
+          } else if (m.kind[k] == kWinner) {
+            color[x] = bilinear_block(src, m.off[k], sw, m.wx[k], m.wy[k]);
+            depth[x] = m.zt[k];
+            hole[x] = 0;
+            if (options.keep_sources) {
+              result.source_x[row + x] = m.sx[k];
+              result.source_y[row + x] = m.sy[k];
+            }
+            ok = true;
+          } else if (m.kind[k] == kSearch) {
+            ok = local.search(x, y);
+          } else {
+            // A crack has a winner beside it (checked first); otherwise the
+            // row's column summary answers for the 5 x 5 neighbourhood.
+            bool near =
+                (x > 0 && keys[x - 1] != kEmpty) || (x + 1 < out.w && keys[x + 1] != kEmpty);
+            if (!near) {
+              if (!columns) winner_columns(win.data(), out.w, out.h, y, column.data());
+              columns = true;
+              for (int a = std::max(x - 2, 0); a <= std::min(x + 2, out.w - 1); ++a)
+                near |= column[std::size_t(a)] != 0;
+            }
+            if (near) {
+              ok = local.search(x, y);
+            } else {
+              // Sky where the reference sees sky in this direction (the
+              // three probes of sees_sky); else a hole.
+              const float sx = m.sx[k], sy = m.sy[k];
+              auto sky_at = [&](float px, float py) {
+                const int i = std::clamp(int(px), 0, sw - 1), j = std::clamp(int(py), 0, sh - 1);
+                return !(ref.frame.depth[std::size_t(j) * sw + i] < Frame::kSky);
+              };
+              if (m.sky[k] && (sky_at(sx, sy) || sky_at(sx + 0.5f, sy + 0.5f) ||
+                               sky_at(sx - 0.5f, sy - 0.5f))) {
+                color[x] = bilinear_block(src, m.off[k], sw, m.wx[k], m.wy[k]);
+                depth[x] = Frame::kSky;
+                hole[x] = 0;
+                if (options.keep_sources) {
+                  result.source_x[row + x] = sx;
+                  result.source_y[row + x] = sy;
+                }
+                ok = true;
+              } else {
+                ok = local.hole(x, y);
+              }
+            }
+          }
+          miss[x] = !ok;
+          any = any || !ok;
+        }
       }
-      if (any) extend_background(result, y, unresolved);
+      if (any) extend_background(result, y, miss);
     }
   });
 }

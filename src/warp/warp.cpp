@@ -38,24 +38,33 @@ void check_reference(const Frame& f, const char* what) {
 
 }  // namespace
 
-WarpedFrame warp_frame(const Frame& real, const Camera& target, int width, int height,
-                       const WarpOptions& options, const Frame* second) {
+Warper::Warper() : scratch_(std::make_unique<Scratch>()) {}
+Warper::~Warper() = default;
+Warper::Warper(Warper&&) noexcept = default;
+Warper& Warper::operator=(Warper&&) noexcept = default;
+
+const WarpedFrame& Warper::warp(const Frame& real, const Camera& target, int width, int height,
+                                const WarpOptions& options, const Frame* second) {
   check_reference(real, "real");
   if (second) check_reference(*second, "second reference");
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
     throw InputError(fmt::format("warp: output size {}x{} out of range", width, height));
   const auto start = std::chrono::steady_clock::now();
-  WarpedFrame r;
+  WarpedFrame& r = result_;
   const std::size_t n = std::size_t(width) * height;
-  r.frame.color = Image(width, height);
-  r.frame.depth.assign(n, Frame::kSky);
+  // Sized once; the methods write every pixel, so nothing is cleared.
+  if (r.frame.color.width != width || r.frame.color.height != height ||
+      r.frame.color.rgba.size() != n * 4)
+    r.frame.color = Image(width, height);
+  r.frame.depth.resize(n);
+  r.holes.resize(n);
+  r.source_x.resize(options.keep_sources ? n : 0);
+  r.source_y.resize(options.keep_sources ? n : 0);
   r.frame.cls = "warp";
   r.frame.camera = target;
-  r.holes.assign(n, 0);
-  if (options.keep_sources) {
-    r.source_x.assign(n, std::numeric_limits<float>::quiet_NaN());
-    r.source_y.assign(n, std::numeric_limits<float>::quiet_NaN());
-  }
+  r.frame.gpu_ms = -1.0;
+  r.frame.triangles = 0;
+  r.frame.width_px = r.frame.height_px = 0;
   const warp::Reference ref(real);
   const warp::Pinhole out(target, width, height);
   if (options.method == WarpMethod::kPoly2) {
@@ -63,13 +72,24 @@ WarpedFrame warp_frame(const Frame& real, const Camera& target, int width, int h
   } else {
     std::optional<warp::Reference> ref2;
     if (second) ref2.emplace(*second);
-    warp::warp_depth(ref, ref2 ? &*ref2 : nullptr, out, options, r);
+    warp::warp_depth(ref, ref2 ? &*ref2 : nullptr, out, options, r, *scratch_);
   }
   r.frame.ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   r.hole_fraction =
       double(std::accumulate(r.holes.begin(), r.holes.end(), std::size_t(0))) / double(n);
   return r;
+}
+
+WarpedFrame Warper::take() {
+  return std::move(result_);
+}
+
+WarpedFrame warp_frame(const Frame& real, const Camera& target, int width, int height,
+                       const WarpOptions& options, const Frame* second) {
+  Warper w;
+  w.warp(real, target, width, height, options, second);
+  return w.take();
 }
 
 Camera with_margin(const Camera& camera, int width, int height, int margin_x, int margin_y) {

@@ -1,15 +1,28 @@
 // SPDX-License-Identifier: MIT
-// The warp methods behind warp_frame(); each fills a WarpedFrame whose
-// colour, depth and hole buffers are already sized for the output.
+// The warp methods behind warp_frame(); each writes every pixel of a
+// WarpedFrame whose colour, depth, hole (and source) buffers are already
+// sized for the output (they hold the previous call's values: nothing is
+// cleared for them).
 #pragma once
+#include <cstdint>
+#include <vector>
+
 #include "terrasprite/warp.h"
 #include "warp/pinhole.h"
 
-namespace terrasprite::warp {
+namespace terrasprite {
+
+/// Per-Warper scratch the depth warp reuses between calls.
+struct Warper::Scratch {
+  std::vector<std::uint64_t> win;  ///< splat winners, one per output pixel
+};
+
+namespace warp {
 
 void warp_poly2(const Reference& ref, const Pinhole& out, const WarpOptions& options,
                 WarpedFrame& result);
 void warp_depth(const Reference& ref, const Reference* second, const Pinhole& out,
-                const WarpOptions& options, WarpedFrame& result);
+                const WarpOptions& options, WarpedFrame& result, Warper::Scratch& scratch);
 
-}  // namespace terrasprite::warp
+}  // namespace warp
+}  // namespace terrasprite

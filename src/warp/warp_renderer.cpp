@@ -39,7 +39,8 @@ Frame WarpScheduler::draw(const Camera& camera) {
     WarpOptions crop = o_.warp;
     crop.method = WarpMethod::kPoly2;
     crop.keep_sources = false;
-    WarpedFrame out = warp_frame(*last_, camera, w_, h_, crop);
+    warper_.warp(*last_, camera, w_, h_, crop);
+    WarpedFrame out = warper_.take();
     out.frame.cls = last_->cls;
     out.frame.ms += last_->ms;
     out.frame.gpu_ms = last_->gpu_ms;
@@ -48,7 +49,8 @@ Frame WarpScheduler::draw(const Camera& camera) {
     return std::move(out.frame);
   }
   const Frame* second = o_.second_reference ? previous_.get() : nullptr;
-  WarpedFrame out = warp_frame(*last_, camera, w_, h_, o_.warp, second);
+  warper_.warp(*last_, camera, w_, h_, o_.warp, second);
+  WarpedFrame out = warper_.take();
   last_holes_ = out.hole_fraction;
   return std::move(out.frame);
 }

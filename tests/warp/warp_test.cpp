@@ -5,6 +5,7 @@
 // spike, and a voxel-rendered frame.
 #include "terrasprite/warp.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -302,6 +303,53 @@ TEST(Warp, WarpsAVoxelFrameCloseToItsRender) {
   }
 }
 
+// Bit for bit (NaN equals NaN).
+bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
+}
+
+// A Warper writes every output pixel: reusing its buffers (which hold the
+// previous call's pixels, holes and sources) gives what a fresh warp gives,
+// across methods, sizes, second references and keep_sources.
+TEST(Warp, WarperReuseMatchesAFreshWarp) {
+  const Scene scene{25, 400};
+  const Camera c0 = camera({0, -700, 150}, 0, -10, 0, W, H);
+  Camera c1 = c0, c2 = c0;
+  c1.position.x += 40;  // disoccludes ground behind the box: holes
+  c2.position.x += 80;
+  const Frame real = scene.render(with_margin(c0, W, H, M, M), W + 2 * M, H + 2 * M);
+  const Frame second = scene.render(with_margin(c2, W, H, M, M), W + 2 * M, H + 2 * M);
+  struct Call {
+    WarpMethod method;
+    int w, h;
+    bool sources;
+    const Frame* second;
+  };
+  const Call calls[] = {
+      {WarpMethod::kDepth, W, H, true, nullptr},  {WarpMethod::kPoly2, W, H, false, nullptr},
+      {WarpMethod::kDepth, W, H, false, &second}, {WarpMethod::kDepth, W / 2, H / 2, true, nullptr},
+      {WarpMethod::kPoly2, W, H, true, nullptr},  {WarpMethod::kDepth, W, H, true, nullptr}};
+  Warper warper;
+  for (const Call& c : calls) {
+    WarpOptions o;
+    o.method = c.method;
+    o.keep_sources = c.sources;
+    const WarpedFrame fresh = warp_frame(real, c1, c.w, c.h, o, c.second);
+    const WarpedFrame& reused = warper.warp(real, c1, c.w, c.h, o, c.second);
+    const std::string what = fmt::format("{} {}x{}", to_string(c.method), c.w, c.h);
+    EXPECT_EQ(reused.frame.color.rgba, fresh.frame.color.rgba) << what;
+    EXPECT_EQ(reused.frame.color.width, c.w) << what;
+    EXPECT_TRUE(same_bits(reused.frame.depth, fresh.frame.depth)) << what;
+    EXPECT_EQ(reused.holes, fresh.holes) << what;
+    EXPECT_EQ(reused.hole_fraction, fresh.hole_fraction) << what;
+    EXPECT_EQ(reused.frame.cls, "warp");
+    EXPECT_TRUE(same_bits(reused.source_x, fresh.source_x)) << what;
+    EXPECT_TRUE(same_bits(reused.source_y, fresh.source_y)) << what;
+  }
+  EXPECT_GT(warp_frame(real, c1, W, H).hole_fraction, 0.001) << "the scene should have holes";
+}
+
 TEST(Warp, RejectsFramesWithoutDepthAndBadSizes) {
   Frame f;
   f.color = Image(4, 4);
@@ -310,6 +358,15 @@ TEST(Warp, RejectsFramesWithoutDepthAndBadSizes) {
   EXPECT_THROW(warp_frame(f, Camera{}, 0, 4), InputError);
   EXPECT_THROW(parse_warp_method("affine"), InputError);
   EXPECT_NO_THROW(warp_frame(f, Camera{}, 4, 4));
+  // A reference one pixel wide (the span kernels read 2 x 2 blocks).
+  Frame thin;
+  thin.color = Image(1, 4);
+  thin.depth.assign(4, 10.f);
+  for (WarpMethod m : {WarpMethod::kDepth, WarpMethod::kPoly2}) {
+    WarpOptions o;
+    o.method = m;
+    EXPECT_EQ(warp_frame(thin, Camera{}, 3, 5, o).frame.color.width, 3) << to_string(m);
+  }
 }
 
 }  // namespace

@@ -80,6 +80,9 @@ void add_bench_lodsprite(CLI::App& bench) {
                   "threshold (default 0.5)");
   cmd->add_option("--cache-policy", o->cache_policy,
                   "which cached keyframe is evicted: lru (default) | farthest");
+  cmd->add_flag("--async", o->config.async,
+                "also fly the path as a simulated display with keyframes on a second thread "
+                "(viewpoint prediction), beside the same display drawn synchronously");
   cmd->add_option("--thresholds", o->thresholds, "threshold sweep (default 0.25,0.5,1,2,4,8)");
   cmd->add_option("--frame-counts", o->frame_counts,
                   "frame-count sweep (default 115,230,460,920,1840)");

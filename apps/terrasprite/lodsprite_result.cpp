@@ -94,7 +94,7 @@ nlohmann::json to_json(const LodspriteResult& r) {
                                  : nlohmann::json(nullptr)},
       {"psnr_cap_db", kPsnrCapDb},
       {"there_and_back", r.there_and_back},
-      {"async", false},
+      {"async", r.async.has_value()},
       {"mesh", "uniform"},
       {"full", {{"total_ms", r.full_total_ms}, {"median_ms", r.full_median_ms}}},
       {"lod",
@@ -154,6 +154,7 @@ nlohmann::json to_json(const LodspriteResult& r) {
       {"figures", figures},
       {"per_frame", per_frame}};
   if (!r.video.empty()) j["video"] = r.video;
+  if (r.async) j["async_run"] = async_json(*r.async);
   if (r.cache) {
     const CacheSummary& c = *r.cache;
     j["cache"] = {{"size", c.size_bytes},

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli_common.h"
+#include "lodsprite_async.h"
 #include "terrasprite/experiment.h"
 
 namespace terrasprite::cli {
@@ -129,6 +130,7 @@ struct LodspriteResult {
   std::vector<FrameCountPoint> frame_count_sweep;
   std::vector<LodQuadsPoint> lod_sweep;
   std::optional<CacheSummary> cache;
+  std::optional<AsyncComparison> async;  ///< the simulated displays (--async)
   std::vector<FigureCompare> figures;
   std::vector<LodspriteFrame> per_frame;
 };

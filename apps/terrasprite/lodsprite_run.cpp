@@ -120,6 +120,8 @@ void validate(const LodspriteConfig& c) {
                     2.0 * c.width * c.height * 8 / (1 << 20)));
   if (!(c.cache_accept > 0 && c.cache_accept <= 1))
     throw InputError(fmt::format("--cache-accept {}: must be in (0, 1]", c.cache_accept));
+  if (c.async && c.cache_bytes > 0)
+    throw InputError("--async with --cache: the keyframe cache is not used with async keyframes");
   if (c.sweep_score_every < 1)
     throw InputError(
         fmt::format("--sweep-score-every {}: must be at least 1", c.sweep_score_every));
@@ -317,6 +319,18 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
     return int(std::count_if(v.begin(), v.end(), [&](double x) { return x > 10 * m; }));
   };
   res.stalls = {stalls(full_ms), stalls(lod_ms), stalls(key_ms), stalls(spr_ms)};
+
+  // ---- the display simulated with asynchronous keyframes, beside a synchronous one ----
+  if (cfg.async) {
+    AsyncComparison& ac =
+        res.async.emplace(run_async_display(gl, scene, path, w, h, so, refs, every));
+    ac.main_run_mean_ssim = mean_every(sp_ssim);
+    ac.main_run_mean_psnr = mean_every(sp_psnr);
+    std::vector<double> sprite_ssim;
+    for (int i = 0; i < n; i += every)
+      if (!res.per_frame[i].key) sprite_ssim.push_back(sp_ssim[i]);
+    ac.main_run_mean_ssim_sprite_frames = mean(sprite_ssim);
+  }
 
   // ---- sweeps (paper Figs. 10-12 and the coarse-mesh size) ----
   Progress sweep_progress(label + " sweeps");

@@ -38,6 +38,9 @@ struct LodspriteConfig {
   std::size_t cache_bytes = 0;
   CachePolicy cache_policy = CachePolicy::kLeastRecentlyUsed;
   double cache_accept = 0.5;
+  /// Also fly the path as two simulated displays, synchronous and with
+  /// asynchronous keyframes (JSON `async_run`); not with the cache.
+  bool async = false;
   int sweep_score_every = 1;  ///< sweeps score SSIM on every n-th frame
   bool flip = true;           ///< FLIP per frame in the main run
   /// Called with (frame, sprite frame) after scoring, e.g. to save it.

@@ -14,6 +14,8 @@
 
 namespace terrasprite {
 
+class GlContext;
+
 /// Which cached keyframe makes room for a new one.
 enum class CachePolicy {
   kLeastRecentlyUsed,  ///< the one that stopped being current longest ago
@@ -57,6 +59,30 @@ struct SpriteOptions {
   /// a fresh keyframe. In (0, 1].
   double cache_accept = 0.5;
   bool lighting = false;  ///< same sun as RasterOptions::lighting, on keyframes and fallback alike
+  /// Asynchronous keyframes (the paper's second thread with viewpoint
+  /// prediction): non-null = the context the renderer's is (or shares with),
+  /// from which a second context is made for a worker thread that renders
+  /// keyframes while draw() keeps drawing sprite frames from the newest
+  /// finished one. Only the first keyframe (and forced ones) is drawn in
+  /// draw()'s own frame. A keyframe is requested for the camera predicted
+  /// (linear extrapolation of the last frames) for the frame it will land
+  /// on, the keyframe latency in frames being measured as it goes. Must
+  /// outlive the renderer. Not with the keyframe cache (cache_bytes > 0).
+  const GlContext* async_context = nullptr;
+};
+
+/// What the asynchronous keyframes did since the renderer was made or reset().
+struct AsyncKeyframeStats {
+  long long requested = 0;  ///< keyframes asked of the worker
+  long long landed = 0;     ///< finished and looked at by draw()
+  long long used = 0;       ///< of those, made current
+  /// Landed with an error over the trigger for the view of the frame it landed
+  /// on (the prediction missed): still used when better than the current one,
+  /// and a new one is requested at once.
+  long long late = 0;
+  long long late_used = 0;         ///< late ones used anyway
+  double last_latency_frames = 0;  ///< displayed frames from request to landing, the last one
+  double mean_latency_frames = 0;  ///< the same, mean over the landed ones
 };
 
 /// Why a keyframe was drawn.
@@ -107,8 +133,24 @@ class SpriteRenderer : public GlRenderer {
   std::size_t keyframe_bytes_held() const;
   bool last_cache_hit() const;
 
-  /// Forgets the keyframe and empties the cache: the next draw() is a keyframe (e.g. after a
-  /// warm-up).
+  /// Asynchronous keyframes (SpriteOptions::async_context): whether they are
+  /// on, their counts so far, and whether the last draw() took a landed one.
+  bool async() const;
+  const AsyncKeyframeStats& async_stats() const;
+  bool last_landed() const;
+  /// The current keyframe's camera (undefined without one) and a number that
+  /// changes whenever the current keyframe does (to replay which keyframe
+  /// each frame was drawn from).
+  /// Waits until the asynchronous keyframe in flight, if any, has landed (the
+  /// next draw() takes it): makes a run independent of the worker's speed,
+  /// for tests and for pausing. No-op without async keyframes.
+  void wait_for_keyframe();
+  const Camera& keyframe_camera() const;
+  long long keyframe_serial() const;
+
+  /// Forgets the keyframe, empties the cache, drops an asynchronous keyframe
+  /// in flight and zeroes async_stats(): the next draw() is a keyframe (e.g.
+  /// after a warm-up).
   void reset();
   bool has_keyframe() const;
   /// Error of `camera` against the current keyframe (zero without one).
@@ -134,6 +176,7 @@ class SpriteRenderer : public GlRenderer {
   enum class Decision { kAuto, kKeyframe, kSprite };
   Frame draw_as(const Camera& camera, Decision decision);
   void draw_sprite_pass(const Camera& camera);
+  SpriteError land_and_request(const Camera& camera, SpriteError e);
   struct State;
   std::unique_ptr<State> s_;
 };

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "terrasprite/error.h"
@@ -183,7 +184,7 @@ const GpuMesh& TerrainGpu::mesh(int quads) {
   return g;
 }
 
-void TerrainGpu::draw(const GpuMesh& m, const glm::mat4& vp, bool lighting, bool hand_filter) {
+void TerrainGpu::use_program(const glm::mat4& vp, bool lighting, bool hand_filter) {
   const GLuint p = hand_filter ? program_hand_.id() : program_.id();
   glUseProgram(p);
   glUniformMatrix4fv(glGetUniformLocation(p, "u_vp"), 1, GL_FALSE, glm::value_ptr(vp));
@@ -192,6 +193,10 @@ void TerrainGpu::draw(const GpuMesh& m, const glm::mat4& vp, bool lighting, bool
   glUniform1i(glGetUniformLocation(p, "u_drape"), 0);
   glBindTextureUnit(0, drape_.id());
   glBindSampler(0, hand_filter ? trilinear_ : 0);
+}
+
+void TerrainGpu::draw(const GpuMesh& m, const glm::mat4& vp, bool lighting, bool hand_filter) {
+  use_program(vp, lighting, hand_filter);
   if (m.parts.empty()) {
     glBindVertexArray(m.vao.id());
     glDrawElements(GL_TRIANGLES, m.index_count, GL_UNSIGNED_INT, nullptr);
@@ -200,6 +205,28 @@ void TerrainGpu::draw(const GpuMesh& m, const glm::mat4& vp, bool lighting, bool
     glBindVertexArray(part.vao.id());
     glDrawElements(GL_TRIANGLES, part.index_count, GL_UNSIGNED_INT, nullptr);
   }
+  glBindSampler(0, 0);
+}
+
+void TerrainGpu::draw_in_pieces(const GpuMesh& m, const glm::mat4& vp, bool lighting, int pieces,
+                                const std::function<void()>& between) {
+  use_program(vp, lighting, false);
+  const std::size_t parts = std::max<std::size_t>(m.parts.size(), 1);
+  const long long n = static_cast<long long>(parts);
+  const long long per_part = std::max<long long>(1, (pieces + n - 1) / n);
+  auto draw_part = [&](const GpuMesh& part) {
+    glBindVertexArray(part.vao.id());
+    const long long triangles = part.index_count / 3;
+    const long long step = (triangles + per_part - 1) / per_part;
+    for (long long first = 0; first < triangles; first += step) {
+      const long long count = std::min(step, triangles - first);
+      glDrawElements(GL_TRIANGLES, GLsizei(3 * count), GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(std::uintptr_t(3 * first * sizeof(GLuint))));
+      between();
+    }
+  };
+  if (m.parts.empty()) draw_part(m);
+  for (const GpuMesh& part : m.parts) draw_part(part);
   glBindSampler(0, 0);
 }
 

@@ -2,6 +2,7 @@
 // The terrain's GPU side: drape texture, grid meshes per level and the plain
 // terrain shader, shared by the raster and sprite renderers through Scene.
 #pragma once
+#include <functional>
 #include <glm/glm.hpp>
 #include <map>
 #include <vector>
@@ -43,6 +44,13 @@ class TerrainGpu {
   /// kHandFilterGlsl), optional sun lighting. The target must be bound.
   void draw(const GpuMesh& m, const glm::mat4& view_projection, bool lighting,
             bool hand_filter = false);
+  /// draw() with the hardware filter, split into about `pieces` draws of
+  /// consecutive triangles with `between()` called after each (a keyframe on
+  /// a second context calls glFinish there: llvmpipe has one rasterizer for
+  /// all contexts, taking whole flushed batches in turn, so small batches let
+  /// the other context's frames through).
+  void draw_in_pieces(const GpuMesh& m, const glm::mat4& view_projection, bool lighting, int pieces,
+                      const std::function<void()>& between);
   /// Uniforms mapping world (x, y) to drape texture coordinates: uv = xy * scale + offset.
   glm::vec4 uv_transform() const;
   GLuint drape() const { return drape_.id(); }
@@ -50,6 +58,8 @@ class TerrainGpu {
   GLuint trilinear_sampler() const { return trilinear_; }
 
  private:
+  void use_program(const glm::mat4& view_projection, bool lighting, bool hand_filter);
+
   const Terrain& terrain_;
   gl::Texture drape_{GL_TEXTURE_2D};
   gl::Program program_;            // the plain textured terrain shader, hardware filtering

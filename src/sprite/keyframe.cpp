@@ -10,7 +10,8 @@ Keyframe::Keyframe(int width, int height, const CoarseGrid& grid) : target(width
   fallback.assign(static_cast<std::size_t>(grid.quad_count()), 1);
 }
 
-void Keyframe::capture(TerrainGpu& scene, const CoarseGrid& grid, const Camera& c, bool lighting) {
+void Keyframe::capture(TerrainGpu& scene, const CoarseGrid& grid, const Camera& c, bool lighting,
+                       int pieces) {
   camera = c;
   view_projection = glm::mat4(gl::view_projection_reversed_z(c));
   target.bind_and_clear();
@@ -18,7 +19,10 @@ void Keyframe::capture(TerrainGpu& scene, const CoarseGrid& grid, const Camera& 
   // terrain, and bilinear taps across a silhouette stay premultiplied.
   glClearColor(0.f, 0.f, 0.f, 0.f);
   glClear(GL_COLOR_BUFFER_BIT);
-  scene.draw(scene.mesh(0), view_projection, lighting);
+  if (pieces > 1)
+    scene.draw_in_pieces(scene.mesh(0), view_projection, lighting, pieces, [] { glFinish(); });
+  else
+    scene.draw(scene.mesh(0), view_projection, lighting);
 
   const std::vector<float> depth = target.read_depth(c.near_m, c.far_m);
   const DepthView dv{depth, target.width(), target.height()};

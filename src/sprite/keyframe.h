@@ -25,7 +25,11 @@ struct Keyframe {
   /// Renders `camera` from the full-resolution mesh into the textures, reads
   /// the depth back, and classifies the coarse vertices and quad centres
   /// (visible, hidden, outside the view). Drains the pipeline (depth read-back).
-  void capture(TerrainGpu& scene, const CoarseGrid& grid, const Camera& camera, bool lighting);
+  /// `pieces` > 1 draws the mesh in that many batches, each drained before
+  /// the next (TerrainGpu::draw_in_pieces): for a keyframe drawn beside
+  /// another context's frames on a shared software rasterizer.
+  void capture(TerrainGpu& scene, const CoarseGrid& grid, const Camera& camera, bool lighting,
+               int pieces = 1);
 };
 
 }  // namespace terrasprite

@@ -9,8 +9,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
 
 #include "gl/frame_timer.h"
+#include "sprite/async_keyframes.h"
+#include "sprite/camera_prediction.h"
 #include "sprite/keyframe.h"
 #include "sprite/keyframe_cache.h"
 #include "sprite/sprite_pass.h"
@@ -41,13 +44,24 @@ const char* to_string(CachePolicy p) {
 // At most this fraction of the in-view coarse-quad centres may be missing
 // from a reused cached keyframe.
 constexpr double kCacheMaxFallback = 0.25;
+// Asynchronous keyframes: how many frames ahead the first request looks,
+// before any keyframe has landed to measure the latency.
+constexpr double kInitialLatencyFrames = 8;
 
 struct SpriteRenderer::State {
   Scene& scene;
   SpriteOptions options;
   CoarseGrid grid;
   int width, height;
-  std::unique_ptr<Keyframe> key;  // the current keyframe (always allocated)
+  std::unique_ptr<Keyframe> key;          // the keyframe drawn in this context (always allocated)
+  std::unique_ptr<AsyncKeyframes> async;  // the keyframe worker, when on
+  const Keyframe* held = nullptr;         // the worker's keyframe in use; null: `key` is current
+  CameraPredictor predictor;
+  AsyncKeyframeStats async_stats;
+  long long requested_at = 0;  // tick of the request in flight
+  double latency_frames = kInitialLatencyFrames;
+  bool landed = false;   // the last draw took a landed keyframe
+  long long serial = 0;  // changes with the current keyframe
   KeyframeCache cache;
   long long tick = 0;  // draws so far (the cache's clock)
   bool cache_hit = false;
@@ -71,9 +85,16 @@ struct SpriteRenderer::State {
   static int cache_capacity(const SpriteOptions& o, int w, int h) {
     return int(std::max<std::size_t>(o.cache_bytes / keyframe_bytes(w, h), 1) - 1);
   }
+  const Keyframe& current() const { return held ? *held : *key; }
+  /// The worker's keyframe in use goes back to it (`key` is current again).
+  void drop_held() {
+    if (held) async->give_back(std::exchange(held, nullptr));
+  }
   /// A keyframe to render into: the current one goes to the cache, and the
   /// cache's evicted one (or a new one) comes back.
   void retire_current(const Camera& now) {
+    drop_held();
+    ++serial;
     if (cache.capacity() == 0 || !key->valid) return;
     std::unique_ptr<Keyframe> spare = cache.put(std::move(key), tick, now);
     key = spare ? std::move(spare) : std::make_unique<Keyframe>(width, height, grid);
@@ -85,6 +106,8 @@ namespace {
 const SpriteOptions& validated(const SpriteOptions& o) {
   if (o.lod_quads < 1)
     throw InputError(fmt::format("lod_quads {}: must be at least 1", o.lod_quads));
+  if (o.async_context && o.cache_bytes > 0)
+    throw InputError("async keyframes and the keyframe cache cannot be combined");
   if (!(o.cache_accept > 0 && o.cache_accept <= 1))
     throw InputError(fmt::format("cache_accept {}: must be in (0, 1]", o.cache_accept));
   if (!(o.threshold_px > 0))
@@ -100,6 +123,9 @@ SpriteRenderer::SpriteRenderer(Scene& scene, int width, int height, SpriteOption
   // Upload both meshes now, not inside the first timed frame.
   scene.prepare(0);
   scene.prepare(options.lod_quads);
+  if (options.async_context)
+    s_->async = std::make_unique<AsyncKeyframes>(*options.async_context, scene.terrain(), s_->grid,
+                                                 width, height, options.lighting);
 }
 
 SpriteRenderer::~SpriteRenderer() = default;
@@ -108,9 +134,15 @@ std::string SpriteRenderer::name() const {
   return fmt::format("sprite{}", s_->options.lod_quads);
 }
 bool SpriteRenderer::has_keyframe() const {
-  return s_->key->valid;
+  return s_->current().valid;
 }
 void SpriteRenderer::reset() {
+  s_->drop_held();
+  if (s_->async) s_->async->cancel();
+  s_->predictor.clear();
+  s_->async_stats = {};
+  s_->latency_frames = kInitialLatencyFrames;
+  s_->landed = false;
   s_->key->valid = false;
   s_->cache.clear();
   s_->cache_hit = false;
@@ -130,7 +162,25 @@ const CoarseGrid& SpriteRenderer::grid() const {
   return s_->grid;
 }
 const std::vector<std::uint8_t>& SpriteRenderer::fallback_quads() const {
-  return s_->key->fallback;
+  return s_->current().fallback;
+}
+bool SpriteRenderer::async() const {
+  return s_->async != nullptr;
+}
+const AsyncKeyframeStats& SpriteRenderer::async_stats() const {
+  return s_->async_stats;
+}
+bool SpriteRenderer::last_landed() const {
+  return s_->landed;
+}
+void SpriteRenderer::wait_for_keyframe() {
+  if (s_->async) s_->async->wait_landed();
+}
+const Camera& SpriteRenderer::keyframe_camera() const {
+  return s_->current().camera;
+}
+long long SpriteRenderer::keyframe_serial() const {
+  return s_->serial;
 }
 
 int SpriteRenderer::cached_keyframes() const {
@@ -147,8 +197,8 @@ bool SpriteRenderer::last_cache_hit() const {
 }
 
 SpriteError SpriteRenderer::error(const Camera& camera) const {
-  if (!s_->key->valid) return {};
-  return sprite_error(s_->grid, s_->key->samples, camera);
+  if (!s_->current().valid) return {};
+  return sprite_error(s_->grid, s_->current().samples, camera);
 }
 
 std::optional<Trigger> SpriteRenderer::trigger_for(const SpriteError& e) const {
@@ -168,7 +218,7 @@ void SpriteRenderer::make_keyframe(const Camera& camera) {
 void SpriteRenderer::draw_sprite_pass(const Camera& camera) {
   State& s = *s_;
   TerrainGpu& terrain = s.scene.terrain_gpu();
-  s.flags = s.key->fallback;
+  s.flags = s.current().fallback;
   if (s.options.sharp_px > 0) {
     // Quads whose coarse geometry is already right at this distance take the drape texture.
     const double limit = s.options.sharp_px * camera.pixel_angle(height());
@@ -178,7 +228,7 @@ void SpriteRenderer::draw_sprite_pass(const Camera& camera) {
         s.flags[q] = 1;
   }
   begin_output();
-  s.pass.draw(terrain, terrain.mesh(s.options.lod_quads), *s.key,
+  s.pass.draw(terrain, terrain.mesh(s.options.lod_quads), s.current(),
               glm::mat4(gl::view_projection_reversed_z(camera)), s.flags, s.options.lighting);
 }
 
@@ -188,13 +238,18 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
   timer().begin();
   ++s.tick;
   s.cache_hit = false;
+  s.landed = false;
   const auto decision_start = std::chrono::steady_clock::now();
+  if (s.async) s.predictor.observe(camera);
   SpriteError e = error(camera);
-  if (!s.key->valid) {
+  if (!has_keyframe()) {
     e = {};
     s.trigger = Trigger::kFirst;
   } else if (d == Decision::kKeyframe) {
     s.trigger = Trigger::kForced;
+  } else if (d == Decision::kAuto && s.async) {
+    e = land_and_request(camera, e);
+    s.trigger.reset();
   } else if (d == Decision::kAuto) {
     s.trigger = trigger_for(e);
     if (s.trigger && s.cache.size() > 0) {
@@ -212,6 +267,7 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
       if (hit) {
         s.cache.put(std::move(s.key), s.tick, camera);  // an evicted keyframe is freed
         s.key = std::move(hit);
+        ++s.serial;
         s.cache_hit = true;
         s.trigger.reset();
         e = error(camera);
@@ -263,6 +319,45 @@ void SpriteRenderer::read_back(Frame& f, ReadBack what) {
         f.color.rgba[i + 2] = kSkyColor[2];
         f.color.rgba[i + 3] = 255;
       }
+}
+
+// Asynchronous keyframes, once per automatic frame: take the keyframe that
+// landed, if any (used when under the trigger for this view, or else when
+// better than the current one), then ask for the next one when the current
+// keyframe fails this view or the view predicted for when it would land.
+SpriteError SpriteRenderer::land_and_request(const Camera& camera, SpriteError e) {
+  State& s = *s_;
+  AsyncKeyframeStats& st = s.async_stats;
+  const ErrorMetric m = s.options.metric;
+  if (const Keyframe* k = s.async->take()) {
+    s.landed = true;
+    ++st.landed;
+    st.last_latency_frames = double(s.tick - s.requested_at);
+    st.mean_latency_frames += (st.last_latency_frames - st.mean_latency_frames) / double(st.landed);
+    s.latency_frames = st.last_latency_frames;
+    const SpriteError ek = sprite_error(s.grid, k->samples, camera);
+    const bool late = trigger_for(ek).has_value();
+    st.late += late;
+    if (!late || ek.value(m) < e.value(m)) {
+      s.drop_held();
+      s.held = k;
+      ++s.serial;
+      ++st.used;
+      st.late_used += late;
+      e = ek;
+    } else {
+      s.async->give_back(k);
+    }
+  }
+  if (!s.async->busy()) {
+    const Camera ahead = s.predictor.predict(s.latency_frames, s.scene.terrain().heights);
+    if (trigger_for(e) || trigger_for(sprite_error(s.grid, s.current().samples, ahead))) {
+      s.async->request(ahead);
+      s.requested_at = s.tick;
+      ++st.requested;
+    }
+  }
+  return e;
 }
 
 Frame SpriteRenderer::draw(const Camera& camera) {

@@ -92,4 +92,30 @@ TEST(BenchLodsprite, BadOptionsExitWithStatus2) {
   EXPECT_EQ(run("bench lodsprite --size 0x0"), 2);
 }
 
+TEST(BenchLodsprite, AsyncReportsBothDisplays) {
+  tstest::TempDir tmp;
+  const std::string json = (tmp.path / "a.json").string(), out = (tmp.path / "report").string();
+  ASSERT_EQ(run("bench lodsprite --synthetic-size 65 --resample 65 --frames 12 --size 64x64 "
+                "--lod-quads 4 "
+                "--async --thresholds 1 --frame-counts 12 --lod-sweep 4 --json " +
+                json + " --out " + out),
+            0);
+  std::ifstream f(json);
+  const nlohmann::json d = nlohmann::json::parse(f);
+  EXPECT_EQ(d["async"], true);
+  ASSERT_TRUE(d.contains("async_run"));
+  const nlohmann::json& a = d["async_run"];
+  for (const char* k : {"p99_ms", "p99_over_median", "p99_over_sync_sprite_median", "mean_ssim",
+                        "mean_ssim_sync", "mean_psnr", "targets", "method"})
+    EXPECT_TRUE(a.contains(k)) << k;
+  for (const char* display : {"sync_display", "async_display"}) {
+    EXPECT_EQ(a[display]["frame_ms"].size(), 12u) << display;
+    EXPECT_GT(double(a[display]["median_ms"]), 0.0) << display;
+  }
+  EXPECT_EQ(a["async_display"]["keyframes_in_frame"], 1);  // only the first frame waits
+  EXPECT_GE(double(a["mean_ssim"]), 0.0);
+  EXPECT_LE(double(a["mean_ssim"]), 1.0);
+  EXPECT_EQ(run("bench lodsprite --async --cache"), 2);
+}
+
 }  // namespace

@@ -158,8 +158,7 @@ class LockstepSource final : public CameraSource {
   std::optional<Camera> camera(int frame) override {
     while (asked_ < frame) {
       std::int32_t i = 0;
-      if (!read_all(kChildIn, &i, sizeof i) || i < 0 || i >= int(path_.size()))
-        return std::nullopt;
+      if (!read_all(kChildIn, &i, sizeof i) || i < 0 || i >= int(path_.size())) return std::nullopt;
       asked_ = i;
     }
     if (asked_ != frame) return std::nullopt;
@@ -203,10 +202,20 @@ class InMemoryPeer {
       ::close(to_child[1]);
       return;
     }
-    std::vector<std::string> args = {"/proc/self/exe", "bench", "stream", "--tiles", o.tiles,
-                                     "--size", o.size, "--path", o.path,
-                                     "--frames", std::to_string(o.frames), "--threads",
-                                     std::to_string(o.threads), "--in-memory-child"};
+    std::vector<std::string> args = {"/proc/self/exe",
+                                     "bench",
+                                     "stream",
+                                     "--tiles",
+                                     o.tiles,
+                                     "--size",
+                                     o.size,
+                                     "--path",
+                                     o.path,
+                                     "--frames",
+                                     std::to_string(o.frames),
+                                     "--threads",
+                                     std::to_string(o.threads),
+                                     "--in-memory-child"};
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
@@ -339,7 +348,8 @@ int stall_frames(const std::vector<double>& ms, const std::vector<double>& mem) 
       ref = mem[i];
     } else {
       const std::size_t a = i >= 10 ? i - 10 : 0, b = std::min(ms.size(), i + 11);
-      ref = median(std::vector<double>(ms.begin() + std::ptrdiff_t(a), ms.begin() + std::ptrdiff_t(b)));
+      ref = median(
+          std::vector<double>(ms.begin() + std::ptrdiff_t(a), ms.begin() + std::ptrdiff_t(b)));
     }
     n += ms[i] > 2 * ref;
   }
@@ -354,7 +364,8 @@ void write_plot(const OutputDir& out, const StreamRun& run, const std::vector<do
         << run.frames[i].st.degraded_samples << '\n';
   dat.close();
   std::ofstream gp(out.file("stream_frames.gp"));
-  gp << "set terminal pngcairo size 1000,700\nset output 'stream_frames.png'\nset multiplot layout 2,1\n"
+  gp << "set terminal pngcairo size 1000,700\nset output 'stream_frames.png'\nset multiplot layout "
+        "2,1\n"
      << "set grid\nset ylabel 'ms per frame'\nplot 'stream_frames.dat' using 1:2 with lines title "
         "'streamed', '' using 1:3 with lines title 'in memory'\n"
      << "set xlabel 'frame along the path'\nset ylabel 'log10(1 + degraded reads)'\n"
@@ -362,7 +373,8 @@ void write_plot(const OutputDir& out, const StreamRun& run, const std::vector<do
         "unset multiplot\n";
   gp.close();
   const std::string error = run_gnuplot(out.partial().string(), "stream_frames.gp");
-  if (!error.empty()) fmt::print(stderr, "warning: {}; stream_frames.dat kept without a plot\n", error);
+  if (!error.empty())
+    fmt::print(stderr, "warning: {}; stream_frames.dat kept without a plot\n", error);
 }
 
 nlohmann::json summary_json(const BenchStreamOpts& o, const TileSetInfo& set, const StreamRun& run,
@@ -385,7 +397,8 @@ nlohmann::json summary_json(const BenchStreamOpts& o, const TileSetInfo& set, co
     bytes += f.st.bytes_read;
   }
   const Summary s = summarize(ms);
-  const double late_pixels = double(w) * h * double(std::max<std::size_t>(1, ms.size() > 30 ? ms.size() - 30 : 0));
+  const double late_pixels =
+      double(w) * h * double(std::max<std::size_t>(1, ms.size() > 30 ? ms.size() - 30 : 0));
   nlohmann::json in_memory = nullptr;
   int compared = 0, equal = 0;
   if (!mem_ms.empty()) {
@@ -393,50 +406,54 @@ nlohmann::json summary_json(const BenchStreamOpts& o, const TileSetInfo& set, co
     in_memory = {{"median_ms", m.median},
                  {"p99_ms", m.p99},
                  {"peak_rss_mb", run.in_memory_peak_rss_mb},
-                 {"method", "another process, in lockstep: each frame drawn right after the "
-                            "streamed one"}};
+                 {"method",
+                  "another process, in lockstep: each frame drawn right after the "
+                  "streamed one"}};
     for (std::size_t i = 0; i < run.frames.size(); ++i)
       if (run.frames[i].st.degraded_samples == 0) {
         ++compared;
         equal += run.in_memory_hash[i] == run.frames[i].hash;
       }
   }
-  return {
-      {"terrain", {{"samples", {set.grid.width, set.grid.height}},
-                   {"bytes_on_disk", set.bytes_on_disk},
-                   {"levels", set.grid.coarsest_level + 1},
-                   {"tile_cells", 1 << set.grid.tile_log2}}},
-      {"tiles", o.tiles},
-      {"cache_mb", o.cache_mb},
-      {"io_threads", o.io_threads},
-      {"size", {w, h}},
-      {"path", o.path},
-      {"frames", int(ms.size())},
-      {"stream",
-       {{"median_ms", s.median},
-        {"p99_ms", s.p99},
-        {"stall_frames", stall_frames(ms, mem_ms)},
-        {"degraded_samples_total", degraded},
-        {"degraded_fraction_after_warmup", double(degraded_late) / late_pixels},
-        {"hit_rate", lookups ? 1.0 - double(misses) / double(lookups) : 1.0},
-        {"hit_rate_after_warmup", lookups_late ? 1.0 - double(misses_late) / double(lookups_late) : 1.0},
-        {"io_mb_s", double(bytes) / 1e6 / std::max(run.wall_ms / 1e3, 1e-9)},
-        {"bytes_read_mb", double(bytes) / 1e6},
-        {"peak_rss_mb", run.peak_rss_mb},
-        {"pinned_mb", double(run.pinned_bytes) / (1 << 20)},
-        {"first_frame_ms", run.first_frame_ms},
-        {"first_frame_parts_ms",
-         {{"open", run.open_ms}, {"path", run.path_ms}, {"pinned_levels", run.pinned_ms}}},
-        {"first_frame_method",
-         "from the start of the command to the first frame shown: open, then the path planned "
-         "while the pinned levels load (the two overlap), then frame 0; the in-memory peer's "
-         "load is not counted"}}},
-      {"in_memory", in_memory},
-      {"ratio_median", mem_ms.empty() ? nlohmann::json(nullptr)
-                                     : nlohmann::json(s.median / std::max(in_memory["median_ms"].get<double>(), 1e-9))},
-      {"images_equal_when_resident", {{"frames_compared", compared}, {"frames_equal", equal}}},
-      {"faults_injected", run.faults_injected},
-      {"faults_survived", run.faults_survived}};
+  return {{"terrain",
+           {{"samples", {set.grid.width, set.grid.height}},
+            {"bytes_on_disk", set.bytes_on_disk},
+            {"levels", set.grid.coarsest_level + 1},
+            {"tile_cells", 1 << set.grid.tile_log2}}},
+          {"tiles", o.tiles},
+          {"cache_mb", o.cache_mb},
+          {"io_threads", o.io_threads},
+          {"size", {w, h}},
+          {"path", o.path},
+          {"frames", int(ms.size())},
+          {"stream",
+           {{"median_ms", s.median},
+            {"p99_ms", s.p99},
+            {"stall_frames", stall_frames(ms, mem_ms)},
+            {"degraded_samples_total", degraded},
+            {"degraded_fraction_after_warmup", double(degraded_late) / late_pixels},
+            {"hit_rate", lookups ? 1.0 - double(misses) / double(lookups) : 1.0},
+            {"hit_rate_after_warmup",
+             lookups_late ? 1.0 - double(misses_late) / double(lookups_late) : 1.0},
+            {"io_mb_s", double(bytes) / 1e6 / std::max(run.wall_ms / 1e3, 1e-9)},
+            {"bytes_read_mb", double(bytes) / 1e6},
+            {"peak_rss_mb", run.peak_rss_mb},
+            {"pinned_mb", double(run.pinned_bytes) / (1 << 20)},
+            {"first_frame_ms", run.first_frame_ms},
+            {"first_frame_parts_ms",
+             {{"open", run.open_ms}, {"path", run.path_ms}, {"pinned_levels", run.pinned_ms}}},
+            {"first_frame_method",
+             "from the start of the command to the first frame shown: open, then the path planned "
+             "while the pinned levels load (the two overlap), then frame 0; the in-memory peer's "
+             "load is not counted"}}},
+          {"in_memory", in_memory},
+          {"ratio_median",
+           mem_ms.empty()
+               ? nlohmann::json(nullptr)
+               : nlohmann::json(s.median / std::max(in_memory["median_ms"].get<double>(), 1e-9))},
+          {"images_equal_when_resident", {{"frames_compared", compared}, {"frames_equal", equal}}},
+          {"faults_injected", run.faults_injected},
+          {"faults_survived", run.faults_survived}};
 }
 
 nlohmann::json per_frame_json(const StreamRun& run, const std::vector<double>& mem) {
@@ -472,8 +489,10 @@ void run(const BenchStreamOpts& o) {
   const auto t_start = Clock::now();
   auto [w, h] = parse_size(o.size, "--size");
   if (!o.cog.empty())
-    throw InputError(fmt::format("--cog {}: not supported yet; tile it with `terrasprite tile --dem {}`", o.cog, o.cog));
-  if (o.tiles.empty()) throw InputError("--tiles: required (a directory written by terrasprite tile)");
+    throw InputError(fmt::format(
+        "--cog {}: not supported yet; tile it with `terrasprite tile --dem {}`", o.cog, o.cog));
+  if (o.tiles.empty())
+    throw InputError("--tiles: required (a directory written by terrasprite tile)");
   if (o.frames < 1 || o.frames > 100000)
     throw InputError(fmt::format("--frames {}: must be between 1 and 100000", o.frames));
   if (o.cache_mb < 1 || o.cache_mb > 1 << 20)
@@ -536,7 +555,8 @@ void run(const BenchStreamOpts& o) {
 
 void add_bench_stream(CLI::App& bench) {
   auto* cmd = bench.add_subcommand(
-      "stream", "streamed terrain: frame times, stalls and degraded reads vs the terrain in memory");
+      "stream",
+      "streamed terrain: frame times, stalls and degraded reads vs the terrain in memory");
   auto o = std::make_shared<BenchStreamOpts>();
   cmd->add_option("--tiles", o->tiles, "tiled terrain directory (terrasprite tile --out DIR)");
   cmd->add_option("--cog", o->cog, "an existing COG (not supported yet: tile it first)");

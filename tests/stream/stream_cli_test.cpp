@@ -18,22 +18,27 @@ TEST(StreamCli, TileThenBenchStreamWritesTheContractKeys) {
   for (const char* f : {"height.tif", "color.tif", "bound.tif", "tiles.json"})
     EXPECT_TRUE(std::filesystem::exists(t.path / "tiles" / f)) << f;
   r = tstest::run_cli("bench stream --tiles " + (t / "tiles") +
-                      " --cache-mb 1 --size 96x64 --frames 8 --json " + (t / "s.json") + " --out " + (t / "s"));
+                      " --cache-mb 1 --size 96x64 --frames 8 --json " + (t / "s.json") + " --out " +
+                      (t / "s"));
   ASSERT_EQ(r.status, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(t / "s.json"));
-  for (const char* k : {"terrain", "cache_mb", "stream", "in_memory", "ratio_median", "faults_injected", "faults_survived"})
+  for (const char* k : {"terrain", "cache_mb", "stream", "in_memory", "ratio_median",
+                        "faults_injected", "faults_survived"})
     EXPECT_TRUE(j.contains(k)) << k;
-  for (const char* k : {"median_ms", "p99_ms", "stall_frames", "degraded_samples_total",
-                        "degraded_fraction_after_warmup", "hit_rate", "io_mb_s", "peak_rss_mb", "first_frame_ms"})
+  for (const char* k :
+       {"median_ms", "p99_ms", "stall_frames", "degraded_samples_total",
+        "degraded_fraction_after_warmup", "hit_rate", "io_mb_s", "peak_rss_mb", "first_frame_ms"})
     EXPECT_TRUE(j["stream"].contains(k)) << k;
-  EXPECT_EQ(j["images_equal_when_resident"]["frames_compared"], j["images_equal_when_resident"]["frames_equal"]);
+  EXPECT_EQ(j["images_equal_when_resident"]["frames_compared"],
+            j["images_equal_when_resident"]["frames_equal"]);
   EXPECT_GT(j["images_equal_when_resident"]["frames_compared"].get<int>(), 0);
   ASSERT_EQ(j["per_frame"].size(), 8u);
   // The in-memory peer answered every streamed frame (lockstep), and the
   // ratio is the medians' quotient.
   for (const auto& f : j["per_frame"]) EXPECT_GT(f["in_memory_ms"].get<double>(), 0) << f.dump();
   EXPECT_NEAR(j["ratio_median"].get<double>(),
-              j["stream"]["median_ms"].get<double>() / j["in_memory"]["median_ms"].get<double>(), 1e-9);
+              j["stream"]["median_ms"].get<double>() / j["in_memory"]["median_ms"].get<double>(),
+              1e-9);
 }
 
 TEST(StreamCli, RefusesADirectoryOfTheUsersAndSurvivesInjectedFaults) {
@@ -43,16 +48,19 @@ TEST(StreamCli, RefusesADirectoryOfTheUsersAndSurvivesInjectedFaults) {
   auto r = tstest::run_cli("tile --synthetic-size 65 --out " + (t / "mine"));
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_TRUE(std::filesystem::exists(t.path / "mine/notes.txt"));
-  ASSERT_EQ(tstest::run_cli("tile --synthetic-size 129 --tile-size 16 --out " + (t / "tiles")).status, 0);
+  ASSERT_EQ(
+      tstest::run_cli("tile --synthetic-size 129 --tile-size 16 --out " + (t / "tiles")).status, 0);
   r = tstest::run_cli_prefixed("TERRASPRITE_STREAM_FAULTS=0.3",
-                               "bench stream --tiles " + (t / "tiles") + " --cache-mb 1 --size 96x64 --frames 6 --in-memory no --json " +
+                               "bench stream --tiles " + (t / "tiles") +
+                                   " --cache-mb 1 --size 96x64 --frames 6 --in-memory no --json " +
                                    (t / "f.json") + " --out " + (t / "f"));
   ASSERT_EQ(r.status, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(t / "f.json"));
   EXPECT_GT(j["faults_injected"].get<int>(), 0);
   EXPECT_EQ(j["faults_survived"], j["faults_injected"]);
   EXPECT_TRUE(j["in_memory"].is_null());
-  EXPECT_EQ(tstest::run_cli("bench stream --tiles " + (t / "nothing") + " --out " + (t / "n")).status, 2);
+  EXPECT_EQ(
+      tstest::run_cli("bench stream --tiles " + (t / "nothing") + " --out " + (t / "n")).status, 2);
 }
 
 }  // namespace

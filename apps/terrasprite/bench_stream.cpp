@@ -186,7 +186,11 @@ void run_in_memory_child(const BenchStreamOpts& o, const TileSetInfo& set, int w
             const ChildReply reply{frame++, fr.ms, image_hash(f.color), peak_resident_mb()};
             if (!write_all(kChildOut, &reply, sizeof reply)) std::exit(0);  // the parent is gone
           }});
-  ex.run(cameras, {});
+  // No warm-up draw: the streamed run has none either (its first frame is
+  // part of the figures), so frame 0 is cold on both sides.
+  ExperimentOptions eo;
+  eo.warmup_draws = 0;
+  ex.run(cameras, eo);
 }
 
 // The parent's side: the child process and its two pipes.

@@ -104,6 +104,16 @@ struct SpeedupBound {
   double speedup_bound = 0, efficiency = 0, key_over_full_median = 0;
 };
 
+/// The paper's keyframe budget, speed-up and quality against plain LOD: the
+/// JSON's `targets` and the report's target table, decided here once.
+struct LodspriteTargets {
+  bool keyframes_at_most_28 = false;
+  bool efficiency_at_least_0_9 = false;
+  bool ssim_above_lod_on_95pct = false;
+  bool mean_psnr_above_lod = false;
+  bool mean_psnr_above_lod_on_sprite_frames = false;
+};
+
 struct LodspriteResult {
   // ---- what ran ----
   std::string gl_renderer;
@@ -133,6 +143,15 @@ struct LodspriteResult {
   std::optional<AsyncComparison> async;  ///< the simulated displays (--async)
   std::vector<FigureCompare> figures;
   std::vector<LodspriteFrame> per_frame;
+
+  LodspriteTargets targets() const {
+    return {.keyframes_at_most_28 = sprite.keyframes <= 28,
+            .efficiency_at_least_0_9 = bound.efficiency >= 0.9,
+            .ssim_above_lod_on_95pct = sprite.ssim_above_lod_fraction >= 0.95,
+            .mean_psnr_above_lod = sprite.mean_psnr > lod.mean_psnr,
+            .mean_psnr_above_lod_on_sprite_frames =
+                sprite.mean_psnr_sprite_frames > lod.mean_psnr_sprite_frames};
+  }
 };
 
 /// How the sweeps' speed-ups are measured: the JSON and the page both say it.

@@ -29,6 +29,17 @@ int differing_pixels(const ts::Image& a, const ts::Image& b) {
   return n;
 }
 
+// A square pyramid ("tower", model "t") written into `dir`, in a scene with
+// the given model keys (height, colour) and instances.
+ts::ObjectScene tower_scene(const tstest::TempDir& dir, const ts::Terrain& terrain,
+                            const std::string& model_keys, const std::string& instances) {
+  std::ofstream(dir / "tower.obj") << "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 3 0\n"
+                                      "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\nf 1 3 2\nf 1 4 3\n";
+  return ts::parse_object_scene(R"({"models": [{"name": "t", "file": "tower.obj", )" + model_keys +
+                                    R"(}], "instances": )" + instances + "}",
+                                "scene", dir.path.string(), terrain.heights);
+}
+
 struct World {
   tstest::TempDir dir;
   ts::Terrain terrain;
@@ -37,12 +48,9 @@ struct World {
     ts::TerrainOptions o;
     o.synthetic_size = 65;
     terrain = ts::load_terrain(o);
-    std::ofstream(dir / "tower.obj") << "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 3 0\n"
-                                        "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\nf 1 3 2\nf 1 4 3\n";
-    objects = ts::parse_object_scene(
-        R"({"models": [{"name": "t", "file": "tower.obj", "height_m": 150, "color": [1, 0, 0]}],
-            "instances": [{"model": "t", "position": [0, 0]}, {"model": "t", "position": [300, 200]}]})",
-        "scene", dir.path.string(), terrain.heights);
+    objects = tower_scene(
+        dir, terrain, R"("height_m": 150, "color": [1, 0, 0])",
+        R"([{"model": "t", "position": [0, 0]}, {"model": "t", "position": [300, 200]}])");
   }
 };
 
@@ -120,12 +128,8 @@ struct RidgeWorld {
     h.name = "ridge";
     terrain.texture = ts::checker_texture(8, 256);
     terrain.texture_name = "checker";
-    std::ofstream(dir / "tower.obj") << "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 3 0\n"
-                                        "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\nf 1 3 2\nf 1 4 3\n";
-    objects = ts::parse_object_scene(
-        R"({"models": [{"name": "t", "file": "tower.obj", "height_m": 30, "color": [0, 0, 1]}],
-            "instances": [{"model": "t", "position": [0, 40]}]})",
-        "scene", dir.path.string(), terrain.heights);
+    objects = tower_scene(dir, terrain, R"("height_m": 30, "color": [0, 0, 1])",
+                          R"([{"model": "t", "position": [0, 40]}])");
   }
 };
 

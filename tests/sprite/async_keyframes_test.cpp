@@ -15,33 +15,17 @@
 #include "terrasprite/mesh_renderer.h"
 #include "terrasprite/sprite_renderer.h"
 #include "terrasprite/terrain_gen.h"
+#include "sprite_test_util.h"
 
 namespace terrasprite {
 namespace {
 
-Terrain small_mountains() {
-  Terrain t;
-  t.heights = synthesize_terrain({.size = 129, .spacing_m = 60.0, .relief_m = 1500.0});
-  t.texture = derived_texture(t.heights, 256, 256);
-  return t;
-}
+using namespace sprite_test;
 
 std::vector<std::uint8_t> texture_bytes(GLuint texture, int w, int h) {
   std::vector<std::uint8_t> out(std::size_t(w) * h * 4);
   glGetTextureImage(texture, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(out.size()), out.data());
   return out;
-}
-
-double psnr(const Image& a, const Image& b) {
-  double se = 0;
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < a.rgba.size(); ++i) {
-    if (i % 4 == 3) continue;
-    const double d = double(a.rgba[i]) - double(b.rgba[i]);
-    se += d * d;
-    ++n;
-  }
-  return se == 0 ? 100.0 : 10.0 * std::log10(255.0 * 255.0 / (se / n));
 }
 
 struct Coverage {

@@ -9,16 +9,12 @@
 #include "terrasprite/gl_context.h"
 #include "terrasprite/sprite_renderer.h"
 #include "terrasprite/terrain_gen.h"
+#include "sprite_test_util.h"
 
 namespace terrasprite {
 namespace {
 
-Terrain small_mountains() {
-  Terrain t;
-  t.heights = synthesize_terrain({.size = 129, .spacing_m = 60.0, .relief_m = 1500.0});
-  t.texture = derived_texture(t.heights, 256, 256);
-  return t;
-}
+using namespace sprite_test;
 
 std::vector<Camera> there_and_back(const Heightfield& h, int frames, double aspect) {
   std::vector<Camera> p = paper_path(h, frames, aspect);

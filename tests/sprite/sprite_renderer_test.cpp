@@ -11,21 +11,12 @@
 #include "terrasprite/camera_path.h"
 #include "terrasprite/gl_context.h"
 #include "terrasprite/terrain_gen.h"
+#include "sprite_test_util.h"
 
 namespace terrasprite {
 namespace {
 
-double psnr(const Image& a, const Image& b) {
-  double se = 0;
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < a.rgba.size(); ++i) {
-    if (i % 4 == 3) continue;
-    const double d = double(a.rgba[i]) - double(b.rgba[i]);
-    se += d * d;
-    ++n;
-  }
-  return se == 0 ? INFINITY : 10.0 * std::log10(255.0 * 255.0 / (se / n));
-}
+using namespace sprite_test;
 
 Terrain gentle_hills(int n) {
   Terrain t;

@@ -15,16 +15,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <optional>
 #include <fstream>
 #include <future>
 #include <memory>
+#include <optional>
 #include <thread>
 
 #include "bench_commands.h"
 #include "cli_common.h"
-#include "process_memory.h"
 #include "plot.h"
+#include "process_memory.h"
 #include "stream/tile_file.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/error.h"

@@ -7,11 +7,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <limits>
-#include <string_view>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
+#include <string_view>
 
 #include "terrasprite/error.h"
 #include "terrasprite/output_dir.h"

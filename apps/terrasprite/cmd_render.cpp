@@ -5,23 +5,23 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <memory>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <optional>
 
 #include "cli_common.h"
-#include "process_memory.h"
 #include "commands.h"
+#include "process_memory.h"
 #include "render_modes.h"
 #include "scene_objects.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/error.h"
 #include "terrasprite/flythrough.h"
 #include "terrasprite/output_dir.h"
-#include "terrasprite/warp_renderer.h"
 #include "terrasprite/output_file.h"
 #include "terrasprite/video_writer.h"
+#include "terrasprite/warp_renderer.h"
 
 namespace terrasprite::cli {
 namespace {

@@ -2,8 +2,6 @@
 // Plots (gnuplot, pngcairo) and index.html for `bench lodsprite` and `demo`.
 #include "lodsprite_report.h"
 
-#include "plot.h"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -11,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "plot.h"
 #include "terrasprite/error.h"
 
 namespace terrasprite::cli {

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // What a viewer run measured: displayed frames and input-to-display latency.
 #pragma once
-#include <nlohmann/json.hpp>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 

@@ -98,7 +98,8 @@ TEST_F(ImpostorTest, OctahedralMatchesMesh) {
   const auto mask = coverage(a, b);
   const double s = ts::quality::ssim(a.color.view(), b.color.view(), {}, mask).ssim;
   RecordProperty("ssim", std::to_string(s));
-  EXPECT_GT(s, 0.88);  // measured 0.92 (0.79 before the fixes of issue-10-s9): blended views soften edges
+  EXPECT_GT(
+      s, 0.88);  // measured 0.92 (0.79 before the fixes of issue-10-s9): blended views soften edges
 }
 
 TEST_F(ImpostorTest, HalfHiddenBehindAWall) {

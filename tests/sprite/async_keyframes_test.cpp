@@ -9,13 +9,13 @@
 
 #include <cmath>
 
+#include "sprite_test_util.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/error.h"
 #include "terrasprite/gl_context.h"
 #include "terrasprite/mesh_renderer.h"
 #include "terrasprite/sprite_renderer.h"
 #include "terrasprite/terrain_gen.h"
-#include "sprite_test_util.h"
 
 namespace terrasprite {
 namespace {

@@ -4,12 +4,12 @@
 // and flying a path back reuses keyframes from the way out.
 #include <gtest/gtest.h>
 
+#include "sprite_test_util.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/error.h"
 #include "terrasprite/gl_context.h"
 #include "terrasprite/sprite_renderer.h"
 #include "terrasprite/terrain_gen.h"
-#include "sprite_test_util.h"
 
 namespace terrasprite {
 namespace {

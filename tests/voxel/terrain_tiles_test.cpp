@@ -2,6 +2,8 @@
 // The tile accessor the ray caster reads terrain through: the in-memory
 // pyramid's tiles agree with the height field and bound it, and the caster
 // falls back to coarser levels where tiles are not resident.
+#include "terrasprite/terrain_tiles.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +14,6 @@
 
 #include "terrasprite/quality.h"
 #include "terrasprite/terrain_gen.h"
-#include "terrasprite/terrain_tiles.h"
 #include "terrasprite/voxel_renderer.h"
 
 namespace terrasprite {

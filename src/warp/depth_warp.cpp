@@ -479,23 +479,34 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
       bool any = false;
       for (int x0 = 0; x0 < out.w; x0 += kSpan) {
         const int x1 = std::min(x0 + kSpan, out.w);
-        if (!tiny)
-          map_span(map, dir, step, keys, ref.frame.depth.data(), sw, sh, kx, ky, x0, x1, y, m);
+        if (tiny) {
+          for (int x = x0; x < x1; ++x) {
+            const bool ok = (keys[x] != kEmpty && local.winner(keys[x], x, y)) || local.search(x, y);
+            miss[x] = !ok;
+            any = any || !ok;
+          }
+          continue;
+        }
+        map_span(map, dir, step, keys, ref.frame.depth.data(), sw, sh, kx, ky, x0, x1, y, m);
+        // Every pixel first as a winner reads (and sky, from its direction):
+        // passes without branches; the other kinds overwrite theirs below.
+        const int n = x1 - x0;
+        for (int k = 0; k < n; ++k)
+          color[x0 + k] = bilinear_block(src, m.off[k], sw, m.wx[k], m.wy[k]);
+        for (int k = 0; k < n; ++k) {
+          depth[x0 + k] = m.zt[k];
+          hole[x0 + k] = 0;
+          miss[x0 + k] = 0;
+        }
+        if (options.keep_sources) {
+          std::copy_n(m.sx, n, result.source_x.data() + row + x0);
+          std::copy_n(m.sy, n, result.source_y.data() + row + x0);
+        }
         for (int x = x0; x < x1; ++x) {
           const int k = x - x0;
+          if (m.kind[k] == kWinner) continue;
           bool ok;
-          if (tiny) {
-            ok = (keys[x] != kEmpty && local.winner(keys[x], x, y)) || local.search(x, y);
-          } else if (m.kind[k] == kWinner) {
-            color[x] = bilinear_block(src, m.off[k], sw, m.wx[k], m.wy[k]);
-            depth[x] = m.zt[k];
-            hole[x] = 0;
-            if (options.keep_sources) {
-              result.source_x[row + x] = m.sx[k];
-              result.source_y[row + x] = m.sy[k];
-            }
-            ok = true;
-          } else if (m.kind[k] == kSearch) {
+          if (m.kind[k] == kSearch) {
             ok = local.search(x, y);
           } else {
             // A crack has a winner beside it (checked first); otherwise the
@@ -512,7 +523,8 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
               ok = local.search(x, y);
             } else {
               // Sky where the reference sees sky in this direction (the
-              // three probes of sees_sky); else a hole.
+              // three probes of sees_sky; its colour and source are already
+              // written); else a hole.
               const float sx = m.sx[k], sy = m.sy[k];
               auto sky_at = [&](float px, float py) {
                 const int i = std::clamp(int(px), 0, sw - 1), j = std::clamp(int(py), 0, sh - 1);
@@ -520,13 +532,7 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
               };
               if (m.sky[k] && (sky_at(sx, sy) || sky_at(sx + 0.5f, sy + 0.5f) ||
                                sky_at(sx - 0.5f, sy - 0.5f))) {
-                color[x] = bilinear_block(src, m.off[k], sw, m.wx[k], m.wy[k]);
                 depth[x] = Frame::kSky;
-                hole[x] = 0;
-                if (options.keep_sources) {
-                  result.source_x[row + x] = sx;
-                  result.source_y[row + x] = sy;
-                }
                 ok = true;
               } else {
                 ok = local.hole(x, y);

@@ -481,7 +481,8 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
         const int x1 = std::min(x0 + kSpan, out.w);
         if (tiny) {
           for (int x = x0; x < x1; ++x) {
-            const bool ok = (keys[x] != kEmpty && local.winner(keys[x], x, y)) || local.search(x, y);
+            const bool ok =
+                (keys[x] != kEmpty && local.winner(keys[x], x, y)) || local.search(x, y);
             miss[x] = !ok;
             any = any || !ok;
           }

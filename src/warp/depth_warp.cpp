@@ -18,10 +18,12 @@
 // Speed: both passes work in spans of a row, first a loop without branches
 // that vectorises (where each real pixel lands; where each output pixel
 // reads, from its winner or, for an empty pixel, from its direction: sky is
-// a homography of the rotation alone), then one pixel at a time. An empty
-// pixel with no winner within 2 px is sky or a hole at once; only those near
-// winners (cracks, silhouettes) pay the neighbour search and iteration. The
-// buffers come from the caller's Warper.
+// a homography of the rotation alone), then every pixel of the span is read
+// and written as a winner would be, and only the others are visited one at
+// a time. An empty pixel with no winner within 2 px is sky or a hole at
+// once; only those near winners (cracks, silhouettes) pay the neighbour
+// search and iteration. The buffers come from the caller's Warper; the
+// winner slots are 32 bits (the real pixel, its depth recomputed).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 

@@ -4,6 +4,8 @@
 // (TBB work stealing over a range of columns, no barrier inside a column),
 // then the intermediate buffer is resampled to the image. The naive variant
 // marches every pixel's ray on its own.
+#include "terrasprite/voxel_renderer.h"
+
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -16,8 +18,8 @@
 #include <vector>
 
 #include "terrasprite/error.h"
-#include "terrasprite/voxel_renderer.h"
 #include "voxel/column_march.h"
+#include "voxel/locate_row.h"
 #include "voxel/vertical_planes.h"
 #include "voxel/voxel_terrain_data.h"
 
@@ -296,6 +298,8 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
   // (one seam per chunk) follow when all columns are done.
   constexpr int kChunk = 24;
   const int chunks = (n + kChunk - 1) / kChunk;
+  const SlopeRowLocator slope_row{layout.vx, layout.vy, layout.ex, layout.ey,
+                                  layout.c0, inv_dc,    inv_dr,    n - 1};
   auto key_of = [&](double cf) { return std::clamp(long(floor_i64(cf)), -1L, long(n) - 1); };
   // Pixels whose key lies in [lo, hi): per row, the wedge between the planes
   // bounding those keys is an interval of x. Key k holds the parameters
@@ -330,7 +334,21 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
         bound(ly, lx * dy, true);   // ly (x+.5-vx) <= lx dy
         bound(hy, hx * dy, false);  // hy (x+.5-vx) >= hx dy
       }
-      for (int x = int(std::max(xa, 0.0)); x <= int(std::min(xb, double(w - 1))); ++x) {
+      const int x0 = int(std::max(xa, 0.0)), x1 = int(std::min(xb, double(w - 1)));
+      if (!layout.polar && x1 >= x0) {
+        // Locate the row's interval at once (vectorised), then resample its keys.
+        thread_local std::vector<double> cfs, kfs;
+        thread_local std::vector<std::int32_t> keys;
+        const int count = x1 - x0 + 1;
+        cfs.resize(count);
+        kfs.resize(count);
+        keys.resize(count);
+        locate_slope_row(slope_row, y, x0, count, cfs.data(), kfs.data(), keys.data());
+        for (int i = 0; i < count; ++i)
+          if (keys[i] >= lo && keys[i] < hi) resample(x0 + i, y, cfs[i], kfs[i]);
+        continue;
+      }
+      for (int x = x0; x <= x1; ++x) {
         double cf, kf;
         locate(x, y, cf, kf);
         const long key = key_of(cf);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "stream/tile_file.h"
 
+#include "stream/cog_source.h"
+
 #include <fmt/format.h>
 #include <gdal.h>
 
@@ -45,6 +47,11 @@ std::size_t tile_bytes(const TileSetInfo& set, int level, int tx, int ty) {
 
 TileFile::TileFile(const TileSetInfo& set) : set_(set) {
   detail::ensure_gdal();
+  if (set.cog) {  // an existing COG: its texture is the colour, bounds are held in memory
+    height_ = open_or_throw(set.cog->path);
+    if (!set.cog->texture.empty()) color_ = open_or_throw(set.cog->texture);
+    return;
+  }
   height_ = open_or_throw(set.height_file());
   color_ = open_or_throw(set.color_file());
   bound_ = open_or_throw(set.bound_file());
@@ -71,6 +78,12 @@ bool TileFile::read_level(int level, TileData& out, std::string& error) {
 }
 
 bool TileFile::read_level_heights(int level, std::vector<float>& out, std::string& error) {
+  if (set_.cog) {
+    TileData d;
+    if (!read_level(level, d, error)) return false;
+    out = std::move(d.height);
+    return true;
+  }
   detail::GdalErrorCapture capture;
   const int w = set_.level_w(level), h = set_.level_h(level);
   out.resize(std::size_t(w) * h);
@@ -83,6 +96,33 @@ bool TileFile::read_level_heights(int level, std::vector<float>& out, std::strin
 }
 
 bool TileFile::read_window(int level, int x0, int y0, int w, int h, TileData& out, std::string& error) {
+  const bool samples = level <= set_.grid.coarsest_level;
+  out.height.clear();
+  out.color.clear();
+  if (set_.cog) {
+    if (!read_cog_window(set_, height_, color_, level, x0, y0, w, h, out, error)) return false;
+  } else if (!read_tiles_window(level, x0, y0, w, h, out, error)) {
+    return false;
+  }
+  const int cw = std::max(1, w - 1);  // cells: one fewer than samples (at least one)
+  TileBlock& t = out.block;
+  t = TileBlock{};
+  t.height = samples ? out.height.data() : nullptr;
+  t.color = samples ? out.color.data() : nullptr;
+  t.bound = out.bound.data();
+  t.stride = w;
+  t.bound_stride = cw;
+  t.x0 = x0;
+  t.y0 = y0;
+  t.w = w;
+  t.h = h;
+  t.max_height = -std::numeric_limits<float>::infinity();
+  for (float v : out.bound) t.max_height = std::max(t.max_height, v);
+  return true;
+}
+
+bool TileFile::read_tiles_window(int level, int x0, int y0, int w, int h, TileData& out,
+                                 std::string& error) {
   detail::GdalErrorCapture capture;
   const bool samples = level <= set_.grid.coarsest_level;
   const std::size_t n = std::size_t(w) * h;
@@ -90,8 +130,6 @@ bool TileFile::read_window(int level, int x0, int y0, int w, int h, TileData& ou
     error = fmt::format("{} of level {} at ({}, {}): {}", what, level, x0, y0, capture.last());
     return false;
   };
-  out.height.clear();
-  out.color.clear();
   if (samples) {
     out.height.resize(n);
     GDALRasterBandH hb = level_band(height_, 1, level);
@@ -106,25 +144,11 @@ bool TileFile::read_window(int level, int x0, int y0, int w, int h, TileData& ou
         return fail("colour");
     }
   }
-  // Cells of the tile: one fewer than samples each way (at least one).
   const int cw = std::max(1, w - 1), ch = std::max(1, h - 1);
   out.bound.resize(std::size_t(cw) * ch);
   GDALRasterBandH bb = level_band(bound_, 1, level);
   if (!bb || GDALRasterIO(bb, GF_Read, x0, y0, cw, ch, out.bound.data(), cw, ch, GDT_Float32, 0, 0) != CE_None)
     return fail("bound");
-  TileBlock& t = out.block;
-  t = TileBlock{};
-  t.height = samples ? out.height.data() : nullptr;
-  t.color = samples ? out.color.data() : nullptr;
-  t.bound = out.bound.data();
-  t.stride = w;
-  t.bound_stride = cw;
-  t.x0 = x0;
-  t.y0 = y0;
-  t.w = w;
-  t.h = h;
-  t.max_height = -std::numeric_limits<float>::infinity();
-  for (float v : out.bound) t.max_height = std::max(t.max_height, v);
   return true;
 }
 

@@ -73,8 +73,13 @@ TileSetInfo read_tile_set(const std::string& dir);
 /// overviews (strips, never the whole raster). `texture` (optional) is an RGB
 /// raster of the same size; without one the terrain is grey. Throws
 /// InputError naming the file when it cannot be read, has no overviews, is
-/// not tiled, has more than one band, or has nodata samples.
-TileSetInfo open_cog(const std::string& path, const std::string& texture = {}, int tile_log2 = 7);
+/// not tiled, has more than one band, or has nodata samples. Tiles are
+/// 2^tile_log2 cells; 0: the COG's own blocks when square, 16..512 (else 128).
+/// Bound levels are
+/// held from the first whose cells number at most `held_bound_cells`; finer
+/// ones repeat the held cell holding each cell (looser, still bounds).
+TileSetInfo open_cog(const std::string& path, const std::string& texture = {}, int tile_log2 = 0,
+                     long long held_bound_cells = 1 << 22);
 
 /// `--tiles DIR` or `--cog FILE [--texture FILE]`, exactly one of the two.
 TileSetInfo open_tile_source(const std::string& tiles, const std::string& cog,

@@ -25,9 +25,6 @@ namespace terrasprite {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
-// Bound levels are held in memory from the first whose cells fit this many
-// (16 MB of floats); finer levels repeat those bounds.
-constexpr std::int64_t kBoundCells = std::int64_t(1) << 22;
 constexpr int kStripRows = 256;
 
 struct Dataset {
@@ -91,12 +88,13 @@ std::vector<float> halve_max(const std::vector<float>& cells, int cw, int ch, in
 // centre). A level-L' sample interpolates overview pixels within 2^L' of it,
 // so the dilated bound of level L >= L' + 2 covers it, as TileBlock requires,
 // whatever filter made the overviews (cubic overshoot included).
-void compute_bounds(TileSetInfo& set, CogInput& in, GDALDatasetH ds, bool has_nodata, double nodata) {
+void compute_bounds(TileSetInfo& set, CogInput& in, GDALDatasetH ds, bool has_nodata, double nodata,
+                    long long held_cells) {
   const auto t0 = std::chrono::steady_clock::now();
   const int W = set.grid.width, H = set.grid.height;
   const int cw0 = set.tiles_cells_w(0), ch0 = set.tiles_cells_h(0);
   int Lb = 0;
-  while (std::int64_t(cells_of(W, Lb)) * cells_of(H, Lb) > kBoundCells) ++Lb;
+  while (std::int64_t(cells_of(W, Lb)) * cells_of(H, Lb) > held_cells) ++Lb;
   Lb = std::min(Lb, set.grid.bound_levels - 1);
   const int cwb = cells_of(W, Lb), chb = cells_of(H, Lb);
   std::vector<float> cells(std::size_t(cwb) * chb, -kInf);
@@ -177,6 +175,12 @@ float bound_at(const TileSetInfo& set, const CogInput& in, int level, int a, int
   return in.bound[0][std::size_t(b >> s) * set.tiles_cells_w(Lb) + (a >> s)];
 }
 
+// a + (b - a) t, never outside [a, b] (a rounded-up mix would poke above
+// the bounds), exactly a at t = 0.
+float mix(float a, float b, float t) {
+  return std::clamp(a + (b - a) * t, std::min(a, b), std::max(a, b));
+}
+
 // Level samples first.. (n of them) along an axis of n0 level-0 samples, as
 // positions in a raster of ns pixels: pixel i0[k] and i0[k] + 1, weight t[k].
 struct Axis {
@@ -250,8 +254,7 @@ bool read_cog_window(const TileSetInfo& set, GDALDatasetH height, GDALDatasetH t
             const float tx = ax.t[std::size_t(i)];
             const float* r0 = buf.data() + std::size_t(y) * rw;
             const float* r1 = buf.data() + std::size_t(y1) * rw;
-            const float top = r0[x] * (1 - tx) + r0[x1] * tx, bot = r1[x] * (1 - tx) + r1[x1] * tx;
-            put(std::size_t(j) * w + i, b, top * (1 - ty) + bot * ty);
+            put(std::size_t(j) * w + i, b, mix(mix(r0[x], r0[x1], tx), mix(r1[x], r1[x1], tx), ty));
           }
         }
       }
@@ -276,7 +279,8 @@ bool read_cog_window(const TileSetInfo& set, GDALDatasetH height, GDALDatasetH t
   return true;
 }
 
-TileSetInfo open_cog(const std::string& path, const std::string& texture, int tile_log2) {
+TileSetInfo open_cog(const std::string& path, const std::string& texture, int tile_log2,
+                     long long held_bound_cells) {
   detail::ensure_gdal();
   auto in = std::make_shared<CogInput>();
   in->path = path;
@@ -332,8 +336,13 @@ TileSetInfo open_cog(const std::string& path, const std::string& texture, int ti
   }
   g.bound_levels = 1;
   while (cells_of(W, g.bound_levels - 1) > 1 || cells_of(H, g.bound_levels - 1) > 1) ++g.bound_levels;
+  if (tile_log2 <= 0) {  // one tile of level 0 = one block of the COG, when its blocks are square
+    tile_log2 = 7;
+    for (int k = 4; k <= 9; ++k)
+      if (bx == by && bx == 1 << k) tile_log2 = k;
+  }
   g.tile_log2 = tile_log2;
-  compute_bounds(set, *in, ds.h, has_nodata != 0, nodata);
+  compute_bounds(set, *in, ds.h, has_nodata != 0, nodata, std::max(1LL, held_bound_cells));
   const int T = 1 << tile_log2;
   for (int L = 0; L < g.bound_levels; ++L) {
     const int cw = set.tiles_cells_w(L), ch = set.tiles_cells_h(L);

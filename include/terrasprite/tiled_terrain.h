@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "terrasprite/image.h"
+#include "terrasprite/insets.h"
 #include "terrasprite/terrain_tiles.h"
 #include "terrasprite/voxel_renderer.h"
 
@@ -25,6 +26,7 @@ struct TileWriteOptions {
   std::string color_compress = "JPEG";  ///< JPEG, WEBP or DEFLATE (lossless)
   int color_quality = 90;               ///< JPEG / WEBP quality, 1..100
   std::string height_compress = "DEFLATE";  ///< DEFLATE or ZSTD, with PREDICTOR=3
+  std::vector<InsetResult> insets;  ///< composited into the terrain: recorded in tiles.json
 };
 
 struct CogInput;  // an existing COG read in place (see open_cog)

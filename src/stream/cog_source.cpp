@@ -91,6 +91,9 @@ std::vector<float> halve_max(const std::vector<float>& cells, int cw, int ch, in
 void compute_bounds(TileSetInfo& set, CogInput& in, GDALDatasetH ds, bool has_nodata, double nodata,
                     long long held_cells) {
   const auto t0 = std::chrono::steady_clock::now();
+  // GDAL's default block cache (5% of RAM) would keep the whole pass
+  // resident: a strip of blocks is all it needs.
+  if (GDALGetCacheMax64() > (GIntBig(64) << 20)) GDALSetCacheMax64(GIntBig(64) << 20);
   const int W = set.grid.width, H = set.grid.height;
   const int cw0 = set.tiles_cells_w(0), ch0 = set.tiles_cells_h(0);
   int Lb = 0;

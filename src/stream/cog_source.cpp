@@ -32,7 +32,11 @@ struct Dataset {
   explicit Dataset(const std::string& path) {
     detail::GdalErrorCapture capture;
     h = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
-    if (!h) throw InputError(fmt::format("{}: cannot open: {}", path, capture.last()));
+    if (!h) {
+      std::error_code ec;
+      const bool there = path.starts_with("/vsi") || std::filesystem::exists(path, ec);
+      throw InputError(fmt::format("{}: {}", path, there ? "cannot open: " + capture.last() : "no such file"));
+    }
   }
   ~Dataset() { GDALClose(h); }
   Dataset(const Dataset&) = delete;

@@ -35,7 +35,8 @@ struct Dataset {
     if (!h) {
       std::error_code ec;
       const bool there = path.starts_with("/vsi") || std::filesystem::exists(path, ec);
-      throw InputError(fmt::format("{}: {}", path, there ? "cannot open: " + capture.last() : "no such file"));
+      throw InputError(
+          fmt::format("{}: {}", path, there ? "cannot open: " + capture.last() : "no such file"));
     }
   }
   ~Dataset() { GDALClose(h); }
@@ -118,7 +119,8 @@ void compute_bounds(TileSetInfo& set, CogInput& in, GDALDatasetH ds, bool has_no
       const int n = std::min(kStripRows, sh - y0);
       strip.resize(std::size_t(sw) * n);
       detail::GdalErrorCapture capture;
-      if (GDALRasterIO(band, GF_Read, 0, y0, sw, n, strip.data(), sw, n, GDT_Float32, 0, 0) != CE_None)
+      if (GDALRasterIO(band, GF_Read, 0, y0, sw, n, strip.data(), sw, n, GDT_Float32, 0, 0) !=
+          CE_None)
         throw InputError(fmt::format("{}: cannot read rows {}..{} of raster {}: {}", in.path, y0,
                                      y0 + n - 1, r, capture.last()));
       for (int j = 0; j < n; ++j) {
@@ -145,7 +147,8 @@ void compute_bounds(TileSetInfo& set, CogInput& in, GDALDatasetH ds, bool has_no
           const int b = cell_y((long long)std::floor((y + 0.5) * fy - 0.5));
           for (int x = 0; x < sw; ++x) {
             if (std::isnan(row[x]) || (has_nodata && double(row[x]) == nodata)) continue;
-            float& m = cells[std::size_t(b) * cwb + cell_x((long long)std::floor((x + 0.5) * fx - 0.5))];
+            float& m =
+                cells[std::size_t(b) * cwb + cell_x((long long)std::floor((x + 0.5) * fx - 0.5))];
             m = std::max(m, row[x]);
           }
         }
@@ -154,8 +157,8 @@ void compute_bounds(TileSetInfo& set, CogInput& in, GDALDatasetH ds, bool has_no
   }
   if (voids > 0)
     throw InputError(fmt::format(
-        "{}: {} nodata samples; fill the voids first (terrasprite tile --dem {} fills them)", in.path,
-        voids, in.path));
+        "{}: {} nodata samples; fill the voids first (terrasprite tile --dem {} fills them)",
+        in.path, voids, in.path));
   set.grid.min_height = lo;
   set.grid.max_height = hi;
   in.bound_from = Lb;
@@ -169,7 +172,8 @@ void compute_bounds(TileSetInfo& set, CogInput& in, GDALDatasetH ds, bool has_no
     }
     in.bound.push_back(dilate(cells, cw, ch));
   }
-  in.bounds_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  in.bounds_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 // Cell (a, b) of `level`'s bound: held, or the held bound_from cell holding it.
@@ -242,7 +246,8 @@ bool read_cog_window(const TileSetInfo& set, GDALDatasetH height, GDALDatasetH t
     // Reads `bands` bands of raster r of `ds` over the window's pixels as
     // floats, then interpolates each sample: `put(sample, band, value)`.
     std::vector<float> buf;
-    auto resample = [&](GDALDatasetH ds, const std::vector<CogInput::Raster>& rs, int bands, auto put) {
+    auto resample = [&](GDALDatasetH ds, const std::vector<CogInput::Raster>& rs, int bands,
+                        auto put) {
       const int r = cog_raster_for_level(rs, level);
       const Axis ax = axis(x0, w, level, set.grid.width, rs[std::size_t(r)].w);
       const Axis ay = axis(y0, h, level, set.grid.height, rs[std::size_t(r)].h);
@@ -250,8 +255,8 @@ bool read_cog_window(const TileSetInfo& set, GDALDatasetH height, GDALDatasetH t
       buf.resize(std::size_t(rw) * rh);
       for (int b = 0; b < bands; ++b) {
         GDALRasterBandH band = raster_band(ds, b + 1, r);
-        if (!band || GDALRasterIO(band, GF_Read, ax.lo, ay.lo, rw, rh, buf.data(), rw, rh, GDT_Float32,
-                                  0, 0) != CE_None)
+        if (!band || GDALRasterIO(band, GF_Read, ax.lo, ay.lo, rw, rh, buf.data(), rw, rh,
+                                  GDT_Float32, 0, 0) != CE_None)
           return false;
         for (int j = 0; j < h; ++j) {
           const int y = ay.i0[std::size_t(j)] - ay.lo, y1 = std::min(y + 1, rh - 1);
@@ -268,7 +273,8 @@ bool read_cog_window(const TileSetInfo& set, GDALDatasetH height, GDALDatasetH t
       return true;
     };
     out.height.resize(n);
-    if (!resample(height, in.height_rasters, 1, [&](std::size_t k, int, float v) { out.height[k] = v; }))
+    if (!resample(height, in.height_rasters, 1,
+                  [&](std::size_t k, int, float v) { out.height[k] = v; }))
       return fail("height");
     out.color.assign(n, 0xff808080u);  // grey without a texture
     if (texture) {
@@ -282,7 +288,8 @@ bool read_cog_window(const TileSetInfo& set, GDALDatasetH height, GDALDatasetH t
   const int cw = std::max(1, w - 1), ch = std::max(1, h - 1);
   out.bound.resize(std::size_t(cw) * ch);
   for (int b = 0; b < ch; ++b)
-    for (int a = 0; a < cw; ++a) out.bound[std::size_t(b) * cw + a] = bound_at(set, in, level, x0 + a, y0 + b);
+    for (int a = 0; a < cw; ++a)
+      out.bound[std::size_t(b) * cw + a] = bound_at(set, in, level, x0 + a, y0 + b);
   return true;
 }
 
@@ -297,17 +304,19 @@ TileSetInfo open_cog(const std::string& path, const std::string& texture, int ti
   Dataset ds(path);
   const int W = GDALGetRasterXSize(ds.h), H = GDALGetRasterYSize(ds.h);
   if (GDALGetRasterCount(ds.h) != 1)
-    throw InputError(fmt::format("{}: {} bands; a height COG has exactly one", path, GDALGetRasterCount(ds.h)));
+    throw InputError(
+        fmt::format("{}: {} bands; a height COG has exactly one", path, GDALGetRasterCount(ds.h)));
   GDALRasterBandH band = GDALGetRasterBand(ds.h, 1);
   int bx = 0, by = 0;
   GDALGetBlockSize(band, &bx, &by);
   if (!(bx < W || (bx == by && by > 1)))
     throw InputError(fmt::format(
-        "{}: not tiled (blocks of {}x{}); write it with gdal_translate -of COG {} out.tif", path, bx,
-        by, path));
+        "{}: not tiled (blocks of {}x{}); write it with gdal_translate -of COG {} out.tif", path,
+        bx, by, path));
   if (GDALGetOverviewCount(band) < 1)
     throw InputError(fmt::format(
-        "{}: no overviews; write it with gdal_translate -of COG {} out.tif (or gdaladdo)", path, path));
+        "{}: no overviews; write it with gdal_translate -of COG {} out.tif (or gdaladdo)", path,
+        path));
   if (W < 2 || H < 2) throw InputError(fmt::format("{}: {}x{} samples is too small", path, W, H));
   in->height_rasters = rasters_of(ds.h);
   TerrainGrid& g = set.grid;
@@ -317,20 +326,24 @@ TileSetInfo open_cog(const std::string& path, const std::string& texture, int ti
   double gt[6];
   if (GDALGetGeoTransform(ds.h, gt) == CE_None) {
     if (gt[2] != 0 || gt[4] != 0 || gt[1] < 0 || gt[5] > 0)
-      throw InputError(fmt::format("{}: not north-up; warp it first (gdalwarp {} north_up.tif)", path, path));
+      throw InputError(
+          fmt::format("{}: not north-up; warp it first (gdalwarp {} north_up.tif)", path, path));
     GeoTransform geo;
     if (detail::spacing_from_geo(ds.h, gt, W, H, g.spacing_x, g.spacing_y, geo)) set.geo = geo;
   }
   if (!set.geo)
-    fmt::print(stderr, "terrasprite: warning: {}: no georeferencing; assuming 30 m spacing\n", path);
+    fmt::print(stderr, "terrasprite: warning: {}: no georeferencing; assuming 30 m spacing\n",
+               path);
   int has_nodata = 0;
   const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
   if (!texture.empty()) {
     Dataset tex(texture);
-    if (GDALGetRasterCount(tex.h) < 3 || GDALGetRasterXSize(tex.h) != W || GDALGetRasterYSize(tex.h) != H)
-      throw InputError(fmt::format("{}: {}x{} with {} bands; the texture must be RGB of {}x{} like {}",
-                                   texture, GDALGetRasterXSize(tex.h), GDALGetRasterYSize(tex.h),
-                                   GDALGetRasterCount(tex.h), W, H, path));
+    if (GDALGetRasterCount(tex.h) < 3 || GDALGetRasterXSize(tex.h) != W ||
+        GDALGetRasterYSize(tex.h) != H)
+      throw InputError(
+          fmt::format("{}: {}x{} with {} bands; the texture must be RGB of {}x{} like {}", texture,
+                      GDALGetRasterXSize(tex.h), GDALGetRasterYSize(tex.h),
+                      GDALGetRasterCount(tex.h), W, H, path));
     in->texture_rasters = rasters_of(tex.h);
   }
   // Levels as VoxelTerrain has them: halve while a side has more than 2 samples.
@@ -342,7 +355,8 @@ TileSetInfo open_cog(const std::string& path, const std::string& texture, int ti
     g.coarsest_level = L;
   }
   g.bound_levels = 1;
-  while (cells_of(W, g.bound_levels - 1) > 1 || cells_of(H, g.bound_levels - 1) > 1) ++g.bound_levels;
+  while (cells_of(W, g.bound_levels - 1) > 1 || cells_of(H, g.bound_levels - 1) > 1)
+    ++g.bound_levels;
   if (tile_log2 <= 0) {  // one tile of level 0 = one block of the COG, when its blocks are square
     tile_log2 = 7;
     for (int k = 4; k <= 9; ++k)
@@ -374,12 +388,14 @@ TileSetInfo open_cog(const std::string& path, const std::string& texture, int ti
   return set;
 }
 
-TileSetInfo open_tile_source(const std::string& tiles, const std::string& cog, const std::string& texture) {
+TileSetInfo open_tile_source(const std::string& tiles, const std::string& cog,
+                             const std::string& texture) {
   if (!tiles.empty() && !cog.empty()) throw InputError("--tiles and --cog: give one of the two");
   if (!cog.empty()) return open_cog(cog, texture);
   if (!texture.empty()) throw InputError(fmt::format("--texture {}: only with --cog", texture));
   if (tiles.empty())
-    throw InputError("--tiles DIR or --cog FILE: required (a directory written by terrasprite tile, or a COG)");
+    throw InputError(
+        "--tiles DIR or --cog FILE: required (a directory written by terrasprite tile, or a COG)");
   return read_tile_set(tiles);
 }
 

@@ -23,8 +23,9 @@ std::vector<float> distance_to_void(const std::vector<float>& v, int w, int h) {
   std::vector<float> d(v.size());
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i)
-      d[std::size_t(j) * w + i] =
-          std::isnan(v[std::size_t(j) * w + i]) ? 0.f : float(std::min({i + 1, w - i, j + 1, h - j}));
+      d[std::size_t(j) * w + i] = std::isnan(v[std::size_t(j) * w + i])
+                                      ? 0.f
+                                      : float(std::min({i + 1, w - i, j + 1, h - j}));
   auto relax = [&](int i, int j, int di, int dj, float c) {
     const int a = i + di, b = j + dj;
     if (a < 0 || b < 0 || a >= w || b >= h) return;
@@ -58,10 +59,11 @@ struct Warped {
 Warped warp(const InsetSpec& s, const std::string& wkt) {
   detail::ensure_gdal();
   detail::GdalErrorCapture capture;
-  GDALDatasetH src = GDALOpenEx(s.path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+  GDALDatasetH src =
+      GDALOpenEx(s.path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
   if (!src) throw InputError(fmt::format("{}: cannot open: {}", s.path, capture.last()));
-  const char* argv[] = {"-of", "MEM", "-t_srs", wkt.c_str(), "-r", "bilinear", "-ot", "Float32",
-                        "-dstnodata", "nan", nullptr};
+  const char* argv[] = {"-of", "MEM",     "-t_srs",     wkt.c_str(), "-r",   "bilinear",
+                        "-ot", "Float32", "-dstnodata", "nan",       nullptr};
   GDALWarpAppOptions* opts = GDALWarpAppOptionsNew(const_cast<char**>(argv), nullptr);
   if (!opts) {
     GDALClose(src);
@@ -71,14 +73,16 @@ Warped warp(const InsetSpec& s, const std::string& wkt) {
   GDALDatasetH out = GDALWarp("", nullptr, 1, &src, opts, &usage_error);
   GDALWarpAppOptionsFree(opts);
   GDALClose(src);
-  if (!out) throw InputError(fmt::format("{}: cannot reproject into the base's CRS: {}", s.path, capture.last()));
+  if (!out)
+    throw InputError(
+        fmt::format("{}: cannot reproject into the base's CRS: {}", s.path, capture.last()));
   Warped r;
   r.w = GDALGetRasterXSize(out);
   r.h = GDALGetRasterYSize(out);
   GDALGetGeoTransform(out, r.gt);
   r.v.resize(std::size_t(r.w) * r.h);
-  const CPLErr e = GDALRasterIO(GDALGetRasterBand(out, 1), GF_Read, 0, 0, r.w, r.h, r.v.data(), r.w, r.h,
-                                GDT_Float32, 0, 0);
+  const CPLErr e = GDALRasterIO(GDALGetRasterBand(out, 1), GF_Read, 0, 0, r.w, r.h, r.v.data(), r.w,
+                                r.h, GDT_Float32, 0, 0);
   GDALClose(out);
   if (e != CE_None) throw InputError(fmt::format("{}: cannot read: {}", s.path, capture.last()));
   return r;
@@ -100,7 +104,8 @@ InsetSpec parse_inset(const std::string& arg) {
       used = 0;
     }
     if (used != n.size() || n.empty() || s.blend < 0 || s.blend > 1024)
-      throw InputError(fmt::format("--inset {}: blend must be a whole number of samples 0..1024", arg));
+      throw InputError(
+          fmt::format("--inset {}: blend must be a whole number of samples 0..1024", arg));
   }
   if (s.path.empty()) throw InputError(fmt::format("--inset {}: no file", arg));
   return s;
@@ -109,7 +114,8 @@ InsetSpec parse_inset(const std::string& arg) {
 std::pair<int, int> raster_size(const std::string& path) {
   detail::ensure_gdal();
   detail::GdalErrorCapture capture;
-  GDALDatasetH ds = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+  GDALDatasetH ds =
+      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
   if (!ds) throw InputError(fmt::format("{}: cannot open: {}", path, capture.last()));
   const std::pair<int, int> r{GDALGetRasterXSize(ds), GDALGetRasterYSize(ds)};
   GDALClose(ds);
@@ -118,7 +124,8 @@ std::pair<int, int> raster_size(const std::string& path) {
 
 GridGeo grid_geo(const Heightfield& hf, int source_w, int source_h) {
   if (!hf.geo || hf.geo->wkt.empty())
-    throw InputError(fmt::format("{}: insets need a base with georeferencing and a CRS (--dem FILE)", hf.name));
+    throw InputError(
+        fmt::format("{}: insets need a base with georeferencing and a CRS (--dem FILE)", hf.name));
   const double* gt = hf.geo->gt;
   GridGeo g;
   g.wkt = hf.geo->wkt;
@@ -129,7 +136,8 @@ GridGeo grid_geo(const Heightfield& hf, int source_w, int source_h) {
   return g;
 }
 
-std::vector<InsetResult> composite_insets(Heightfield& hf, const GridGeo& g, const std::vector<InsetSpec>& insets) {
+std::vector<InsetResult> composite_insets(Heightfield& hf, const GridGeo& g,
+                                          const std::vector<InsetSpec>& insets) {
   std::vector<InsetResult> results;
   for (const InsetSpec& s : insets) {
     const Warped r = warp(s, g.wkt);
@@ -141,9 +149,11 @@ std::vector<InsetResult> composite_insets(Heightfield& hf, const GridGeo& g, con
     auto u_of = [&](int i) { return (g.x0 + i * g.dx - r.gt[0]) / r.gt[1] - 0.5; };
     auto v_of = [&](int j) { return (g.y0 - j * g.dy - r.gt[3]) / r.gt[5] - 0.5; };
     const int i0 = std::max(0, int(std::ceil((r.gt[0] + 0.5 * r.gt[1] - g.x0) / g.dx)));
-    const int i1 = std::min(hf.width - 1, int(std::floor((r.gt[0] + (r.w - 0.5) * r.gt[1] - g.x0) / g.dx)));
+    const int i1 =
+        std::min(hf.width - 1, int(std::floor((r.gt[0] + (r.w - 0.5) * r.gt[1] - g.x0) / g.dx)));
     const int j0 = std::max(0, int(std::ceil((g.y0 - (r.gt[3] + 0.5 * r.gt[5])) / g.dy)));
-    const int j1 = std::min(hf.height - 1, int(std::floor((g.y0 - (r.gt[3] + (r.h - 0.5) * r.gt[5])) / g.dy)));
+    const int j1 =
+        std::min(hf.height - 1, int(std::floor((g.y0 - (r.gt[3] + (r.h - 0.5) * r.gt[5])) / g.dy)));
     for (int j = j0; j <= j1; ++j) {
       const double v = v_of(j);
       if (v < 0 || v > r.h - 1) continue;
@@ -154,7 +164,9 @@ std::vector<InsetResult> composite_insets(Heightfield& hf, const GridGeo& g, con
         if (u < 0 || u > r.w - 1) continue;
         const int a = std::min(int(u), std::max(r.w - 2, 0)), a1 = std::min(a + 1, r.w - 1);
         const float fx = float(u - a);
-        auto at = [&](const std::vector<float>& p, int x, int y) { return p[std::size_t(y) * r.w + x]; };
+        auto at = [&](const std::vector<float>& p, int x, int y) {
+          return p[std::size_t(y) * r.w + x];
+        };
         const float q[4] = {at(r.v, a, b), at(r.v, a1, b), at(r.v, a, b1), at(r.v, a1, b1)};
         if (std::isnan(q[0]) || std::isnan(q[1]) || std::isnan(q[2]) || std::isnan(q[3])) continue;
         auto lerp2 = [&](const std::vector<float>& p) {
@@ -173,7 +185,8 @@ std::vector<InsetResult> composite_insets(Heightfield& hf, const GridGeo& g, con
       }
     }
     if (res.samples_replaced == 0)
-      throw InputError(fmt::format("{}: covers no sample of the base terrain (after reprojection)", s.path));
+      throw InputError(
+          fmt::format("{}: covers no sample of the base terrain (after reprojection)", s.path));
     results.push_back(res);
   }
   return results;

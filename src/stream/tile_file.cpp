@@ -1,14 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "stream/tile_file.h"
 
-#include "stream/cog_source.h"
-
 #include <fmt/format.h>
 #include <gdal.h>
 
 #include <algorithm>
 #include <limits>
 
+#include "stream/cog_source.h"
 #include "terrain/gdal_util.h"
 #include "terrasprite/error.h"
 
@@ -17,7 +16,8 @@ namespace {
 
 GDALDatasetH open_or_throw(const std::string& path) {
   detail::GdalErrorCapture capture;
-  GDALDatasetH ds = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+  GDALDatasetH ds =
+      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
   if (!ds) throw InputError(fmt::format("{}: cannot open: {}", path, capture.last()));
   return ds;
 }
@@ -30,7 +30,8 @@ GDALRasterBandH level_band(GDALDatasetH ds, int b, int level) {
 
 }  // namespace
 
-void tile_window(const TileSetInfo& set, int level, int tx, int ty, int& x0, int& y0, int& w, int& h) {
+void tile_window(const TileSetInfo& set, int level, int tx, int ty, int& x0, int& y0, int& w,
+                 int& h) {
   const int T = 1 << set.grid.tile_log2;
   x0 = tx * T;
   y0 = ty * T;
@@ -88,14 +89,16 @@ bool TileFile::read_level_heights(int level, std::vector<float>& out, std::strin
   const int w = set_.level_w(level), h = set_.level_h(level);
   out.resize(std::size_t(w) * h);
   GDALRasterBandH hb = level <= set_.grid.coarsest_level ? level_band(height_, 1, level) : nullptr;
-  if (!hb || GDALRasterIO(hb, GF_Read, 0, 0, w, h, out.data(), w, h, GDT_Float32, 0, 0) != CE_None) {
+  if (!hb ||
+      GDALRasterIO(hb, GF_Read, 0, 0, w, h, out.data(), w, h, GDT_Float32, 0, 0) != CE_None) {
     error = fmt::format("heights of level {}: {}", level, capture.last());
     return false;
   }
   return true;
 }
 
-bool TileFile::read_window(int level, int x0, int y0, int w, int h, TileData& out, std::string& error) {
+bool TileFile::read_window(int level, int x0, int y0, int w, int h, TileData& out,
+                           std::string& error) {
   const bool samples = level <= set_.grid.coarsest_level;
   out.height.clear();
   out.color.clear();
@@ -133,7 +136,8 @@ bool TileFile::read_tiles_window(int level, int x0, int y0, int w, int h, TileDa
   if (samples) {
     out.height.resize(n);
     GDALRasterBandH hb = level_band(height_, 1, level);
-    if (!hb || GDALRasterIO(hb, GF_Read, x0, y0, w, h, out.height.data(), w, h, GDT_Float32, 0, 0) != CE_None)
+    if (!hb || GDALRasterIO(hb, GF_Read, x0, y0, w, h, out.height.data(), w, h, GDT_Float32, 0,
+                            0) != CE_None)
       return fail("height");
     out.color.assign(n, 0xff000000u);
     auto* bytes = reinterpret_cast<std::uint8_t*>(out.color.data());
@@ -147,7 +151,8 @@ bool TileFile::read_tiles_window(int level, int x0, int y0, int w, int h, TileDa
   const int cw = std::max(1, w - 1), ch = std::max(1, h - 1);
   out.bound.resize(std::size_t(cw) * ch);
   GDALRasterBandH bb = level_band(bound_, 1, level);
-  if (!bb || GDALRasterIO(bb, GF_Read, x0, y0, cw, ch, out.bound.data(), cw, ch, GDT_Float32, 0, 0) != CE_None)
+  if (!bb || GDALRasterIO(bb, GF_Read, x0, y0, cw, ch, out.bound.data(), cw, ch, GDT_Float32, 0,
+                          0) != CE_None)
     return fail("bound");
   return true;
 }

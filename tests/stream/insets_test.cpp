@@ -3,6 +3,8 @@
 // resampled to 1 m: inside it the inset's value, outside the base's, and a
 // border blend without a step; another CRS is reprojected by GDAL; `tile
 // --inset` records it in tiles.json.
+#include "terrasprite/insets.h"
+
 #include <cpl_conv.h>
 #include <gdal.h>
 #include <gdal_utils.h>
@@ -14,7 +16,6 @@
 #include <nlohmann/json.hpp>
 
 #include "terrasprite/error.h"
-#include "terrasprite/insets.h"
 #include "terrasprite/terrain_gen.h"
 #include "test_util.h"
 
@@ -58,18 +59,23 @@ std::string write_inset(const Heightfield& fine, const std::string& path, int ep
   GDALAllRegister();
   const int n = 201;
   GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", n, n, 1, GDT_Float32, nullptr);
-  const double x0 = kX0 + 15 + 200 - 0.5, y0 = kY0 - 15 - 200 + 0.5;  // base pixel centres are 15 m in
+  const double x0 = kX0 + 15 + 200 - 0.5,
+               y0 = kY0 - 15 - 200 + 0.5;  // base pixel centres are 15 m in
   double gt[6] = {x0, 1, 0, y0, 0, -1};
   GDALSetGeoTransform(mem, gt);
   const std::string wkt = utm_wkt(32611);
   GDALSetProjection(mem, wkt.c_str());
   std::vector<float> v(std::size_t(n) * n);
   for (int y = 0; y < n; ++y)
-    for (int x = 0; x < n; ++x) v[std::size_t(y) * n + x] = fine.at(200 + x, 200 + y) + detail(x, y);
-  EXPECT_EQ(GDALRasterIO(GDALGetRasterBand(mem, 1), GF_Write, 0, 0, n, n, v.data(), n, n, GDT_Float32, 0, 0), CE_None);
+    for (int x = 0; x < n; ++x)
+      v[std::size_t(y) * n + x] = fine.at(200 + x, 200 + y) + detail(x, y);
+  EXPECT_EQ(GDALRasterIO(GDALGetRasterBand(mem, 1), GF_Write, 0, 0, n, n, v.data(), n, n,
+                         GDT_Float32, 0, 0),
+            CE_None);
   GDALDatasetH out = nullptr;
   if (epsg == 32611) {
-    out = GDALCreateCopy(GDALGetDriverByName("GTiff"), path.c_str(), mem, FALSE, nullptr, nullptr, nullptr);
+    out = GDALCreateCopy(GDALGetDriverByName("GTiff"), path.c_str(), mem, FALSE, nullptr, nullptr,
+                         nullptr);
   } else {
     const std::string t = "EPSG:" + std::to_string(epsg);
     const char* argv[] = {"-t_srs", t.c_str(), "-r", "bilinear", "-dstnodata", "nan", nullptr};
@@ -101,7 +107,8 @@ TEST(Insets, InsideIsTheInsetOutsideTheBaseAndTheBorderBlendHasNoStep) {
   EXPECT_GT(res[0].samples_full, 150 * 150);
   // Inside: the inset's own value (its pixel centres are grid samples).
   for (auto [x, y] : {std::pair{100, 100}, {20, 150}, {180, 30}})
-    EXPECT_NEAR(fine.at(200 + x, 200 + y), fine0.at(200 + x, 200 + y) + detail(x, y), 1e-3) << x << "," << y;
+    EXPECT_NEAR(fine.at(200 + x, 200 + y), fine0.at(200 + x, 200 + y) + detail(x, y), 1e-3)
+        << x << "," << y;
   // Outside: the base's, untouched.
   for (auto [i, j] : {std::pair{50, 50}, {199, 300}, {300, 401}, {600, 600}})
     EXPECT_EQ(fine.at(i, j), fine0.at(i, j)) << i << "," << j;
@@ -137,14 +144,15 @@ TEST(Insets, AnotherCrsIsReprojectedAndTileRecordsIt) {
   GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", 21, 21, 1, GDT_Float32, nullptr);
   GDALSetGeoTransform(mem, const_cast<double*>(base.geo->gt));
   GDALSetProjection(mem, base.geo->wkt.c_str());
-  ASSERT_EQ(GDALRasterIO(GDALGetRasterBand(mem, 1), GF_Write, 0, 0, 21, 21, const_cast<float*>(base.heights.data()),
-                         21, 21, GDT_Float32, 0, 0),
+  ASSERT_EQ(GDALRasterIO(GDALGetRasterBand(mem, 1), GF_Write, 0, 0, 21, 21,
+                         const_cast<float*>(base.heights.data()), 21, 21, GDT_Float32, 0, 0),
             CE_None);
-  GDALClose(GDALCreateCopy(GDALGetDriverByName("GTiff"), (t.path / "base.tif").c_str(), mem, FALSE, nullptr,
-                           nullptr, nullptr));
+  GDALClose(GDALCreateCopy(GDALGetDriverByName("GTiff"), (t.path / "base.tif").c_str(), mem, FALSE,
+                           nullptr, nullptr, nullptr));
   GDALClose(mem);
-  auto r = tstest::run_cli("tile --dem " + (t / "base.tif") + " --resample 601 --tile-size 64 --inset " + inset +
-                           ":blend=6 --out " + (t / "tiles"));
+  auto r =
+      tstest::run_cli("tile --dem " + (t / "base.tif") + " --resample 601 --tile-size 64 --inset " +
+                      inset + ":blend=6 --out " + (t / "tiles"));
   ASSERT_EQ(r.status, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(t / "tiles/tiles.json"));
   ASSERT_EQ(j["insets"].size(), 1u);
@@ -154,7 +162,8 @@ TEST(Insets, AnotherCrsIsReprojectedAndTileRecordsIt) {
   EXPECT_EQ(j["insets"][0]["file"], inset);
   // Bad inset arguments: one line, exit 2, no output directory.
   for (const std::string& bad : {inset + ":blend=x", (t / "missing.tif"), std::string("")}) {
-    r = tstest::run_cli("tile --dem " + (t / "base.tif") + " --inset '" + bad + "' --out " + (t / "bad"));
+    r = tstest::run_cli("tile --dem " + (t / "base.tif") + " --inset '" + bad + "' --out " +
+                        (t / "bad"));
     EXPECT_EQ(r.status, 2) << bad << ": " << r.output;
     EXPECT_FALSE(std::filesystem::exists(t.path / "bad"));
   }

@@ -26,7 +26,7 @@ struct TileWriteOptions {
   std::string color_compress = "JPEG";  ///< JPEG, WEBP or DEFLATE (lossless)
   int color_quality = 90;               ///< JPEG / WEBP quality, 1..100
   std::string height_compress = "DEFLATE";  ///< DEFLATE or ZSTD, with PREDICTOR=3
-  std::vector<InsetResult> insets;  ///< composited into the terrain: recorded in tiles.json
+  std::vector<InsetResult> insets;          ///< composited into the terrain: recorded in tiles.json
 };
 
 struct CogInput;  // an existing COG read in place (see open_cog)

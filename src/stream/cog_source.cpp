@@ -13,10 +13,12 @@
 #include <gdal.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <thread>
 
 #include "terrain/gdal_util.h"
 #include "terrasprite/error.h"
@@ -93,7 +95,7 @@ std::vector<float> halve_max(const std::vector<float>& cells, int cw, int ch, in
 // centre). A level-L' sample interpolates overview pixels within 2^L' of it,
 // so the dilated bound of level L >= L' + 2 covers it, as TileBlock requires,
 // whatever filter made the overviews (cubic overshoot included).
-void compute_bounds(TileSetInfo& set, CogInput& in, GDALDatasetH ds, bool has_nodata, double nodata,
+void compute_bounds(TileSetInfo& set, CogInput& in, bool has_nodata, double nodata,
                     long long held_cells) {
   const auto t0 = std::chrono::steady_clock::now();
   // GDAL's default block cache (5% of RAM) would keep the whole pass
@@ -105,24 +107,47 @@ void compute_bounds(TileSetInfo& set, CogInput& in, GDALDatasetH ds, bool has_no
   while (std::int64_t(cells_of(W, Lb)) * cells_of(H, Lb) > held_cells) ++Lb;
   Lb = std::min(Lb, set.grid.bound_levels - 1);
   const int cwb = cells_of(W, Lb), chb = cells_of(H, Lb);
-  std::vector<float> cells(std::size_t(cwb) * chb, -kInf);
   auto cell_x = [&](long long x) { return int(std::clamp<long long>(x, 0, cw0 - 1) >> Lb); };
   auto cell_y = [&](long long y) { return int(std::clamp<long long>(y, 0, ch0 - 1) >> Lb); };
-  float lo = kInf, hi = -kInf;
-  long long voids = 0;
-  std::vector<float> strip;
-  for (std::size_t r = 0; r < in.height_rasters.size(); ++r) {
-    const int sw = in.height_rasters[r].w, sh = in.height_rasters[r].h;
-    const double fx = double(W) / sw, fy = double(H) / sh;
-    GDALRasterBandH band = raster_band(ds, 1, int(r));
-    for (int y0 = 0; y0 < sh; y0 += kStripRows) {
+  // Strips of every raster, shared out to threads with a handle and a cell
+  // array each (GDAL handles are not thread-safe); maxima merge at the end.
+  struct Strip {
+    int r, y0;
+  };
+  std::vector<Strip> strips;
+  for (std::size_t r = 0; r < in.height_rasters.size(); ++r)
+    for (int y0 = 0; y0 < in.height_rasters[r].h; y0 += kStripRows) strips.push_back({int(r), y0});
+  struct Part {
+    std::vector<float> cells;
+    float lo = kInf, hi = -kInf;
+    long long voids = 0;
+    std::string error;
+  };
+  const int nt = int(std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 4));
+  std::vector<Part> parts(static_cast<std::size_t>(nt));
+  std::atomic<std::size_t> next{0};
+  auto work = [&](Part& p) {
+    p.cells.assign(std::size_t(cwb) * chb, -kInf);
+    detail::GdalErrorCapture capture;
+    GDALDatasetH h =
+        GDALOpenEx(in.path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+    if (!h) {
+      p.error = fmt::format("{}: cannot open: {}", in.path, capture.last());
+      return;
+    }
+    std::vector<float> strip;
+    for (std::size_t k; p.error.empty() && (k = next.fetch_add(1)) < strips.size();) {
+      const int r = strips[k].r, y0 = strips[k].y0;
+      const int sw = in.height_rasters[std::size_t(r)].w, sh = in.height_rasters[std::size_t(r)].h;
+      const double fx = double(W) / sw, fy = double(H) / sh;
       const int n = std::min(kStripRows, sh - y0);
       strip.resize(std::size_t(sw) * n);
-      detail::GdalErrorCapture capture;
-      if (GDALRasterIO(band, GF_Read, 0, y0, sw, n, strip.data(), sw, n, GDT_Float32, 0, 0) !=
-          CE_None)
-        throw InputError(fmt::format("{}: cannot read rows {}..{} of raster {}: {}", in.path, y0,
-                                     y0 + n - 1, r, capture.last()));
+      if (GDALRasterIO(raster_band(h, 1, r), GF_Read, 0, y0, sw, n, strip.data(), sw, n,
+                       GDT_Float32, 0, 0) != CE_None) {
+        p.error = fmt::format("{}: cannot read rows {}..{} of raster {}: {}", in.path, y0,
+                              y0 + n - 1, r, capture.last());
+        break;
+      }
       for (int j = 0; j < n; ++j) {
         const float* row = strip.data() + std::size_t(j) * sw;
         const int y = y0 + j;
@@ -131,15 +156,15 @@ void compute_bounds(TileSetInfo& set, CogInput& in, GDALDatasetH ds, bool has_no
           for (int x = 0; x < sw; ++x) {
             const float v = row[x];
             if (std::isnan(v) || (has_nodata && double(v) == nodata)) {
-              ++voids;
+              ++p.voids;
               continue;
             }
-            lo = std::min(lo, v);
-            hi = std::max(hi, v);
+            p.lo = std::min(p.lo, v);
+            p.hi = std::max(p.hi, v);
             const int a0 = cell_x(x - 1), a1 = cell_x(x);
             for (int b : {b0, b1})
               for (int a : {a0, a1}) {
-                float& m = cells[std::size_t(b) * cwb + a];
+                float& m = p.cells[std::size_t(b) * cwb + a];
                 m = std::max(m, v);
               }
           }
@@ -148,12 +173,29 @@ void compute_bounds(TileSetInfo& set, CogInput& in, GDALDatasetH ds, bool has_no
           for (int x = 0; x < sw; ++x) {
             if (std::isnan(row[x]) || (has_nodata && double(row[x]) == nodata)) continue;
             float& m =
-                cells[std::size_t(b) * cwb + cell_x((long long)std::floor((x + 0.5) * fx - 0.5))];
+                p.cells[std::size_t(b) * cwb + cell_x((long long)std::floor((x + 0.5) * fx - 0.5))];
             m = std::max(m, row[x]);
           }
         }
       }
     }
+    GDALClose(h);
+  };
+  {
+    std::vector<std::jthread> threads;
+    for (int t = 1; t < nt; ++t) threads.emplace_back([&, t] { work(parts[std::size_t(t)]); });
+    work(parts[0]);
+  }
+  std::vector<float> cells = std::move(parts[0].cells);
+  float lo = kInf, hi = -kInf;
+  long long voids = 0;
+  for (Part& p : parts) {
+    if (!p.error.empty()) throw InputError(p.error);
+    lo = std::min(lo, p.lo);
+    hi = std::max(hi, p.hi);
+    voids += p.voids;
+    if (&p != &parts[0])
+      for (std::size_t i = 0; i < cells.size(); ++i) cells[i] = std::max(cells[i], p.cells[i]);
   }
   if (voids > 0)
     throw InputError(fmt::format(
@@ -363,7 +405,7 @@ TileSetInfo open_cog(const std::string& path, const std::string& texture, int ti
       if (bx == by && bx == 1 << k) tile_log2 = k;
   }
   g.tile_log2 = tile_log2;
-  compute_bounds(set, *in, ds.h, has_nodata != 0, nodata, std::max(1LL, held_bound_cells));
+  compute_bounds(set, *in, has_nodata != 0, nodata, std::max(1LL, held_bound_cells));
   const int T = 1 << tile_log2;
   for (int L = 0; L < g.bound_levels; ++L) {
     const int cw = set.tiles_cells_w(L), ch = set.tiles_cells_h(L);

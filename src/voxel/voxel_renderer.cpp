@@ -317,6 +317,15 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
     double lx, ly, hx, hy;
     layout.direction(p_lo, lx, ly);
     layout.direction(p_hi, hx, hy);
+    // Polar: pixels outside the keys' wedge widened by a thousandth of a column
+    // skip locate's atan2 (a side test on the planes; the margin is still far
+    // above the rounding of either computation).
+    const double t_lo = layout.c0 + (double(lo) + 0.5 - 1e-3) * layout.dc;
+    const double t_hi = layout.c0 + (double(hi) + 0.5 + 1e-3) * layout.dc;
+    const bool pretest = layout.polar && bounded && lo >= 0 && hi < n;
+    double tlx, tly, thx, thy;
+    layout.direction(t_lo, tlx, tly);
+    layout.direction(t_hi, thx, thy);
     for (int y = 0; y < h; ++y) {
       const double dy = y + 0.5 - layout.vy;
       // In the wedge: cross(w_lo, P - V) >= 0 and cross(P - V, w_hi) >= 0, with P = (x + 0.5, y +
@@ -350,6 +359,10 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
         continue;
       }
       for (int x = x0; x <= x1; ++x) {
+        if (pretest) {
+          const double dx = x + 0.5 - layout.vx;
+          if (tlx * dy - tly * dx < 0 || dx * thy - dy * thx < 0) continue;
+        }
         double cf, kf;
         locate(x, y, cf, kf);
         const long key = key_of(cf);

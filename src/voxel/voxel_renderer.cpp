@@ -307,8 +307,8 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
   // column each side (many orders above locate's rounding), so the scan stays
   // tight: with 24-column chunks and their seams, a pixel is located about
   // 1.3 times instead of 1.7-1.8 (1080p, -30 deg; the key filter still
-  // decides). The first and last keys also take the clamped pixels: widened
-  // by a column.
+  // decides; the polar side test below brings atan2 calls to ~1.0 a pixel). The first and last keys
+  // also take the clamped pixels: widened by a column.
   auto resample_keys = [&](long lo, long hi) {
     const double slack_lo = lo < 0 ? 1.0 : 0.25, slack_hi = hi >= n ? 1.0 : 0.25;
     const double p_lo = layout.c0 + (double(lo) + 0.5 - slack_lo) * layout.dc;

@@ -28,7 +28,7 @@ struct HybridScenario {
   bool full = false;
   enum class Control {
     kNone,         ///< unbudgeted (full, ibr) or a fixed budget
-    kQualityStep,  ///< the paper's: target quality up/down with the frame time
+    kQualityStep,  ///< the paper's: target quality up/down with the frame time (and the PI budget)
     kBudgetPi,     ///< cost-model prediction corrected by measured time (PI)
   } control = Control::kNone;
 };

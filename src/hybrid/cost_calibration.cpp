@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: MIT
+#include "terrasprite/cost_calibration.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include "gl/render_target.h"
+#include "terrasprite/stats.h"
+
+namespace terrasprite {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// A camera looking level-ish (theta 75 deg) at the model's centre from where
+/// its bounding sphere spans `size_px` of the image height.
+Camera calibration_camera(const Model& m, const CostCalibrationOptions& o, int size_px) {
+  const double r = m.bounding_radius();
+  const double ty = std::tan(glm::radians(o.fov_y_deg) / 2);
+  const double k = double(size_px) / o.height * ty;  // r / sqrt(d^2 - r^2)
+  const double dist = r * std::sqrt(1.0 + 1.0 / (k * k));
+  const double phi = glm::radians(30.0), elev = glm::radians(15.0);
+  const glm::dvec3 c(m.center());
+  const glm::dvec3 eye = c + dist * glm::dvec3(-std::sin(phi) * std::cos(elev),
+                                               -std::cos(phi) * std::cos(elev), std::sin(elev));
+  Camera cam = Camera::look_at(eye, c, o.fov_y_deg, double(o.width) / o.height, 30.0);
+  cam.near_m = dist * 0.02;
+  cam.far_m = dist + 2 * r;
+  return cam;
+}
+
+/// The on-screen disc of a centred sphere `size_px` across, clipped to the image.
+double centred_pixels(int size_px, int width, int height) {
+  return M_PI / 4 * std::min(size_px, width) * std::min(size_px, height);
+}
+
+}  // namespace
+
+std::vector<CalibrationDraw> measure_draw_costs(ObjectSet& set,
+                                                const std::vector<std::vector<Representation>>& reps,
+                                                const CostCalibrationOptions& o) {
+  std::vector<CalibrationDraw> out;
+  gl::RenderTarget target(o.width, o.height);
+  const ObjectInstance origin;
+  std::map<std::pair<int, int>, int> impostor_models;  // (kind, resolution) -> models timed
+  const int smallest = *std::min_element(o.sizes_px.begin(), o.sizes_px.end());
+  const int largest = *std::max_element(o.sizes_px.begin(), o.sizes_px.end());
+  for (std::size_t m = 0; m < reps.size() && m < set.model_count(); ++m) {
+    GlModel& model = set.model(m);
+    std::vector<Representation> timed;
+    for (const Representation& rep : reps[m]) {
+      if (rep.kind == ObjectKind::kMesh) {
+        timed.push_back(rep);
+      } else if (impostor_models[{int(rep.kind), rep.resolution}]++ < o.impostor_models) {
+        model.prepare(rep);
+        timed.push_back(rep);
+      }
+    }
+    for (int size : o.sizes_px) {
+      const Camera cam = calibration_camera(model.model(), o, size);
+      for (const Representation& rep : timed) {
+        if (rep.kind == ObjectKind::kMesh && o.mesh_two_sizes && size != smallest &&
+            size != largest)
+          continue;
+        std::vector<double> ms;
+        for (int k = 0; k < std::max(1, o.repeats); ++k) {
+          target.bind_and_clear();
+          glFinish();
+          const auto t0 = Clock::now();
+          model.draw(rep, std::span(&origin, 1), cam);
+          glFinish();
+          ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+        }
+        out.push_back({m, rep, size, double(model.triangles(rep)),
+                       centred_pixels(size, o.width, o.height), summarize(ms).median});
+      }
+    }
+  }
+  return out;
+}
+
+void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& draws) {
+  // Meshes: the kind's terms over every model's levels (the fallback), and
+  // each (model, level) on its own: models differ in parts (draw calls) and
+  // in how their triangles fill pixels, more than one linear fit follows.
+  // Impostors: each (kind, resolution) over the models timed.
+  std::vector<DrawSample> mesh;
+  std::map<std::tuple<int, int, int, int>, std::vector<PixelSample>> own;  // model, kind, level, res
+  std::map<std::tuple<int, int, int, int>, Representation> rep_of;
+  for (const CalibrationDraw& d : draws) {
+    const double ms = std::max(0.0, d.ms - model.terms(d.rep.kind).per_draw_ms);
+    const bool mesh_rep = d.rep.kind == ObjectKind::kMesh;
+    // Relative least squares (each row over its time), as for the representations.
+    if (mesh_rep && ms > 0) mesh.push_back({0, 1 / ms, d.triangles / ms, d.pixels / ms, 1.0});
+    const std::tuple<int, int, int, int> k{mesh_rep ? int(d.model) : DrawCostModel::kAnyModel,
+                                           int(d.rep.kind), mesh_rep ? d.rep.level : 0,
+                                           mesh_rep ? 0 : d.rep.resolution};
+    own[k].push_back({d.pixels, ms});
+    rep_of[k] = d.rep;
+  }
+  if (!mesh.empty()) {
+    const double per_draw = model.terms(ObjectKind::kMesh).per_draw_ms;
+    model.calibrate(ObjectKind::kMesh, mesh, 0.0);
+    DrawCostTerms t = model.terms(ObjectKind::kMesh);
+    t.per_draw_ms = per_draw;
+    model.set_terms(ObjectKind::kMesh, t);
+  }
+  for (const auto& [k, samples] : own) model.calibrate(rep_of[k], samples, std::get<0>(k));
+}
+
+std::string calibration_report(const DrawCostModel& model,
+                               const std::vector<CalibrationDraw>& draws) {
+  std::map<std::pair<int, int>, std::vector<double>> ratio;  // (kind, size) -> measured/predicted
+  std::vector<int> sizes;
+  for (const CalibrationDraw& d : draws) {
+    const double predicted = model.instance_ms(d.rep, d.triangles, d.pixels, int(d.model)) +
+                             model.terms(d.rep.kind).per_draw_ms;
+    if (predicted > 0) ratio[{int(d.rep.kind), d.size_px}].push_back(d.ms / predicted);
+    if (std::find(sizes.begin(), sizes.end(), d.size_px) == sizes.end()) sizes.push_back(d.size_px);
+  }
+  std::string s = "measured / predicted draw time (median per kind and size):\n  kind      ";
+  for (int px : sizes) s += fmt::format(" {:>8}", fmt::format("{}px", px));
+  s += "\n";
+  for (int k = 0; k < 3; ++k) {
+    std::string line = fmt::format("  {:<10}", object_kind_name(ObjectKind(k)));
+    bool any = false;
+    for (int px : sizes) {
+      const auto it = ratio.find({k, px});
+      if (it == ratio.end()) {
+        line += fmt::format(" {:>8}", "-");
+        continue;
+      }
+      any = true;
+      line += fmt::format(" {:>8.2f}", summarize(it->second).median);
+    }
+    if (any) s += line + "\n";
+  }
+  return s;
+}
+
+}  // namespace terrasprite

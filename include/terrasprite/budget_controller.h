@@ -62,6 +62,9 @@ class BudgetController {
 struct QualityStepOptions {
   double target_ms = 100;
   double step = 0.005;
+  /// Over the target, the step is taken once per 10% of the target missed,
+  /// up to this many times (1: the paper's fixed step). Raising stays one step.
+  double max_steps = 10;
   double min_quality = 0.80, max_quality = 0.995;
   double start_quality = 0.95;
 };

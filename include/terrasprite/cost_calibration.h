@@ -26,6 +26,7 @@ struct CostCalibrationOptions {
   /// Meshes are timed at the smallest and the largest size only (their
   /// time is mostly triangles).
   bool mesh_two_sizes = true;
+  int batch = 8;  ///< instances in the draw-call batch
 };
 
 /// One timed draw: model, representation, size and covered pixels, time.
@@ -33,7 +34,10 @@ struct CalibrationDraw {
   std::size_t model = 0;
   Representation rep;
   int size_px = 0;
-  double triangles = 0, pixels = 0, ms = 0;
+  double triangles = 0, pixels = 0, ms = 0;  ///< of one instance
+  /// Instances in the draw (on one spot): 1, or a batch at the smallest size
+  /// that splits the draw call's time from the instances' (ms: the whole draw).
+  int instances = 1;
 };
 
 /// Draws each (model, representation) in `reps[model]` alone at each size,
@@ -43,10 +47,11 @@ std::vector<CalibrationDraw> measure_draw_costs(ObjectSet& set,
                                                 const std::vector<std::vector<Representation>>& reps,
                                                 const CostCalibrationOptions& options);
 
-/// Fits `model` to the draws: meshes by kind (per-instance, per-triangle,
-/// per-pixel over every model's levels), impostors per kind and resolution
-/// (fixed + per-pixel over every model). The fitted constant includes one
-/// draw call: the kind's per-draw term already in `model` is taken off it.
+/// Fits `model` to the draws: per kind the draw call (one instance against
+/// a batch at the smallest size), meshes by kind (per-instance,
+/// per-triangle, per-pixel over every model's levels: the fallback) and per
+/// (model, level), impostors per kind and resolution (fixed + per-pixel over
+/// the models timed), each less its draw call.
 void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& draws);
 
 /// A table of the prediction error per kind and size: measured / predicted

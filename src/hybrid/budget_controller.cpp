@@ -51,8 +51,12 @@ double BudgetController::setpoint_ms() const {
 }
 
 void QualityStepController::update(double measured_ms) {
+  // The step grows with the miss (one step per 10% of the target, at most
+  // `max_steps`): a frame at 3x the target must not wait 40 frames.
+  const double miss = std::abs(measured_ms - o_.target_ms) / (0.1 * o_.target_ms);
+  const double step = o_.step * std::clamp(std::floor(miss), 1.0, o_.max_steps);
   if (measured_ms > o_.target_ms)
-    quality_ -= o_.step;
+    quality_ -= step;
   else if (measured_ms < 0.9 * o_.target_ms)
     quality_ += o_.step;
   quality_ = std::clamp(quality_, o_.min_quality, o_.max_quality);

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <array>
 #include <map>
+#include <tuple>
 
 #include "gl/render_target.h"
 #include "terrasprite/stats.h"
@@ -38,6 +40,22 @@ double centred_pixels(int size_px, int width, int height) {
   return M_PI / 4 * std::min(size_px, width) * std::min(size_px, height);
 }
 
+/// Median time of one draw of `n` instances on one spot, pipeline drained.
+double time_draw(gl::RenderTarget& target, GlModel& model, const Representation& rep,
+                 const Camera& cam, int n, int repeats) {
+  const std::vector<ObjectInstance> same(std::size_t(std::max(n, 1)));
+  std::vector<double> ms;
+  for (int k = 0; k < std::max(1, repeats); ++k) {
+    target.bind_and_clear();
+    glFinish();
+    const auto t0 = Clock::now();
+    model.draw(rep, same, cam);
+    glFinish();
+    ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+  }
+  return summarize(ms).median;
+}
+
 }  // namespace
 
 std::vector<CalibrationDraw> measure_draw_costs(ObjectSet& set,
@@ -45,7 +63,6 @@ std::vector<CalibrationDraw> measure_draw_costs(ObjectSet& set,
                                                 const CostCalibrationOptions& o) {
   std::vector<CalibrationDraw> out;
   gl::RenderTarget target(o.width, o.height);
-  const ObjectInstance origin;
   std::map<std::pair<int, int>, int> impostor_models;  // (kind, resolution) -> models timed
   const int smallest = *std::min_element(o.sizes_px.begin(), o.sizes_px.end());
   const int largest = *std::max_element(o.sizes_px.begin(), o.sizes_px.end());
@@ -62,21 +79,18 @@ std::vector<CalibrationDraw> measure_draw_costs(ObjectSet& set,
     }
     for (int size : o.sizes_px) {
       const Camera cam = calibration_camera(model.model(), o, size);
+      if (size == smallest && o.batch > 1)
+        for (const Representation& rep : timed)
+          out.push_back({m, rep, size, double(model.triangles(rep)),
+                         centred_pixels(size, o.width, o.height),
+                         time_draw(target, model, rep, cam, o.batch, o.repeats), o.batch});
       for (const Representation& rep : timed) {
         if (rep.kind == ObjectKind::kMesh && o.mesh_two_sizes && size != smallest &&
             size != largest)
           continue;
-        std::vector<double> ms;
-        for (int k = 0; k < std::max(1, o.repeats); ++k) {
-          target.bind_and_clear();
-          glFinish();
-          const auto t0 = Clock::now();
-          model.draw(rep, std::span(&origin, 1), cam);
-          glFinish();
-          ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-        }
         out.push_back({m, rep, size, double(model.triangles(rep)),
-                       centred_pixels(size, o.width, o.height), summarize(ms).median});
+                       centred_pixels(size, o.width, o.height),
+                       time_draw(target, model, rep, cam, 1, o.repeats)});
       }
     }
   }
@@ -88,10 +102,30 @@ void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& dr
   // each (model, level) on its own: models differ in parts (draw calls) and
   // in how their triangles fill pixels, more than one linear fit follows.
   // Impostors: each (kind, resolution) over the models timed.
+  // The draw call: one instance against a batch of n on the same spot at the
+  // smallest size, t1 = draw + instance, tn = draw + n instance.
+  std::map<std::tuple<std::size_t, int, int, int>, double> single;  // model, kind, level, res
+  for (const CalibrationDraw& d : draws)
+    if (d.instances == 1) single[{d.model, int(d.rep.kind), d.rep.level, d.rep.resolution}] = d.ms;
+  std::array<std::vector<double>, 3> per_draw;
+  for (const CalibrationDraw& d : draws) {
+    if (d.instances <= 1) continue;
+    const auto it = single.find({d.model, int(d.rep.kind), d.rep.level, d.rep.resolution});
+    if (it == single.end()) continue;
+    const double instance = std::max(0.0, (d.ms - it->second) / (d.instances - 1));
+    per_draw[std::size_t(d.rep.kind)].push_back(std::max(0.0, it->second - instance));
+  }
+  for (std::size_t k = 0; k < 3; ++k)
+    if (!per_draw[k].empty()) {
+      DrawCostTerms t = model.terms(ObjectKind(k));
+      t.per_draw_ms = summarize(per_draw[k]).median;
+      model.set_terms(ObjectKind(k), t);
+    }
   std::vector<DrawSample> mesh;
   std::map<std::tuple<int, int, int, int>, std::vector<PixelSample>> own;  // model, kind, level, res
   std::map<std::tuple<int, int, int, int>, Representation> rep_of;
   for (const CalibrationDraw& d : draws) {
+    if (d.instances != 1) continue;
     const double ms = std::max(0.0, d.ms - model.terms(d.rep.kind).per_draw_ms);
     const bool mesh_rep = d.rep.kind == ObjectKind::kMesh;
     // Relative least squares (each row over its time), as for the representations.
@@ -117,6 +151,7 @@ std::string calibration_report(const DrawCostModel& model,
   std::map<std::pair<int, int>, std::vector<double>> ratio;  // (kind, size) -> measured/predicted
   std::vector<int> sizes;
   for (const CalibrationDraw& d : draws) {
+    if (d.instances != 1) continue;
     const double predicted = model.instance_ms(d.rep, d.triangles, d.pixels, int(d.model)) +
                              model.terms(d.rep.kind).per_draw_ms;
     if (predicted > 0) ratio[{int(d.rep.kind), d.size_px}].push_back(d.ms / predicted);

@@ -101,11 +101,13 @@ TEST(BudgetController, OneSurpriseFrameDoesNotThrowTheRestOff) {
 
 TEST(QualityStepController, RaisesUnderAndLowersOverTarget) {
   QualityStepController q({.target_ms = 50, .step = 0.01, .start_quality = 0.9});
-  q.update(80);
+  q.update(52);  // just over: one step
   EXPECT_NEAR(q.quality(), 0.89, 1e-12);
+  q.update(80);  // 60% over: six steps
+  EXPECT_NEAR(q.quality(), 0.83, 1e-12);
+  q.update(20);  // under: one step up
   q.update(20);
-  q.update(20);
-  EXPECT_NEAR(q.quality(), 0.91, 1e-12);
+  EXPECT_NEAR(q.quality(), 0.85, 1e-12);
 }
 
 TEST(DrawCostModel, FitsMeasuredDrawsAndRefitsOnline) {

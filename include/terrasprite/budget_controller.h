@@ -15,7 +15,8 @@ struct BudgetControllerOptions {
   /// measured / predicted is smoothed with this weight for the newest frame.
   double ratio_smoothing = 0.6;
   /// A frame measured over this many times its prediction is a one-off
-  /// surprise: it neither moves the ratio nor the integral.
+  /// surprise: it neither moves the ratio nor the integral. Only one frame
+  /// in a row: the second such frame is taken as the machine's pace.
   double outlier_factor = 2.5;
   double integral_limit = 0.5;  ///< anti-windup, relative
   /// The loop aims the median frame below the target by the frame-to-frame
@@ -41,6 +42,8 @@ class BudgetController {
   /// representations and what the frame took.
   void update(double predicted_ms, double measured_ms);
   double ratio() const { return ratio_; }
+  /// Whether the last frame was set aside as a one-off surprise.
+  bool last_was_surprise() const { return surprise_; }
   /// The frame time the loop currently aims at (see `z`), ms.
   double setpoint_ms() const;
   /// The measured noise sigma (log domain; see `spread_window`).
@@ -54,6 +57,7 @@ class BudgetController {
   std::deque<double> changes_;  ///< |successive change of log ratio|, newest last
   double budget_ms_;
   bool first_ = true;
+  bool surprise_ = false;
 };
 
 /// The paper's controller: raise the target quality while frames come in

@@ -99,6 +99,12 @@ class DrawCostModel {
   void calibrate(const Representation& rep, std::span<const PixelSample> samples,
                  int model = kAnyModel);
   bool calibrated(const Representation& rep, int model = kAnyModel) const;
+  /// `rep`'s own calibrated cost (the model's, else any model's), or null.
+  const RepresentationCost* cost(const Representation& rep, int model = kAnyModel) const {
+    return find(rep, model);
+  }
+  void set_cost(const Representation& rep, const RepresentationCost& cost,
+                int model = kAnyModel);
 
   /// Expected time of one instance drawn as `kind` (its draw call's share not included).
   double instance_ms(ObjectKind kind, double triangles, double pixels) const;

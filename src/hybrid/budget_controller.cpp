@@ -15,8 +15,10 @@ BudgetController::BudgetController(const BudgetControllerOptions& options)
 void BudgetController::update(double predicted_ms, double measured_ms) {
   if (!(predicted_ms > 0) || !(measured_ms > 0)) return;
   const double r = measured_ms / predicted_ms;
-  const bool surprise = !first_ && r > o_.outlier_factor * ratio_;
-  if (!surprise) {
+  // One frame far over its expected ratio is a surprise; the next one too
+  // is the machine's new pace (a sustained slowdown must not freeze the loop).
+  surprise_ = !first_ && r > o_.outlier_factor * ratio_ && !surprise_;
+  if (!surprise_) {
     // Log-domain smoothing: a ratio of 2 and one of 0.5 weigh alike.
     if (!first_) changes_.push_back(std::abs(std::log(r) - last_log_ratio_));
     while (int(changes_.size()) > std::max(1, o_.spread_window)) changes_.pop_front();

@@ -126,7 +126,9 @@ void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& dr
   std::map<std::tuple<int, int, int, int>, Representation> rep_of;
   for (const CalibrationDraw& d : draws) {
     if (d.instances != 1) continue;
-    const double ms = std::max(0.0, d.ms - model.terms(d.rep.kind).per_draw_ms);
+    // Fitted with the draw call in (a small instance's time is mostly the
+    // call: taken off first, what is left is noise); taken off the constant after.
+    const double ms = d.ms;
     const bool mesh_rep = d.rep.kind == ObjectKind::kMesh;
     // Relative least squares (each row over its time), as for the representations.
     if (mesh_rep && ms > 0) mesh.push_back({0, 1 / ms, d.triangles / ms, d.pixels / ms, 1.0});
@@ -141,9 +143,17 @@ void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& dr
     model.calibrate(ObjectKind::kMesh, mesh, 0.0);
     DrawCostTerms t = model.terms(ObjectKind::kMesh);
     t.per_draw_ms = per_draw;
+    t.per_instance_ms = std::max(0.0, t.per_instance_ms - per_draw);
     model.set_terms(ObjectKind::kMesh, t);
   }
-  for (const auto& [k, samples] : own) model.calibrate(rep_of[k], samples, std::get<0>(k));
+  for (const auto& [k, samples] : own) {
+    const Representation& rep = rep_of[k];
+    model.calibrate(rep, samples, std::get<0>(k));
+    // Take the draw call off the fitted constant (it is the kind's term).
+    RepresentationCost c = *model.cost(rep, std::get<0>(k));
+    c.fixed_ms = std::max(0.0, c.fixed_ms - model.terms(rep.kind).per_draw_ms);
+    model.set_cost(rep, c, std::get<0>(k));
+  }
 }
 
 std::string calibration_report(const DrawCostModel& model,

@@ -123,7 +123,12 @@ void DrawCostModel::calibrate(const Representation& rep, std::span<const PixelSa
     c = e_slope < e_const ? RepresentationCost{0, std::max(0.0, slope)}
                           : RepresentationCost{std::max(0.0, mean), 0};
   }
-  reps_[key(rep, model)] = c;
+  set_cost(rep, c, model);
+}
+
+void DrawCostModel::set_cost(const Representation& rep, const RepresentationCost& cost,
+                             int model) {
+  reps_[key(rep, model)] = cost;
 }
 
 const RepresentationCost* DrawCostModel::find(const Representation& rep, int model) const {

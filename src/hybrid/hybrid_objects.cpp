@@ -203,7 +203,7 @@ void HybridObjects::feedback(double measured_ms) {
   s.controller.update(last_.predicted_ms, measured_ms);
   s.quality_step.update(measured_ms);
   // A one-off surprise (an impostor build, a stall) says nothing about the terms.
-  if (measured_ms < s.options.controller.outlier_factor * last_.predicted_ms)
+  if (!s.controller.last_was_surprise())
     s.cost.observe(s.load, measured_ms);
 }
 

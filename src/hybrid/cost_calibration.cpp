@@ -104,13 +104,16 @@ void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& dr
   // Impostors: each (kind, resolution) over the models timed.
   // The draw call: one instance against a batch of n on the same spot at the
   // smallest size, t1 = draw + instance, tn = draw + n instance.
-  std::map<std::tuple<std::size_t, int, int, int>, double> single;  // model, kind, level, res
+  using Key = std::tuple<std::size_t, int, int, int, int>;  // model, kind, level, res, size
+  std::map<Key, double> single;
   for (const CalibrationDraw& d : draws)
-    if (d.instances == 1) single[{d.model, int(d.rep.kind), d.rep.level, d.rep.resolution}] = d.ms;
+    if (d.instances == 1)
+      single[{d.model, int(d.rep.kind), d.rep.level, d.rep.resolution, d.size_px}] = d.ms;
   std::array<std::vector<double>, 3> per_draw;
   for (const CalibrationDraw& d : draws) {
     if (d.instances <= 1) continue;
-    const auto it = single.find({d.model, int(d.rep.kind), d.rep.level, d.rep.resolution});
+    const auto it =
+        single.find({d.model, int(d.rep.kind), d.rep.level, d.rep.resolution, d.size_px});
     if (it == single.end()) continue;
     const double instance = std::max(0.0, (d.ms - it->second) / (d.instances - 1));
     per_draw[std::size_t(d.rep.kind)].push_back(std::max(0.0, it->second - instance));

@@ -34,7 +34,7 @@ struct HybridArgs {
   std::string scene, models_dir = "../shared/data", size = "320x180", path, json, cache;
   std::string out = "out/bench_hybrid";
   std::string target = "auto";
-  double full_over_target = 6;
+  double full_over_target = 5;
   int frames = 160, score_every = 2, instances = 0, terrain_quads = 64;
   std::string table_sizes = "200,50", relief_resolutions = "32,64,128,256",
               octahedral_resolutions = "32,64,128";

@@ -14,9 +14,10 @@ struct BudgetControllerOptions {
   double ki = 0.05;  ///< integral gain (per frame)
   /// measured / predicted is smoothed with this weight for the newest frame.
   double ratio_smoothing = 0.6;
-  /// A frame measured over this many times its prediction is a one-off
-  /// surprise: it neither moves the ratio nor the integral. Only one frame
-  /// in a row: the second such frame is taken as the machine's pace.
+  /// A frame whose measured/predicted ratio is this many times over (or
+  /// under) the smoothed one is a one-off surprise: it neither moves the
+  /// ratio nor the integral. Only one frame in a row: the second such frame
+  /// is taken as the machine's pace.
   double outlier_factor = 2.5;
   double integral_limit = 0.5;  ///< anti-windup, relative
   /// The loop aims the median frame below the target by the frame-to-frame

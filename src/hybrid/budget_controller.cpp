@@ -15,9 +15,12 @@ BudgetController::BudgetController(const BudgetControllerOptions& options)
 void BudgetController::update(double predicted_ms, double measured_ms) {
   if (!(predicted_ms > 0) || !(measured_ms > 0)) return;
   const double r = measured_ms / predicted_ms;
-  // One frame far over its expected ratio is a surprise; the next one too
-  // is the machine's new pace (a sustained slowdown must not freeze the loop).
-  surprise_ = !first_ && r > o_.outlier_factor * ratio_ && !surprise_;
+  // One frame far over (or under) its expected ratio is a surprise; the
+  // next one too is the machine's new pace (a sustained slowdown must not
+  // freeze the loop). A single fast frame would otherwise raise the next
+  // budget 2x and make the next frame the slow one.
+  const bool far = r > o_.outlier_factor * ratio_ || r * o_.outlier_factor < ratio_;
+  surprise_ = !first_ && far && !surprise_;
   if (!surprise_) {
     // Log-domain smoothing: a ratio of 2 and one of 0.5 weigh alike.
     if (!first_) changes_.push_back(std::abs(std::log(r) - last_log_ratio_));

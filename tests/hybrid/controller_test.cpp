@@ -97,6 +97,16 @@ TEST(BudgetController, OneSurpriseFrameDoesNotThrowTheRestOff) {
   const double before = c.budget_ms();
   c.update(before, 10 * before);  // a keyframe, an impostor build
   EXPECT_NEAR(c.budget_ms(), before, 1e-9);
+  EXPECT_TRUE(c.last_was_surprise());
+  c.update(before, before);
+  c.update(before, 0.1 * before);  // a glitch the other way
+  EXPECT_NEAR(c.budget_ms(), before, 1e-9);
+  c.update(before, before);
+  // Two slow frames in a row are the machine's new pace: the budget follows.
+  c.update(before, 10 * before);
+  c.update(before, 10 * before);
+  EXPECT_FALSE(c.last_was_surprise());
+  EXPECT_LT(c.budget_ms(), 0.5 * before);
 }
 
 TEST(QualityStepController, RaisesUnderAndLowersOverTarget) {

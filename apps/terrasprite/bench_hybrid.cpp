@@ -36,7 +36,7 @@ struct HybridArgs {
   std::string target = "auto";
   double full_over_target = 5;
   int frames = 160, score_every = 2, instances = 0, terrain_quads = 64;
-  std::string table_sizes = "200,50", relief_resolutions = "32,64,128,256",
+  std::string table_sizes = "200,50,16", relief_resolutions = "32,64,128,256",
               octahedral_resolutions = "32,64,128";
   double table_angle_step = 45;
   std::string figure6 = "C";
@@ -72,7 +72,8 @@ std::vector<TableOptions> table_options(const HybridArgs& a) {
     for (int r : o.resolutions)
       if (r < 16 || r > 512) throw InputError(fmt::format("{}: {} is outside 16..512", option, r));
     for (int px : o.sizes_px)
-      if (px < 16 || px > 2048) throw InputError(fmt::format("--table-sizes: {} is outside 16..2048", px));
+      if (px < 16 || px > 2048)
+        throw InputError(fmt::format("--table-sizes: {} is outside 16..2048", px));
     out.push_back(std::move(o));
   }
   return out;
@@ -310,7 +311,8 @@ void run_bench(const HybridArgs& a) {
   ObjectSet set(scene, LodOptions{}, a.cache.empty() ? default_cache_dir() : a.cache);
   HybridBenchResult result;
   std::vector<QualityTable> tables;
-  for (std::size_t i = 0; i < set.model_count(); ++i) tables.push_back(model_table(set, i, table_sampling, a.cache));
+  for (std::size_t i = 0; i < set.model_count(); ++i)
+    tables.push_back(model_table(set, i, table_sampling, a.cache));
   DrawCostModel cost = calibrated_cost(tables);
   {
     // The tables time 50-200 px in a small image; the walkthrough draws
@@ -331,7 +333,8 @@ void run_bench(const HybridArgs& a) {
       for (const RepresentationQuality& r : tables[m].representations) reps[m].push_back(r.rep);
     const auto t0 = std::chrono::steady_clock::now();
     const std::vector<CalibrationDraw> draws = measure_draw_costs(set, reps, co);
-    fmt::print(stderr, "cost model from the tables' draws only: {}", calibration_report(cost, draws));
+    fmt::print(stderr, "cost model from the tables' draws only: {}",
+               calibration_report(cost, draws));
     fit_draw_costs(cost, draws);
     result.calibration = calibration_report(cost, draws);
     fmt::print(stderr, "after calibration ({} draws, {:.1f} s): {}", draws.size(),
@@ -363,13 +366,23 @@ void run_bench(const HybridArgs& a) {
     // 5 times over the target" made the default (auto) target.
     HybridObjects full_objects(set, tables, cost, scenarios().front(), ho);
     HybridRenderer full_only(ground, &full_objects, "full", w, h, a.terrain_quads);
+    // Twelve frames spread over the path: six (as for the terrain) fell on
+    // the heaviest stretches and put the run's median at 2.7-3.7x the target.
+    // A first pass unmeasured: the first draws of each mesh run 1.5-2x
+    // slower (uploads, first-use faults) and set the target too high.
     std::vector<double> ms;
-    for (int k = 0; k < 6; ++k)
-      ms.push_back(full_only.draw(path[std::size_t(k * (path.size() - 1) / 5)]).ms);
+    for (int pass = 0; pass < 2; ++pass)
+      for (int k = 0; k < 12; ++k) {
+        const double t = full_only.draw(path[std::size_t(k * (path.size() - 1) / 11)]).ms;
+        if (pass == 1) ms.push_back(t);
+      }
     result.full_ms_at_start = summarize(ms).median;
     result.target_auto = target_ms == 0;
-    if (result.target_auto) target_ms = std::max(1.0, std::round(result.full_ms_at_start / a.full_over_target));
-    fmt::print(stderr, "terrain alone {:.1f} ms, full geometry {:.1f} ms (median of 6 path frames); target {:.0f} ms{}\n",
+    if (result.target_auto)
+      target_ms = std::max(1.0, std::round(result.full_ms_at_start / a.full_over_target));
+    fmt::print(stderr,
+               "terrain alone {:.1f} ms (median of 6 path frames), full geometry {:.1f} ms (median "
+               "of 12); target {:.0f} ms{}\n",
                result.terrain_ms, result.full_ms_at_start, target_ms,
                result.target_auto ? fmt::format(" (auto: full / {:g})", a.full_over_target) : "");
   }
@@ -437,6 +450,8 @@ void run_bench(const HybridArgs& a) {
         "mean SSIM {:.4f}, objects {:.4f}, {:.2f} switches/frame\n",
         s.name, s.ms.median, s.ms.p95, s.ms.p99, target_ms, 100 * s.within_10pct, s.mean_ssim,
         s.mean_ssim_objects, s.switches_per_frame);
+  fmt::print("full geometry's median over the run: {:.1f}x the target\n",
+             result.scenarios.front().ms.median / target_ms);
   fmt::print(
       "selection (optimal): {:.3f} ms/frame median, p95 {:.3f}; objective optimal {:.5f} vs greedy "
       "{:.5f} "
@@ -461,7 +476,7 @@ void add_bench_hybrid(CLI::App& bench) {
       ->capture_default_str()
       ->check(CLI::Range(0, 1000000));
   cmd->add_option("--target-ms", a->target,
-                  "target frame time, ms, or auto: full geometry's median time over six path "
+                  "target frame time, ms, or auto: full geometry's median time over twelve path "
                   "frames (timed first) / --full-over-target")
       ->capture_default_str();
   cmd->add_option("--full-over-target", a->full_over_target,

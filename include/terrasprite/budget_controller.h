@@ -23,8 +23,8 @@ struct BudgetControllerOptions {
   /// The loop aims the median frame below the target by the frame-to-frame
   /// noise of measured/predicted (sigma, log domain) so that the z-quantile
   /// lands at `tolerance` x target: setpoint = target x min(1, tolerance x
-  /// exp(-z sigma')), sigma' = sigma with the budget's own noise added. A noisy machine (frames 2x apart on a shared 2-core
-  /// box) is held by its p95, not its median; a steady one at the target.
+  /// exp(-z sigma')), sigma' = sigma with the budget's own noise added. A noisy machine (frames 2x
+  /// apart on a shared 2-core box) is held by its p95, not its median; a steady one at the target.
   /// sigma is robust: the median absolute change of log(measured/predicted)
   /// between successive frames over the last `spread_window` frames, / 0.954
   /// (a normal's), so a step in load (one large change) is not noise.

@@ -15,10 +15,10 @@
 namespace terrasprite {
 
 struct CostCalibrationOptions {
-  int width = 1280, height = 720;  ///< the image the frames are drawn in
-  double fov_y_deg = 60;           ///< the walkthrough camera's
+  int width = 1280, height = 720;                 ///< the image the frames are drawn in
+  double fov_y_deg = 60;                          ///< the walkthrough camera's
   std::vector<int> sizes_px{48, 192, 768, 1536};  ///< bounding-sphere diameters on screen
-  int repeats = 3;                                 ///< median of this many timed draws
+  int repeats = 3;                                ///< median of this many timed draws
   /// An impostor's per-pixel work does not depend on the model it shows (a
   /// box ray-marched or a quad sampled): each (kind, resolution) is timed on
   /// this many models only (the first ones offering it). Meshes: every model.
@@ -43,9 +43,9 @@ struct CalibrationDraw {
 /// Draws each (model, representation) in `reps[model]` alone at each size,
 /// pipeline drained, and returns the median times. Needs a current GL context;
 /// impostors are built first (untimed).
-std::vector<CalibrationDraw> measure_draw_costs(ObjectSet& set,
-                                                const std::vector<std::vector<Representation>>& reps,
-                                                const CostCalibrationOptions& options);
+std::vector<CalibrationDraw> measure_draw_costs(
+    ObjectSet& set, const std::vector<std::vector<Representation>>& reps,
+    const CostCalibrationOptions& options);
 
 /// Fits `model` to the draws: per kind the draw call (one instance against
 /// a batch at the smallest size), meshes by kind (per-instance,

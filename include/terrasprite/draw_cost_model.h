@@ -103,8 +103,7 @@ class DrawCostModel {
   const RepresentationCost* cost(const Representation& rep, int model = kAnyModel) const {
     return find(rep, model);
   }
-  void set_cost(const Representation& rep, const RepresentationCost& cost,
-                int model = kAnyModel);
+  void set_cost(const Representation& rep, const RepresentationCost& cost, int model = kAnyModel);
 
   /// Expected time of one instance drawn as `kind` (its draw call's share not included).
   double instance_ms(ObjectKind kind, double triangles, double pixels) const;
@@ -134,7 +133,7 @@ class DrawCostModel {
   double m(int i) const { return prior_set_ ? multipliers_[std::size_t(i)] : 1.0; }
   std::array<double, kTerms> multipliers_{};
   CostModelOptions options_;
-  std::array<DrawCostTerms, 3> terms_{};  ///< as calibrated
+  std::array<DrawCostTerms, 3> terms_{};      ///< as calibrated
   std::array<DrawCostTerms, 3> effective_{};  ///< as refit (terms())
   const RepresentationCost* find(const Representation& rep, int model) const;
   /// (model or kAnyModel, kind, level, resolution) -> cost

@@ -4,9 +4,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
-#include <array>
 #include <map>
 #include <tuple>
 
@@ -58,9 +58,9 @@ double time_draw(gl::RenderTarget& target, GlModel& model, const Representation&
 
 }  // namespace
 
-std::vector<CalibrationDraw> measure_draw_costs(ObjectSet& set,
-                                                const std::vector<std::vector<Representation>>& reps,
-                                                const CostCalibrationOptions& o) {
+std::vector<CalibrationDraw> measure_draw_costs(
+    ObjectSet& set, const std::vector<std::vector<Representation>>& reps,
+    const CostCalibrationOptions& o) {
   std::vector<CalibrationDraw> out;
   gl::RenderTarget target(o.width, o.height);
   std::map<std::pair<int, int>, int> impostor_models;  // (kind, resolution) -> models timed
@@ -125,7 +125,8 @@ void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& dr
       model.set_terms(ObjectKind(k), t);
     }
   std::vector<DrawSample> mesh;
-  std::map<std::tuple<int, int, int, int>, std::vector<PixelSample>> own;  // model, kind, level, res
+  std::map<std::tuple<int, int, int, int>, std::vector<PixelSample>>
+      own;  // model, kind, level, res
   std::map<std::tuple<int, int, int, int>, Representation> rep_of;
   for (const CalibrationDraw& d : draws) {
     if (d.instances != 1) continue;

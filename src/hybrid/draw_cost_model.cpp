@@ -126,8 +126,7 @@ void DrawCostModel::calibrate(const Representation& rep, std::span<const PixelSa
   set_cost(rep, c, model);
 }
 
-void DrawCostModel::set_cost(const Representation& rep, const RepresentationCost& cost,
-                             int model) {
+void DrawCostModel::set_cost(const Representation& rep, const RepresentationCost& cost, int model) {
   reps_[key(rep, model)] = cost;
 }
 
@@ -154,8 +153,8 @@ double DrawCostModel::instance_ms(const Representation& rep, double triangles, d
   return m(2 + 3 * k) * c->fixed_ms + m(3 + 3 * k) * c->per_pixel_ms * pixels;
 }
 
-void DrawCostModel::add(FrameLoad& load, const Representation& rep, double triangles,
-                        double pixels, int model) const {
+void DrawCostModel::add(FrameLoad& load, const Representation& rep, double triangles, double pixels,
+                        int model) const {
   const std::size_t k = std::size_t(rep.kind);
   DrawSample& s = load.kinds[k];
   s.instances += 1;
@@ -175,8 +174,8 @@ std::array<double, DrawCostModel::kTerms> DrawCostModel::contributions(
     const DrawCostTerms& t = terms_[k];
     z[1 + 3 * k] = t.per_draw_ms * s.draws;
     const bool summed = load.fixed_ms[k] > 0 || load.pixel_ms[k] > 0;
-    z[2 + 3 * k] =
-        summed ? load.fixed_ms[k] : t.per_instance_ms * s.instances + t.per_triangle_ms * s.triangles;
+    z[2 + 3 * k] = summed ? load.fixed_ms[k]
+                          : t.per_instance_ms * s.instances + t.per_triangle_ms * s.triangles;
     z[3 + 3 * k] = summed ? load.pixel_ms[k] : t.per_pixel_ms * s.pixels;
   }
   return z;

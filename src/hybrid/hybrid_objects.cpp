@@ -100,7 +100,7 @@ long long HybridObjects::draw(const Camera& camera) {
   const double px_per_m = o.height / (2 * std::tan(glm::radians(camera.fov_y_deg) / 2));
   std::vector<InstanceOptions> frame;
   std::vector<std::pair<std::size_t, std::size_t>> where;  // (model, instance index)
-  std::vector<double> pixels_of;                            // covered pixels, per entry
+  std::vector<double> pixels_of;                           // covered pixels, per entry
   HybridFrameStats st;
   int id = 0;
   for (std::size_t m = 0; m < s.set.model_count(); ++m) {
@@ -122,7 +122,8 @@ long long HybridObjects::draw(const Camera& camera) {
             f.shared_layout ? f.quality.at(w) : f.quality.at(v.phi_deg, v.theta_deg, v.size_px);
         const double err_px =
             f.error_m * instances[i].scale * px_per_m / std::max(v.distance_m, 1e-6);
-        inst.options.push_back({f.rep, s.cost.instance_ms(f.rep, double(f.triangles), pixels, int(m)),
+        inst.options.push_back({f.rep,
+                                s.cost.instance_ms(f.rep, double(f.triangles), pixels, int(m)),
                                 q.ssim, q.psnr, f.triangles, err_px});
       }
       long long lo = inst.options.front().triangles;
@@ -203,8 +204,7 @@ void HybridObjects::feedback(double measured_ms) {
   s.controller.update(last_.predicted_ms, measured_ms);
   s.quality_step.update(measured_ms);
   // A one-off surprise (an impostor build, a stall) says nothing about the terms.
-  if (!s.controller.last_was_surprise())
-    s.cost.observe(s.load, measured_ms);
+  if (!s.controller.last_was_surprise()) s.cost.observe(s.load, measured_ms);
 }
 
 }  // namespace terrasprite

@@ -50,8 +50,8 @@ InstanceView view_instance(const Camera& camera, int height_px, const ObjectInst
   auto overlap = [&](double c, double extent) {
     return std::max(0.0, std::min(c + half, extent / 2) - std::max(c - half, -extent / 2));
   };
-  const double covered = z > 1e-9 ? overlap(cx, width_px) * overlap(cy, height_px)
-                                  : width_px * double(height_px);
+  const double covered =
+      z > 1e-9 ? overlap(cx, width_px) * overlap(cy, height_px) : width_px * double(height_px);
   v.pixels = M_PI / 4 * covered;
   // The camera's direction from the centre, in the model's frame.
   const glm::dvec3 d = heading_rotate(-to / std::max(v.distance_m, 1e-12), -heading);

@@ -361,6 +361,8 @@ void run_bench(const HybridArgs& a) {
   HybridOptions ho;
   ho.width = w;
   ho.height = h;
+  for (const TableOptions& o : table_sampling)
+    for (int px : o.sizes_px) ho.max_impostor_size_px = std::max(ho.max_impostor_size_px, 2.0 * px);
   {
     // Full geometry on the same six path frames: the issue's "full at least
     // 5 times over the target" made the default (auto) target.

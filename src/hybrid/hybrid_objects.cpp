@@ -114,10 +114,18 @@ long long HybridObjects::draw(const Camera& camera) {
       InstanceOptions inst{id, v.size_px, std::min(1.0, v.pixels / image_px), {}};
       const double pixels = v.pixels;
       // One table lookup per instance; every representation on the same views reuses it.
+      const double radius = model.bounding_radius() * instances[i].scale;
       const QualityInterpolator::Weights w =
           s.offers[m].front().quality.weights(v.phi_deg, v.theta_deg, v.size_px);
       for (const Offer& f : s.offers[m]) {
         if (scenario_.full && !(f.rep.kind == ObjectKind::kMesh && f.rep.level == 0)) continue;
+        // Beyond the tables' sizes an impostor's quality is unknown, and
+        // near the camera it is far worse than they say (checkpoint D).
+        // Within two radii the camera is inside or at the impostor's box.
+        if (f.rep.kind != ObjectKind::kMesh && o.max_impostor_size_px > 0 &&
+            (v.size_px > o.max_impostor_size_px || v.distance_m < 2 * radius) &&
+            scenario_.policy != SelectionPolicy::kImpostorOnly)
+          continue;
         const ExpectedQuality q =
             f.shared_layout ? f.quality.at(w) : f.quality.at(v.phi_deg, v.theta_deg, v.size_px);
         const double err_px =

@@ -126,6 +126,7 @@ RenderedFrame RenderWorker::draw(ViewRenderer& r, const Camera& camera, Targets*
     out.frame = r.renderer().render(camera, ReadBack::kColor);
   }
   out.error_px = r.error_px();
+  out.landed = r.landed_keyframe();
   out.device = r.device();
   return out;
 }

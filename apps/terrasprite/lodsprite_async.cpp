@@ -116,6 +116,7 @@ AsyncComparison run_async_display(const GlContext& gl, Scene& scene, std::span<c
                                   int w, int h, SpriteOptions o, const std::vector<Image>& refs,
                                   int every, double display_hz) {
   AsyncComparison c;
+  c.display_hz = display_hz;
   const double period_ms = display_hz > 0 ? 1000.0 / display_hz : 0.0;
   o.async_context = nullptr;
   c.sync = display(scene, path, w, h, o, period_ms, nullptr);
@@ -159,7 +160,7 @@ nlohmann::json async_json(const AsyncComparison& c) {
   async["landed_frames"] = c.async.landed_frames;
   async["mean_ssim"] = c.async.mean_ssim;
   async["mean_psnr"] = c.async.mean_psnr;
-  return {{"display_hz", c.async.period_ms > 0 ? 1000.0 / c.async.period_ms : 0.0},
+  return {{"display_hz", c.display_hz},
           {"sync_display", sync},
           {"async_display", async},
           {"p99_ms", c.async.p99_ms},

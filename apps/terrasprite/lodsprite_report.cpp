@@ -98,7 +98,7 @@ std::string async_plot(const AsyncComparison& a, OutputDir& out) {
       "     {:.4f} w l dt 2 lc rgb '#1f77b4' t 'async median {:.1f} ms', \\\n"
       "     {:.4f} w l dt 3 lc rgb '#d62728' t 'async p99 {:.1f} ms'\n"
       "unset logscale y\n",
-      a.async.period_ms > 0 ? fmt::format(" at {:.0f} Hz", 1000.0 / a.async.period_ms) : "",
+      a.display_hz > 0 ? fmt::format(" at {:g} Hz", a.display_hz) : "",
       median, median, p99, p99);
 }
 
@@ -242,10 +242,10 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
     h << "<h2>Asynchronous keyframes (simulated display, frame time = interval between "
          "presentations)</h2><table>\n";
     h << row("display",
-             a.async.period_ms > 0
-                 ? fmt::format("paced at {:.0f} Hz (a frame not ready by its slot is late and "
+             a.display_hz > 0
+                 ? fmt::format("paced at {:g} Hz (a frame not ready by its slot is late and "
                                "waits for the next)",
-                               1000.0 / a.async.period_ms)
+                               a.display_hz)
                  : std::string("flat out (each frame presented as soon as drawn)"));
     for (auto [name, d] : {std::pair{"synchronous", &a.sync}, {"async", &a.async}}) {
       h << row(fmt::format("{} display: median / p99 / max frame", name),

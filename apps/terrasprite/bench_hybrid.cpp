@@ -291,7 +291,7 @@ void run_bench(const HybridArgs& a) {
   GlContext gl;
   Scene ground(terrain);
   ground.prepare(a.terrain_quads);
-  ObjectSet set(scene);
+  ObjectSet set(scene, LodOptions{}, a.cache.empty() ? default_cache_dir() : a.cache);
   std::vector<QualityTable> tables;
   for (std::size_t i = 0; i < set.model_count(); ++i) tables.push_back(model_table(set, i, table_sampling, a.cache));
   DrawCostModel cost = calibrated_cost(tables);
@@ -429,7 +429,8 @@ void add_bench_hybrid(CLI::App& bench) {
       ->capture_default_str();
   cmd->add_option("--figure6", a->figure6, "checkpoint shown in Figure 6")->capture_default_str();
   cmd->add_option("--cache", a->cache,
-                  "quality-table cache directory (default: ~/.cache/terrasprite/objects)");
+                  "quality-table and representation cache directory (default: "
+                  "~/.cache/terrasprite/objects)");
   cmd->add_option("--json", a->json, "also write the JSON here");
   cmd->add_option("--out", a->out, "output directory (JSON, figures, index.html)")
       ->capture_default_str();

@@ -116,9 +116,10 @@ TableOptions table_options(const TableArgs& a) {
   return o;
 }
 
-QualityTable measure(const Model& model, const TableOptions& o) {
+/// `cache` holds the representations (a disabled one: all built here).
+QualityTable measure(const Model& model, const TableOptions& o, const RepresentationCache& cache) {
   GlContext ctx;
-  GlModel gl_model(model, build_lod_chain(model));
+  GlModel gl_model(model, cached_lod_chain(model, LodOptions{}, cache), cache);
   Progress progress("objects table");
   return measure_quality_table(gl_model, o, [&](int done, int total) { progress(done, total); });
 }
@@ -141,7 +142,8 @@ void add_objects_table(CLI::App& objects) {
   cmd->add_option("--json", a->json, "write the table as JSON");
   cmd->add_option("--out", a->out, "report directory (plots, Table 1)")->capture_default_str();
   cmd->add_option("--cache", a->cache, "cache directory (default: ~/.cache/terrasprite/objects)");
-  cmd->add_flag("--no-cache", a->no_cache, "measure again and do not store the result");
+  cmd->add_flag("--no-cache", a->no_cache,
+                "build the representations and measure again; read and store nothing");
   cmd->callback([a] {
     const TableOptions o = table_options(*a);
     const ModelOptions mo = model_options(a->model);
@@ -153,10 +155,16 @@ void add_objects_table(CLI::App& objects) {
     const std::filesystem::path cache_file = table_cache_file(a->cache, a->model.file, mo, o);
     std::optional<QualityTable> t = a->no_cache ? std::nullopt : read_table_cache(cache_file);
     const bool cached = t.has_value();
-    if (!cached) t = measure(model, o);
+    const RepresentationCache reps =
+        a->no_cache ? RepresentationCache{}
+                    : RepresentationCache(a->cache.empty() ? default_cache_dir() : a->cache,
+                                          model_source_key(a->model.file, mo),
+                                          std::filesystem::path(a->model.file).stem().string());
+    if (!cached) t = measure(model, o, reps);
     nlohmann::json j = table_json(*t, o);
     if (!cached && !a->no_cache) write_table_cache(cache_file, j);
     j["cached"] = cached;
+    j["representation_cache"] = cache_stats_json(reps.stats());
     write_objects_report(*t, o, out);
     write_json(j, out.file("table.json"));
     if (!a->json.empty()) write_json(j, a->json);

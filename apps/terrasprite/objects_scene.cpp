@@ -4,8 +4,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 
 #include "cli_common.h"
+#include "objects_table.h"
+#include "scene_objects.h"
 #include "terrasprite/gl_context.h"
 #include "terrasprite/mesh_renderer.h"
 #include "terrasprite/object_set.h"
@@ -45,7 +48,7 @@ void add_objects_scene(CLI::App& objects) {
   struct Opts {
     TerrainOptions terrain;
     std::string scene, models_dir = "../shared/data", size = "1280x720", json,
-                       out = "out/objects_scene";
+                       out = "out/objects_scene", cache;
     int frames = 5;
   };
   auto o = std::make_shared<Opts>();
@@ -58,6 +61,9 @@ void add_objects_scene(CLI::App& objects) {
   cmd->add_option("--frames", o->frames, "timed frames (median reported)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
+  cmd->add_option("--cache", o->cache,
+                  "where the LOD chains and impostors are cached, or 'off' (default: "
+                  "~/.cache/terrasprite/objects)");
   cmd->add_option("--json", o->json, "write the figures as JSON");
   cmd->add_option("--out", o->out, "output directory (frame.png, scene.json)")
       ->capture_default_str();
@@ -71,7 +77,12 @@ void add_objects_scene(CLI::App& objects) {
     OutputDir out(o->out, output_policy());
     GlContext gl;
     Scene ground(terrain);
-    ObjectSet objects(scene);
+    const auto load_start = std::chrono::steady_clock::now();
+    ObjectSet objects(scene, LodOptions{}, objects_cache_dir(o->cache));
+    const double load_ms = std::chrono::duration<double, std::milli>(
+                               std::chrono::steady_clock::now() - load_start)
+                               .count();
+    print_cache_summary(objects);
     const Camera cam = overview_camera(objects, terrain.heights, double(w) / h);
     // The full-resolution renderer with and without the scene's objects,
     // interleaved frame by frame; frame 0 warms up (shaders, uploads).
@@ -104,6 +115,8 @@ void add_objects_scene(CLI::App& objects) {
     nlohmann::json j = {{"gl_renderer", gl.renderer()},
                         {"size", {w, h}},
                         {"instances", objects.instance_count()},
+                        {"load_ms", load_ms},
+                        {"representation_cache", cache_stats_json(objects.cache_stats())},
                         {"full_triangles", objects.full_triangles()},
                         {"terrain_triangles", terrain_triangles},
                         {"frame_triangles", triangles},

@@ -11,6 +11,7 @@
 #include "terrasprite/model.h"
 #include "terrasprite/output_dir.h"
 #include "terrasprite/quality_table.h"
+#include "terrasprite/representation_cache.h"
 
 namespace terrasprite::cli {
 
@@ -24,9 +25,6 @@ QualityTable table_from_json(const nlohmann::json& j);
 /// model and table options, and the format version, as 32 hex digits.
 std::string table_cache_key(const std::string& model_file, const ModelOptions& m,
                             const TableOptions& o);
-/// The cache directory: $TERRASPRITE_CACHE, else $XDG_CACHE_HOME/terrasprite,
-/// else ~/.cache/terrasprite; "objects" below it.
-std::string default_cache_dir();
 /// The cache file of a model's table in `cache_dir` (empty: default_cache_dir()).
 std::filesystem::path table_cache_file(const std::string& cache_dir, const std::string& model_file,
                                        const ModelOptions& m, const TableOptions& o);
@@ -35,6 +33,8 @@ std::filesystem::path table_cache_file(const std::string& cache_dir, const std::
 std::optional<QualityTable> read_table_cache(const std::filesystem::path& file);
 /// Stores `j` (table_json) atomically; a failure is a warning, not an error.
 void write_table_cache(const std::filesystem::path& file, const nlohmann::json& j);
+/// {hits, misses, rejected, read_ms, build_ms} of the representation cache.
+nlohmann::json cache_stats_json(const RepresentationCacheStats& s);
 
 /// Writes the .dat files, plots (gnuplot; skipped with a note when missing),
 /// and table1.md into `out`.

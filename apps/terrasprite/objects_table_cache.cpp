@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "objects_table.h"
+#include "terrasprite/representation_cache.h"
 
 namespace terrasprite::cli {
 
@@ -23,18 +24,16 @@ std::optional<QualityTable> read_table_cache(const std::filesystem::path& file) 
 }
 
 void write_table_cache(const std::filesystem::path& file, const nlohmann::json& j) {
-  std::error_code ec;
-  std::filesystem::create_directories(file.parent_path(), ec);
-  const std::filesystem::path tmp = file.string() + ".tmp";
-  {
-    std::ofstream f(tmp);
-    f << j.dump();
-    if (!f) {
-      fmt::print(stderr, "warning: cannot write the cache file {}\n", file.string());
-      return;
-    }
-  }
-  std::filesystem::rename(tmp, file, ec);
+  if (!write_file_atomically(file, j.dump()))
+    fmt::print(stderr, "warning: cannot write the cache file {}\n", file.string());
+}
+
+nlohmann::json cache_stats_json(const RepresentationCacheStats& s) {
+  return {{"hits", s.hits},
+          {"misses", s.misses},
+          {"rejected", s.rejected},
+          {"read_ms", s.read_ms},
+          {"build_ms", s.build_ms}};
 }
 
 std::filesystem::path table_cache_file(const std::string& cache_dir, const std::string& model_file,

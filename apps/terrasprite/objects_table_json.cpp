@@ -10,6 +10,7 @@
 
 #include "objects_table.h"
 #include "terrasprite/error.h"
+#include "terrasprite/representation_cache.h"
 
 namespace terrasprite::cli {
 namespace {
@@ -22,17 +23,6 @@ nlohmann::json number(double v) {
 }
 double number(const nlohmann::json& v) {
   return v.is_string() && v == "inf" ? INFINITY : v.get<double>();
-}
-
-std::uint64_t fnv1a(const std::string& bytes, std::uint64_t h = 1469598103934665603ull) {
-  for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
-
-std::string file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot read", path));
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 }  // namespace
@@ -138,20 +128,10 @@ std::string table_cache_key(const std::string& model_file, const ModelOptions& m
                         fmt::join(o.sizes_px, ","), o.angle_step_deg, o.full_sphere, o.views,
                         o.timing_instances, fmt::join(o.ssim_targets, ","),
                         fmt::join(o.psnr_targets, ","));
-  std::uint64_t h = fnv1a(file_bytes(model_file));
-  if (!m.texture.empty()) h = fnv1a(file_bytes(m.texture), h);
+  std::uint64_t h = fnv1a(read_file_bytes(model_file));
+  if (!m.texture.empty()) h = fnv1a(read_file_bytes(m.texture), h);
   return fmt::format("{:016x}{:016x}", h, fnv1a(params));
 }
 
-std::string default_cache_dir() {
-  namespace fs = std::filesystem;
-  if (const char* d = std::getenv("TERRASPRITE_CACHE"); d && *d)
-    return (fs::path(d) / "objects").string();
-  if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d)
-    return (fs::path(d) / "terrasprite" / "objects").string();
-  if (const char* d = std::getenv("HOME"); d && *d)
-    return (fs::path(d) / ".cache" / "terrasprite" / "objects").string();
-  return (fs::temp_directory_path() / "terrasprite-cache" / "objects").string();
-}
 
 }  // namespace terrasprite::cli

@@ -8,6 +8,7 @@
 
 #include "terrasprite/error.h"
 #include "terrasprite/object_scene.h"
+#include "terrasprite/representation_cache.h"
 
 namespace terrasprite::cli {
 
@@ -17,6 +18,22 @@ void add_objects_options(CLI::App& cmd, ObjectsOptions& o) {
                  "--models-dir) or a scene file (JSON); GL modes only");
   cmd.add_option("--models-dir", o.models_dir, "where the default scene's models are")
       ->capture_default_str();
+  cmd.add_option("--objects-cache", o.cache,
+                 "where the objects' LOD chains and impostors are cached, or 'off' "
+                 "(default: ~/.cache/terrasprite/objects)");
+}
+
+std::string objects_cache_dir(const std::string& option) {
+  if (option == "off") return {};
+  return option.empty() ? default_cache_dir() : option;
+}
+
+void print_cache_summary(const ObjectSet& set) {
+  const RepresentationCacheStats s = set.cache_stats();
+  if (s.hits + s.misses + s.rejected == 0) return;
+  fmt::print("objects: {} representations read from the cache in {:.0f} ms, {} built in {:.0f} ms{}\n",
+             s.hits, s.read_ms, s.misses, s.build_ms,
+             s.rejected ? fmt::format(" ({} unreadable entries rebuilt)", s.rejected) : "");
 }
 
 std::unique_ptr<ObjectSet> attach_objects(const ObjectsOptions& o, const Terrain& terrain,
@@ -41,7 +58,8 @@ std::unique_ptr<ObjectSet> attach_objects(const ObjectsOptions& o, const Terrain
   for (const SceneModel& m : objects.models)
     if (!std::filesystem::is_regular_file(m.file))
       throw InputError(fmt::format("--objects {}: model file {} is missing", o.scene, m.file));
-  auto set = std::make_unique<ObjectSet>(objects);
+  auto set = std::make_unique<ObjectSet>(objects, LodOptions{}, objects_cache_dir(o.cache));
+  print_cache_summary(*set);
   scene->set_objects(set.get());
   return set;
 }

@@ -16,7 +16,15 @@ namespace terrasprite::cli {
 struct ObjectsOptions {
   std::string scene;  ///< "" none, "default" the built-in 400-instance scene, else a scene file
   std::string models_dir = "../shared/data";
+  /// Representation cache folder: "" the default (default_cache_dir()), "off" none.
+  std::string cache;
 };
+
+/// The folder for ObjectSet: "" (no cache) for "off", default_cache_dir() for "".
+std::string objects_cache_dir(const std::string& option);
+
+/// One line on stdout: what the representation cache read and built.
+void print_cache_summary(const ObjectSet& set);
 
 void add_objects_options(CLI::App& cmd, ObjectsOptions& o);
 

@@ -10,6 +10,7 @@
 
 #include "terrasprite/camera.h"
 #include "terrasprite/lod_chain.h"
+#include "terrasprite/representation_cache.h"
 #include "terrasprite/model.h"
 
 namespace terrasprite {
@@ -44,15 +45,18 @@ struct Representation {
 /// built on first use (each built from level 0, unlit: albedo, normal and
 /// depth, lit when drawn). Needs a current GlContext for its whole life.
 /// Impostor resolutions are 16 to 512 (views 2 to 32); others throw InputError.
+/// With an enabled `cache`, an impostor's textures are read from it when an
+/// entry is there (no capture), else captured, read back once and stored.
 class GlModel {
  public:
-  GlModel(const Model& model, std::vector<LodLevel> chain);
+  GlModel(const Model& model, std::vector<LodLevel> chain, RepresentationCache cache = {});
   ~GlModel();
   GlModel(const GlModel&) = delete;
   GlModel& operator=(const GlModel&) = delete;
 
   const Model& model() const;
   const std::vector<LodLevel>& chain() const;
+  const RepresentationCache& cache() const;
   /// Builds the impostor now (else the first draw does). Changes the bound
   /// framebuffer, viewport and depth state: bind the target again afterwards.
   void prepare(const Representation& rep);

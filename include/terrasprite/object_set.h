@@ -15,9 +15,12 @@ namespace terrasprite {
 /// Needs a current GlContext for its whole life. Throws InputError (from the
 /// loaders) naming a model that cannot be loaded. As SceneObjects
 /// (Scene::set_objects) it draws every instance at full geometry.
+/// `cache_dir`: where each model's LOD chain and impostors are cached
+/// (RepresentationCache; empty: no cache, everything built here).
 class ObjectSet : public SceneObjects {
  public:
-  explicit ObjectSet(const ObjectScene& scene, const LodOptions& lod = {});
+  explicit ObjectSet(const ObjectScene& scene, const LodOptions& lod = {},
+                     const std::string& cache_dir = {});
   ~ObjectSet() override;
   ObjectSet(const ObjectSet&) = delete;
   ObjectSet& operator=(const ObjectSet&) = delete;
@@ -29,6 +32,8 @@ class ObjectSet : public SceneObjects {
   std::size_t instance_count() const;
   /// Triangles of every instance at full geometry.
   long long full_triangles() const;
+  /// The representation caches' counters, summed over the models.
+  RepresentationCacheStats cache_stats() const;
 
   /// Draws every instance into the bound target (RenderTarget conventions):
   /// model i with `per_model[i]` (one per model), or its full mesh when

@@ -142,11 +142,12 @@ const char* object_kind_name(ObjectKind kind) {
   return "?";
 }
 
-GlModel::GlModel(const Model& model, std::vector<LodLevel> chain)
+GlModel::GlModel(const Model& model, std::vector<LodLevel> chain, RepresentationCache cache)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.model = model;
   m.chain = std::move(chain);
+  m.cache = std::move(cache);
   m.levels.resize(m.chain.size());
   for (std::size_t i = 0; i < m.chain.size(); ++i) {
     upload_level(m.levels[i], m.chain[i]);
@@ -169,6 +170,9 @@ const Model& GlModel::model() const {
 }
 const std::vector<LodLevel>& GlModel::chain() const {
   return impl_->chain;
+}
+const RepresentationCache& GlModel::cache() const {
+  return impl_->cache;
 }
 
 void GlModel::Impl::attach_instance_attributes(GLuint vao) {

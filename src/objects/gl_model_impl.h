@@ -58,6 +58,7 @@ void relief_box(const Model& m, glm::vec3& lo, glm::vec3& hi);
 struct GlModel::Impl {
   Model model;
   std::vector<LodLevel> chain;
+  RepresentationCache cache;
   std::vector<objects::GpuLevel> levels;
   std::vector<gl::Texture> textures;
   gl::Program mesh_program;

@@ -2,8 +2,10 @@
 #include "terrasprite/object_set.h"
 
 #include <cassert>
+#include <filesystem>
 
 #include "terrasprite/lod_chain.h"
+#include "terrasprite/representation_cache.h"
 
 namespace terrasprite {
 
@@ -13,15 +15,34 @@ struct ObjectSet::Impl {
   std::vector<std::vector<ObjectInstance>> instances;
 };
 
-ObjectSet::ObjectSet(const ObjectScene& scene, const LodOptions& lod)
+ObjectSet::ObjectSet(const ObjectScene& scene, const LodOptions& lod, const std::string& cache_dir)
     : impl_(std::make_unique<Impl>()) {
   impl_->scene_models = scene.models;
   impl_->instances.resize(scene.models.size());
   for (const PlacedInstance& p : scene.instances) impl_->instances[p.model].push_back(p.instance);
   for (const SceneModel& m : scene.models) {
     const Model model = load_model(m.file, m.options);
-    impl_->models.push_back(std::make_unique<GlModel>(model, build_lod_chain(model, lod)));
+    const RepresentationCache cache =
+        cache_dir.empty()
+            ? RepresentationCache{}
+            : RepresentationCache(cache_dir, model_source_key(m.file, m.options),
+                                  std::filesystem::path(m.file).stem().string());
+    std::vector<LodLevel> chain = cached_lod_chain(model, lod, cache);
+    impl_->models.push_back(std::make_unique<GlModel>(model, std::move(chain), cache));
   }
+}
+
+RepresentationCacheStats ObjectSet::cache_stats() const {
+  RepresentationCacheStats sum;
+  for (const auto& m : impl_->models) {
+    const RepresentationCacheStats& s = m->cache().stats();
+    sum.hits += s.hits;
+    sum.misses += s.misses;
+    sum.rejected += s.rejected;
+    sum.read_ms += s.read_ms;
+    sum.build_ms += s.build_ms;
+  }
+  return sum;
 }
 
 ObjectSet::~ObjectSet() = default;

@@ -13,12 +13,15 @@
 //   hemi-octahedral map: d (d.z >= 0) -> a = d.xy / (|x|+|y|+z),
 //   grid (u, v) = (a.x + a.y, a.x - a.y) in [-1, 1]^2; frame (i, j) at
 //   u = 2 i / (views - 1) - 1 (grid points include the horizon).
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/render_target.h"
 #include "objects/capture.h"
 #include "objects/gl_model_impl.h"
+#include "objects/impostor_cache.h"
 
 namespace terrasprite {
 namespace objects {
@@ -222,6 +225,20 @@ objects::OctahedralImpostor& GlModel::Impl::octahedral_impostor(int res, int vie
     glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   }
   o.bytes = std::size_t(size) * size * 8;
+  const glm::vec3 c = model.center();
+  // The sphere through the farthest vertex, not the box's corners (which
+  // an object seldom fills): the same texels cover less of nothing.
+  float r = 0;
+  for (const glm::vec3& p : model.positions) r = std::max(r, glm::length(p - c));
+  r = std::max(r * 1.005f, 1e-6f);
+  o.radius = r;
+  const std::string what = fmt::format("octahedral-{}x{}", res, views);
+  const objects::TextureLevel albedo{o.albedo.id(), GL_TEXTURE_2D, size, size, 1,
+                                     GL_RGBA, GL_UNSIGNED_BYTE, 4};
+  const objects::TextureLevel geometry{o.geometry.id(), GL_TEXTURE_2D, size, size, 1,
+                                       GL_RGBA, GL_UNSIGNED_BYTE, 4};
+  if (objects::load_impostor(cache, what, {albedo, geometry})) return o;
+  const double t0 = objects::ms_now();
   gl::Texture depth(GL_TEXTURE_2D);
   glTextureStorage2D(depth.id(), 1, GL_DEPTH_COMPONENT32F, size, size);
   gl::Framebuffer fbo;
@@ -236,13 +253,6 @@ objects::OctahedralImpostor& GlModel::Impl::octahedral_impostor(int res, int vie
   glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, clear_albedo);
   glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 1, clear_geometry);
   glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &far);
-  const glm::vec3 c = model.center();
-  // The sphere through the farthest vertex, not the box's corners (which
-  // an object seldom fills): the same texels cover less of nothing.
-  float r = 0;
-  for (const glm::vec3& p : model.positions) r = std::max(r, glm::length(p - c));
-  r = std::max(r * 1.005f, 1e-6f);
-  o.radius = r;
   // Every view from the full mesh. A LOD level within a quarter texel (the
   // earlier shortcut) keeps the silhouette but smooths the normals, and the
   // shading detail was most of what the impostor lost (bunny, 128 per view,
@@ -253,6 +263,7 @@ objects::OctahedralImpostor& GlModel::Impl::octahedral_impostor(int res, int vie
       glViewport(i * res, j * res, res, res);
       objects::capture_view(*this, objects::view_capture(i, j, views, c, r), true);
     }
+  objects::store_impostor(cache, what, {albedo, geometry}, t0);
   return o;
 }
 

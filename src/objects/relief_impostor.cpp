@@ -15,12 +15,15 @@
 // colour and normal come from a visible face whose recorded surface passes
 // within 1.5 texels of it, the one that saw the surface most head-on; when no
 // face is that close, from the face whose surface is nearest.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/render_target.h"
 #include "objects/capture.h"
 #include "objects/gl_model_impl.h"
+#include "objects/impostor_cache.h"
 
 namespace terrasprite {
 namespace objects {
@@ -177,6 +180,13 @@ objects::ReliefImpostor& GlModel::Impl::relief_impostor(int res) {
   glTextureStorage3D(r.albedo.id(), 1, GL_RGBA8, res, res, 6);
   glTextureStorage3D(r.geometry.id(), 1, GL_RGBA16F, res, res, 6);
   r.bytes = std::size_t(res) * res * 6 * (4 + 8);
+  const std::string what = fmt::format("relief-{}", res);
+  const objects::TextureLevel albedo{r.albedo.id(), GL_TEXTURE_2D_ARRAY, res, res, 6,
+                                     GL_RGBA, GL_UNSIGNED_BYTE, 4};
+  const objects::TextureLevel geometry{r.geometry.id(), GL_TEXTURE_2D_ARRAY, res, res, 6,
+                                       GL_RGBA, GL_HALF_FLOAT, 8};
+  if (objects::load_impostor(cache, what, {albedo, geometry})) return r;
+  const double t0 = objects::ms_now();
   gl::Texture depth(GL_TEXTURE_2D);
   glTextureStorage2D(depth.id(), 1, GL_DEPTH_COMPONENT32F, res, res);
   gl::Framebuffer fbo;
@@ -197,6 +207,7 @@ objects::ReliefImpostor& GlModel::Impl::relief_impostor(int res) {
     glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &far);
     objects::capture_view(*this, objects::face_capture(face, lo, hi), false);
   }
+  objects::store_impostor(cache, what, {albedo, geometry}, t0);
   return r;
 }
 

@@ -92,7 +92,8 @@ class RenderWorker {
   RenderWorker& operator=(const RenderWorker&) = delete;
 
   /// The camera (with the input generation it includes) and settings to render
-  /// next; replaces an older request. The worker renders continuously.
+  /// next; replaces an older request. The worker renders continuously, each
+  /// frame once the one before it was taken (none drawn only to be dropped).
   void request(const Camera& camera, std::uint64_t generation, const LiveSettings& settings);
   /// The newest frame finished since the last take(), if any; its texture
   /// stays untouched until the next take() returns a frame. Rethrows an

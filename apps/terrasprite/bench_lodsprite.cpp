@@ -61,6 +61,8 @@ void add_bench_lodsprite(CLI::App& bench) {
   cmd->add_option("--scale-trigger", o->config.max_resample_scale,
                   "also keyframe when the keyframe's pixels are resampled by more than this factor "
                   "(default 1.25; inf = off)");
+  cmd->add_flag("--scale-aniso", o->config.anisotropic_scale,
+                "the scale trigger reads the keyframe's worst-stretched axis, not its area");
   cmd->add_option("--sharp-px", o->config.sharp_px,
                   "quads whose coarse geometry errs less than this many pixels take the drape "
                   "texture (default 0.5; 0 = off)");

@@ -25,6 +25,7 @@
 #include "cli_common.h"
 #include "plot.h"
 #include "process_memory.h"
+#include "stream/cog_source.h"
 #include "stream/tile_file.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/error.h"
@@ -43,7 +44,7 @@ using Clock = std::chrono::steady_clock;
 
 struct BenchStreamOpts {
   std::string tiles;
-  std::string cog;
+  std::string cog, texture;
   int cache_mb = 256;
   int io_threads = 2;
   std::string size = "1920x1080";
@@ -209,8 +210,8 @@ class InMemoryPeer {
     std::vector<std::string> args = {"/proc/self/exe",
                                      "bench",
                                      "stream",
-                                     "--tiles",
-                                     o.tiles,
+                                     o.cog.empty() ? "--tiles" : "--cog",
+                                     o.cog.empty() ? o.tiles : o.cog,
                                      "--size",
                                      o.size,
                                      "--path",
@@ -220,6 +221,7 @@ class InMemoryPeer {
                                      "--threads",
                                      std::to_string(o.threads),
                                      "--in-memory-child"};
+    if (!o.texture.empty()) args.insert(args.end(), {"--texture", o.texture});
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
@@ -424,7 +426,13 @@ nlohmann::json summary_json(const BenchStreamOpts& o, const TileSetInfo& set, co
             {"bytes_on_disk", set.bytes_on_disk},
             {"levels", set.grid.coarsest_level + 1},
             {"tile_cells", 1 << set.grid.tile_log2}}},
-          {"tiles", o.tiles},
+          {"tiles", o.tiles.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.tiles)},
+          {"cog", set.cog ? nlohmann::json({{"file", o.cog},
+                                            {"texture", o.texture.empty() ? nlohmann::json(nullptr)
+                                                                          : nlohmann::json(o.texture)},
+                                            {"bounds_ms", set.cog->bounds_ms},
+                                            {"bound_levels_held_from", set.cog->bound_from}})
+                          : nlohmann::json(nullptr)},
           {"cache_mb", o.cache_mb},
           {"io_threads", o.io_threads},
           {"size", {w, h}},
@@ -492,11 +500,6 @@ bool want_in_memory(const BenchStreamOpts& o, const TileSetInfo& set) {
 void run(const BenchStreamOpts& o) {
   const auto t_start = Clock::now();
   auto [w, h] = parse_size(o.size, "--size");
-  if (!o.cog.empty())
-    throw InputError(fmt::format(
-        "--cog {}: not supported yet; tile it with `terrasprite tile --dem {}`", o.cog, o.cog));
-  if (o.tiles.empty())
-    throw InputError("--tiles: required (a directory written by terrasprite tile)");
   if (o.frames < 1 || o.frames > 100000)
     throw InputError(fmt::format("--frames {}: must be between 1 and 100000", o.frames));
   if (o.cache_mb < 1 || o.cache_mb > 1 << 20)
@@ -504,7 +507,7 @@ void run(const BenchStreamOpts& o) {
   const bool child = o.child;
   const std::string out_dir = o.out.empty() ? std::string("out/bench_stream") : o.out;
   if (!child) check_outputs(out_dir, {o.json});
-  const TileSetInfo set = read_tile_set(o.tiles);
+  const TileSetInfo set = open_tile_source(o.tiles, o.cog, o.texture);
   const double open_ms = ms_since(t_start);
   if (child) {
     const std::vector<Camera> path = make_path(o.path, path_proxy(set), o.frames, double(w) / h);
@@ -563,7 +566,10 @@ void add_bench_stream(CLI::App& bench) {
       "streamed terrain: frame times, stalls and degraded reads vs the terrain in memory");
   auto o = std::make_shared<BenchStreamOpts>();
   cmd->add_option("--tiles", o->tiles, "tiled terrain directory (terrasprite tile --out DIR)");
-  cmd->add_option("--cog", o->cog, "an existing COG (not supported yet: tile it first)");
+  cmd->add_option("--cog", o->cog,
+                  "an existing COG or tiled GeoTIFF with overviews, one band of heights (instead "
+                  "of --tiles)");
+  cmd->add_option("--texture", o->texture, "with --cog: an RGB raster of the same size (colour)");
   cmd->add_option("--cache-mb", o->cache_mb, "tile cache budget, MB (default 256)");
   cmd->add_option("--io-threads", o->io_threads, "loader threads (default 2)");
   cmd->add_option("--size", o->size, "image size WxH (default 1920x1080)");

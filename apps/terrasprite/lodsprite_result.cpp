@@ -36,6 +36,7 @@ nlohmann::json frame_json(const LodspriteFrame& f) {
           {"error_samples", f.error_samples},
           {"fallback_fraction", f.fallback_fraction},
           {"resample_scale", f.resample_scale},
+          {"resample_aniso", f.resample_aniso},
           {"decision_cpu_ms", f.decision_cpu_ms},
           {"trigger", f.trigger},
           {"keyframe", f.keyframe},
@@ -93,6 +94,7 @@ nlohmann::json to_json(const LodspriteResult& r) {
       {"max_resample_scale", std::isfinite(r.max_resample_scale)
                                  ? nlohmann::json(r.max_resample_scale)
                                  : nlohmann::json(nullptr)},
+      {"scale_trigger_axis", r.anisotropic_scale ? "worst" : "area"},
       {"psnr_cap_db", kPsnrCapDb},
       {"there_and_back", r.there_and_back},
       {"async", r.async.has_value()},

@@ -26,7 +26,7 @@ struct LodspriteFrame {
   double ms = 0, gpu_ms = 0, full_ms = 0, lod_ms = 0;
   double error_px = 0, error_px_exact = 0;  ///< paper metric / exact reprojection, pixels
   int error_samples = 0;
-  double fallback_fraction = 0, resample_scale = 1, decision_cpu_ms = 0;
+  double fallback_fraction = 0, resample_scale = 1, resample_aniso = 1, decision_cpu_ms = 0;
   std::string trigger;  ///< what made this a keyframe ("" for sprite frames, "cache" for a reuse)
   int keyframe = 0;     ///< the frame whose keyframe is in use
   QualityScore sprite, lod;  ///< each against the full-resolution frame
@@ -126,6 +126,7 @@ struct LodspriteResult {
   std::string metric;  ///< "paper" | "exact"
   double max_fallback_fraction = 0, sharp_px = 0;
   double max_resample_scale = 0;  ///< may be +inf (the trigger off): JSON null
+  bool anisotropic_scale = false;  ///< the scale trigger reads the worst axis
   bool there_and_back = false;
   int sweep_score_every = 1;
   std::string video;  ///< file name inside the output directory; empty: none

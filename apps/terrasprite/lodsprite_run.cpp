@@ -165,6 +165,7 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   so.metric = cfg.metric;
   so.max_fallback_fraction = cfg.max_fallback_fraction;
   so.max_resample_scale = cfg.max_resample_scale;
+  so.anisotropic_scale = cfg.anisotropic_scale;
   so.sharp_px = cfg.sharp_px;
   so.cache_bytes = cfg.cache_bytes;
   so.cache_policy = cfg.cache_policy;
@@ -186,6 +187,7 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
                                       {"error_samples", double(e.samples)},
                                       {"fallback_fraction", e.fallback_fraction()},
                                       {"resample_scale", e.resample_scale},
+                                      {"resample_aniso", e.resample_aniso},
                                       {"decision_cpu_ms", sprite.last_decision_ms()}};
                         if (sprite.last_trigger())
                           r.tags["trigger"] = to_string(*sprite.last_trigger());
@@ -219,6 +221,7 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   res.max_fallback_fraction = cfg.max_fallback_fraction;
   res.sharp_px = cfg.sharp_px;
   res.max_resample_scale = cfg.max_resample_scale;
+  res.anisotropic_scale = cfg.anisotropic_scale;
   res.there_and_back = cfg.there_and_back;
   res.sweep_score_every = every;
   res.video = cfg.video;
@@ -241,6 +244,7 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
     row.error_samples = int(c.counters.at("error_samples"));
     row.fallback_fraction = c.counters.at("fallback_fraction");
     row.resample_scale = c.counters.at("resample_scale");
+    row.resample_aniso = c.counters.at("resample_aniso");
     row.decision_cpu_ms = c.counters.at("decision_cpu_ms");
     if (auto t = c.tags.find("trigger"); t != c.tags.end()) row.trigger = t->second;
     decision_ms.push_back(row.decision_cpu_ms);

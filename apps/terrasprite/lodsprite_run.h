@@ -26,6 +26,7 @@ struct LodspriteConfig {
   ErrorMetric metric = ErrorMetric::kPaper;
   double max_fallback_fraction = 1.0;
   double max_resample_scale = 1.25;
+  bool anisotropic_scale = false;  ///< SpriteOptions::anisotropic_scale
   double sharp_px = 0.5;
   std::vector<double> thresholds = {0.25, 0.5, 1, 2, 4, 8};
   std::vector<int> frame_counts = {115, 230, 460, 920, 1840};

@@ -117,6 +117,14 @@ struct SpriteError {
   /// keyframe bilinearly, so a large scale blurs (or aliases) even when the
   /// geometric error is small, e.g. on low-relief terrain.
   double resample_scale = 1.0;
+  /// The same per direction: per sample, the singular values s1 >= s2 of
+  /// the Jacobian from keyframe pixels to new-view pixels on the plane of
+  /// C's coarse normal, folded to max(s1, 1/s2) (the worst-stretched or
+  /// worst-shrunk axis); the geometric mean over the samples. At least
+  /// resample_scale's figure for each sample; larger where the view turns or
+  /// tilts so the keyframe is stretched one way and shrunk the other (equal
+  /// area, yet blurred along one axis).
+  double resample_aniso = 1.0;
   double value(ErrorMetric m) const { return m == ErrorMetric::kPaper ? paper_px : exact_px; }
 };
 

@@ -41,6 +41,9 @@ struct SpriteOptions {
   /// (the keyframe's pixels stretched or shrunk by more than this factor on
   /// average); infinity disables it.
   double max_resample_scale = 1.25;
+  /// The third trigger reads SpriteError::resample_aniso (the worst axis)
+  /// instead of resample_scale (the area's mean).
+  bool anisotropic_scale = false;
   /// Ours: a coarse quad whose largest deviation from the full-resolution
   /// surface projects below this many pixels in the current view takes the
   /// drape texture, as plain LOD would: there the coarse geometry is already

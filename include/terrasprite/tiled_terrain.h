@@ -8,11 +8,13 @@
 //   DIR/bound.tif   Float32 max-height bounds per cell, bound levels as overviews
 //   DIR/tiles.json  grid, levels, per-tile max-height bounds, georeferencing
 #pragma once
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "terrasprite/image.h"
+#include "terrasprite/insets.h"
 #include "terrasprite/terrain_tiles.h"
 #include "terrasprite/voxel_renderer.h"
 
@@ -24,18 +26,23 @@ struct TileWriteOptions {
   std::string color_compress = "JPEG";  ///< JPEG, WEBP or DEFLATE (lossless)
   int color_quality = 90;               ///< JPEG / WEBP quality, 1..100
   std::string height_compress = "DEFLATE";  ///< DEFLATE or ZSTD, with PREDICTOR=3
+  std::vector<InsetResult> insets;          ///< composited into the terrain: recorded in tiles.json
 };
 
-/// What tiles.json says: the grid and the per-tile max-height bounds.
+struct CogInput;  // an existing COG read in place (see open_cog)
+
+/// What tiles.json says: the grid and the per-tile max-height bounds. For an
+/// existing COG (open_cog), `dir` is the COG's path and `cog` is set.
 struct TileSetInfo {
   std::string dir;
+  std::shared_ptr<const CogInput> cog;
   TerrainGrid grid;  ///< finest_level 0, coarsest_level, bound_levels, tile_log2
   /// Per bound level: tiles across and down, and each tile's max height
   /// (row-major, metres): every sample and cell bound of the tile is below it.
   std::vector<int> tiles_x, tiles_y;
   std::vector<std::vector<float>> tile_max;
   std::optional<GeoTransform> geo;
-  long long bytes_on_disk = 0;  ///< the three .tif files
+  long long bytes_on_disk = 0;  ///< the three .tif files (a COG: it and its texture)
 
   std::string height_file() const { return dir + "/height.tif"; }
   std::string color_file() const { return dir + "/color.tif"; }
@@ -58,5 +65,26 @@ void write_tiled_terrain(const VoxelTerrain& terrain, const std::optional<GeoTra
 /// Reads DIR/tiles.json and checks that the three files exist and open as
 /// rasters of the stated sizes. Throws InputError naming the file otherwise.
 TileSetInfo read_tile_set(const std::string& dir);
+
+/// An existing Cloud-Optimized GeoTIFF (or any tiled single-band GeoTIFF with
+/// overviews) as a tiled terrain, read in place. Its overviews are
+/// area-aligned (GDAL's), so level L's vertex-aligned sample i (level-0 index
+/// i 2^L) is read bilinearly from the coarsest overview of factor <= 2^L at
+/// that overview's pixel-centre coordinate (i 2^L + 0.5) / f - 0.5. The
+/// max-height bounds are computed here in one pass over the raster and its
+/// overviews (strips, never the whole raster). `texture` (optional) is an RGB
+/// raster of the same size; without one the terrain is grey. Throws
+/// InputError naming the file when it cannot be read, has no overviews, is
+/// not tiled, has more than one band, or has nodata samples. Tiles are
+/// 2^tile_log2 cells; 0: the COG's own blocks when square, 16..512 (else 128).
+/// Bound levels are
+/// held from the first whose cells number at most `held_bound_cells`; finer
+/// ones repeat the held cell holding each cell (looser, still bounds).
+TileSetInfo open_cog(const std::string& path, const std::string& texture = {}, int tile_log2 = 0,
+                     long long held_bound_cells = 1 << 22);
+
+/// `--tiles DIR` or `--cog FILE [--texture FILE]`, exactly one of the two.
+TileSetInfo open_tile_source(const std::string& tiles, const std::string& cog,
+                             const std::string& texture);
 
 }  // namespace terrasprite

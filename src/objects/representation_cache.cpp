@@ -117,9 +117,8 @@ std::string default_cache_dir() {
 std::string model_source_key(const std::string& model_file, const ModelOptions& m) {
   std::uint64_t h = fnv1a(read_file_bytes(model_file));
   if (!m.texture.empty()) h = fnv1a(read_file_bytes(m.texture), h);
-  const std::string params =
-      fmt::format("up{}|h{}|tex{}|c{},{},{},{}", int(m.up), m.height_m, m.texture, m.color.r,
-                  m.color.g, m.color.b, m.color.a);
+  const std::string params = fmt::format("up{}|h{}|tex{}|c{},{},{},{}", int(m.up), m.height_m,
+                                         m.texture, m.color.r, m.color.g, m.color.b, m.color.a);
   return fmt::format("{:016x}{:016x}", h, fnv1a(params));
 }
 
@@ -240,8 +239,8 @@ std::optional<std::vector<LodLevel>> deserialize_lod_chain(std::string_view byte
 
 std::vector<LodLevel> cached_lod_chain(const Model& model, const LodOptions& o,
                                        const RepresentationCache& cache) {
-  const std::string what = fmt::format("lod-r{}-f{}-t{}-c{}", o.ratio, o.min_fraction,
-                                       o.min_triangles, o.crease_deg);
+  const std::string what =
+      fmt::format("lod-r{}-f{}-t{}-c{}", o.ratio, o.min_fraction, o.min_triangles, o.crease_deg);
   if (std::optional<std::string> bytes = cache.read(what)) {
     if (auto chain = deserialize_lod_chain(*bytes, model.materials.size())) return *chain;
     fmt::print(stderr, "warning: ignoring the cache entry {}: not a LOD chain; building it again\n",

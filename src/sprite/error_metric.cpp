@@ -149,6 +149,39 @@ KeyframeSamples make_keyframe_samples(const CoarseGrid& g, const Camera& key, in
   return k;
 }
 
+namespace {
+
+// max(s1, 1/s2) for the singular values s1 >= s2 of d(view pixel)/d(key
+// pixel) at C on the plane through C with normal n, by finite differences
+// (steps of 1e-3 of C's distance from the key eye along two tangents).
+// A plane seen edge-on in either view counts as a large stretch (64).
+double anisotropic_stretch(const glm::dmat4& key_vp, const glm::dmat4& view_vp, int w, int h,
+                           glm::dvec3 C, glm::dvec3 n, double key_distance) {
+  constexpr double kEdgeOn = 64.0;
+  const glm::dvec3 a = std::abs(n.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+  const double eps = 1e-3 * std::max(key_distance, 1e-6);
+  const glm::dvec3 t1 = glm::normalize(glm::cross(n, a)) * eps,
+                   t2 = glm::normalize(glm::cross(n, t1)) * eps;
+  glm::dvec2 k0, k1, k2, v0, v1, v2;
+  if (!project(key_vp, w, h, C, k0) || !project(key_vp, w, h, C + t1, k1) ||
+      !project(key_vp, w, h, C + t2, k2) || !project(view_vp, w, h, C, v0) ||
+      !project(view_vp, w, h, C + t1, v1) || !project(view_vp, w, h, C + t2, v2))
+    return kEdgeOn;
+  const glm::dmat2 K(k1 - k0, k2 - k0), V(v1 - v0, v2 - v0);
+  const double det = glm::determinant(K);
+  if (std::abs(det) < 1e-12 * std::max(glm::dot(K[0], K[0]) + glm::dot(K[1], K[1]), 1e-300))
+    return kEdgeOn;
+  const glm::dmat2 J = V * glm::inverse(K);
+  // Singular values of a 2 x 2 matrix from its Frobenius norm and determinant.
+  const double f = glm::dot(J[0], J[0]) + glm::dot(J[1], J[1]), d = std::abs(glm::determinant(J));
+  const double root = std::sqrt(std::max(f * f / 4 - d * d, 0.0));
+  const double s1 = std::sqrt(f / 2 + root), s2 = std::sqrt(std::max(f / 2 - root, 0.0));
+  if (s2 <= 1.0 / kEdgeOn) return kEdgeOn;
+  return std::min(std::max(s1, 1.0 / s2), kEdgeOn);
+}
+
+}  // namespace
+
 SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Camera& view) {
   SpriteError e;
   // Eq. (1) approximated as in the paper: one angle beta for every vertex,
@@ -165,7 +198,8 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
   const double pixel = view.pixel_angle(k.height);
   const glm::dmat4 vp = view.view_projection();
   const glm::dvec3 forward = view.forward();
-  double sum_paper = 0, sum_exact = 0, sum_log_scale = 0;
+  double sum_paper = 0, sum_exact = 0, sum_log_scale = 0, sum_log_aniso = 0;
+  const glm::dmat4 key_vp = k.key.view_projection();
   const glm::dvec3 key_forward = k.key.forward();
   // Pixels covering a small patch at C: dA |cos(incidence)| / (d^2 cos^3(off-axis angle)), up to
   // constants shared by both views (same field of view and image size).
@@ -192,6 +226,8 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
     const double area_ratio = footprint(view.position, forward, C, g.normal[q]) /
                               footprint(k.key.position, key_forward, C, g.normal[q]);
     sum_log_scale += std::abs(0.5 * std::log(area_ratio));
+    sum_log_aniso += std::log(anisotropic_stretch(key_vp, vp, k.width, k.height, C, g.normal[q],
+                                                  glm::length(k.key.position - C)));
     glm::dvec2 pp;
     if (project(vp, k.width, k.height, k.c_prime[q], pp)) {
       const glm::dvec2 dp = pp - pc;
@@ -202,6 +238,7 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
     e.paper_px = std::sqrt(sum_paper / e.samples);
     e.exact_px = std::sqrt(sum_exact / e.samples);
     e.resample_scale = std::exp(sum_log_scale / e.samples);
+    e.resample_aniso = std::exp(sum_log_aniso / e.samples);
   }
   return e;
 }

@@ -206,7 +206,8 @@ std::optional<Trigger> SpriteRenderer::trigger_for(const SpriteError& e) const {
   const SpriteOptions& o = s_->options;
   if (e.value(o.metric) > o.threshold_px) return Trigger::kError;
   if (e.fallback_fraction() > o.max_fallback_fraction) return Trigger::kFallback;
-  if (e.resample_scale > o.max_resample_scale) return Trigger::kScale;
+  if ((o.anisotropic_scale ? e.resample_aniso : e.resample_scale) > o.max_resample_scale)
+    return Trigger::kScale;
   return std::nullopt;
 }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "stream/cog_source.h"
 #include "terrain/gdal_util.h"
 #include "terrasprite/error.h"
 
@@ -15,7 +16,8 @@ namespace {
 
 GDALDatasetH open_or_throw(const std::string& path) {
   detail::GdalErrorCapture capture;
-  GDALDatasetH ds = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+  GDALDatasetH ds =
+      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
   if (!ds) throw InputError(fmt::format("{}: cannot open: {}", path, capture.last()));
   return ds;
 }
@@ -28,7 +30,8 @@ GDALRasterBandH level_band(GDALDatasetH ds, int b, int level) {
 
 }  // namespace
 
-void tile_window(const TileSetInfo& set, int level, int tx, int ty, int& x0, int& y0, int& w, int& h) {
+void tile_window(const TileSetInfo& set, int level, int tx, int ty, int& x0, int& y0, int& w,
+                 int& h) {
   const int T = 1 << set.grid.tile_log2;
   x0 = tx * T;
   y0 = ty * T;
@@ -45,6 +48,11 @@ std::size_t tile_bytes(const TileSetInfo& set, int level, int tx, int ty) {
 
 TileFile::TileFile(const TileSetInfo& set) : set_(set) {
   detail::ensure_gdal();
+  if (set.cog) {  // an existing COG: its texture is the colour, bounds are held in memory
+    height_ = open_or_throw(set.cog->path);
+    if (!set.cog->texture.empty()) color_ = open_or_throw(set.cog->texture);
+    return;
+  }
   height_ = open_or_throw(set.height_file());
   color_ = open_or_throw(set.color_file());
   bound_ = open_or_throw(set.bound_file());
@@ -71,47 +79,35 @@ bool TileFile::read_level(int level, TileData& out, std::string& error) {
 }
 
 bool TileFile::read_level_heights(int level, std::vector<float>& out, std::string& error) {
+  if (set_.cog) {
+    TileData d;
+    if (!read_level(level, d, error)) return false;
+    out = std::move(d.height);
+    return true;
+  }
   detail::GdalErrorCapture capture;
   const int w = set_.level_w(level), h = set_.level_h(level);
   out.resize(std::size_t(w) * h);
   GDALRasterBandH hb = level <= set_.grid.coarsest_level ? level_band(height_, 1, level) : nullptr;
-  if (!hb || GDALRasterIO(hb, GF_Read, 0, 0, w, h, out.data(), w, h, GDT_Float32, 0, 0) != CE_None) {
+  if (!hb ||
+      GDALRasterIO(hb, GF_Read, 0, 0, w, h, out.data(), w, h, GDT_Float32, 0, 0) != CE_None) {
     error = fmt::format("heights of level {}: {}", level, capture.last());
     return false;
   }
   return true;
 }
 
-bool TileFile::read_window(int level, int x0, int y0, int w, int h, TileData& out, std::string& error) {
-  detail::GdalErrorCapture capture;
+bool TileFile::read_window(int level, int x0, int y0, int w, int h, TileData& out,
+                           std::string& error) {
   const bool samples = level <= set_.grid.coarsest_level;
-  const std::size_t n = std::size_t(w) * h;
-  auto fail = [&](const char* what) {
-    error = fmt::format("{} of level {} at ({}, {}): {}", what, level, x0, y0, capture.last());
-    return false;
-  };
   out.height.clear();
   out.color.clear();
-  if (samples) {
-    out.height.resize(n);
-    GDALRasterBandH hb = level_band(height_, 1, level);
-    if (!hb || GDALRasterIO(hb, GF_Read, x0, y0, w, h, out.height.data(), w, h, GDT_Float32, 0, 0) != CE_None)
-      return fail("height");
-    out.color.assign(n, 0xff000000u);
-    auto* bytes = reinterpret_cast<std::uint8_t*>(out.color.data());
-    for (int b = 0; b < 3; ++b) {
-      GDALRasterBandH cb = level_band(color_, b + 1, level);
-      if (!cb || GDALRasterIO(cb, GF_Read, x0, y0, w, h, bytes + b, w, h, GDT_Byte, 4,
-                              GSpacing(w) * 4) != CE_None)
-        return fail("colour");
-    }
+  if (set_.cog) {
+    if (!read_cog_window(set_, height_, color_, level, x0, y0, w, h, out, error)) return false;
+  } else if (!read_tiles_window(level, x0, y0, w, h, out, error)) {
+    return false;
   }
-  // Cells of the tile: one fewer than samples each way (at least one).
-  const int cw = std::max(1, w - 1), ch = std::max(1, h - 1);
-  out.bound.resize(std::size_t(cw) * ch);
-  GDALRasterBandH bb = level_band(bound_, 1, level);
-  if (!bb || GDALRasterIO(bb, GF_Read, x0, y0, cw, ch, out.bound.data(), cw, ch, GDT_Float32, 0, 0) != CE_None)
-    return fail("bound");
+  const int cw = std::max(1, w - 1);  // cells: one fewer than samples (at least one)
   TileBlock& t = out.block;
   t = TileBlock{};
   t.height = samples ? out.height.data() : nullptr;
@@ -125,6 +121,39 @@ bool TileFile::read_window(int level, int x0, int y0, int w, int h, TileData& ou
   t.h = h;
   t.max_height = -std::numeric_limits<float>::infinity();
   for (float v : out.bound) t.max_height = std::max(t.max_height, v);
+  return true;
+}
+
+bool TileFile::read_tiles_window(int level, int x0, int y0, int w, int h, TileData& out,
+                                 std::string& error) {
+  detail::GdalErrorCapture capture;
+  const bool samples = level <= set_.grid.coarsest_level;
+  const std::size_t n = std::size_t(w) * h;
+  auto fail = [&](const char* what) {
+    error = fmt::format("{} of level {} at ({}, {}): {}", what, level, x0, y0, capture.last());
+    return false;
+  };
+  if (samples) {
+    out.height.resize(n);
+    GDALRasterBandH hb = level_band(height_, 1, level);
+    if (!hb || GDALRasterIO(hb, GF_Read, x0, y0, w, h, out.height.data(), w, h, GDT_Float32, 0,
+                            0) != CE_None)
+      return fail("height");
+    out.color.assign(n, 0xff000000u);
+    auto* bytes = reinterpret_cast<std::uint8_t*>(out.color.data());
+    for (int b = 0; b < 3; ++b) {
+      GDALRasterBandH cb = level_band(color_, b + 1, level);
+      if (!cb || GDALRasterIO(cb, GF_Read, x0, y0, w, h, bytes + b, w, h, GDT_Byte, 4,
+                              GSpacing(w) * 4) != CE_None)
+        return fail("colour");
+    }
+  }
+  const int cw = std::max(1, w - 1), ch = std::max(1, h - 1);
+  out.bound.resize(std::size_t(cw) * ch);
+  GDALRasterBandH bb = level_band(bound_, 1, level);
+  if (!bb || GDALRasterIO(bb, GF_Read, x0, y0, cw, ch, out.bound.data(), cw, ch, GDT_Float32, 0,
+                          0) != CE_None)
+    return fail("bound");
   return true;
 }
 

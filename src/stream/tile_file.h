@@ -47,6 +47,8 @@ class TileFile {
 
  private:
   bool read_window(int level, int x0, int y0, int w, int h, TileData& out, std::string& error);
+  /// read_window's reads from a `terrasprite tile` directory (vectors only).
+  bool read_tiles_window(int level, int x0, int y0, int w, int h, TileData& out, std::string& error);
   const TileSetInfo& set_;
   GDALDatasetH height_ = nullptr, color_ = nullptr, bound_ = nullptr;
 };

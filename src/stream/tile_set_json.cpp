@@ -66,6 +66,14 @@ void write_tile_set_json(const VoxelTerrain& terrain, const std::optional<GeoTra
     j["geotransform"] = std::vector<double>(geo->gt, geo->gt + 6);
     j["srs_wkt"] = geo->wkt;
   }
+  nlohmann::json insets = nlohmann::json::array();
+  for (const InsetResult& r : o.insets)
+    insets.push_back({{"file", r.path},
+                      {"blend_samples", r.blend},
+                      {"samples_replaced", r.samples_replaced},
+                      {"samples_full", r.samples_full},
+                      {"pixel_size", {r.spacing_m[0], r.spacing_m[1]}}});
+  j["insets"] = insets;
   nlohmann::json levels = nlohmann::json::array();
   const int T = 1 << o.tile_log2;
   for (int L = 0; L < g.bound_levels; ++L) {

@@ -72,7 +72,10 @@ void orient_north_up(const std::string& path, int w, int h, double gt[6], std::v
   }
 }
 
-// Returns false when the raster carries no usable georeferencing.
+}  // namespace
+
+namespace detail {
+
 bool spacing_from_geo(GDALDatasetH ds, const double gt[6], int w, int h, double& sx, double& sy,
                       GeoTransform& geo) {
   if (gt[0] == 0 && gt[1] == 1 && gt[2] == 0 && gt[3] == 0 && gt[4] == 0 && gt[5] == 1)
@@ -102,7 +105,7 @@ bool spacing_from_geo(GDALDatasetH ds, const double gt[6], int w, int h, double&
   return true;
 }
 
-}  // namespace
+}  // namespace detail
 
 Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings) {
   const std::string& path = o.dem;
@@ -224,7 +227,7 @@ Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings
 
   GeoTransform geo;
   double sx = 30.0, sy = 30.0;
-  if (has_gt && spacing_from_geo(ds.h, gt, w, h, sx, sy, geo)) hf.geo = geo;
+  if (has_gt && detail::spacing_from_geo(ds.h, gt, w, h, sx, sy, geo)) hf.geo = geo;
   if (o.spacing) {
     sx = sy = *o.spacing;
   } else if (!hf.geo && warnings) {

@@ -4,6 +4,12 @@
 #pragma once
 #include <string>
 
+typedef void* GDALDatasetH;
+
+namespace terrasprite {
+struct GeoTransform;
+}
+
 namespace terrasprite::detail {
 
 /// Registers GDAL's drivers once (thread-safe).
@@ -22,5 +28,12 @@ class GdalErrorCapture {
  private:
   std::string last_;
 };
+
+/// Ground spacing in metres (sx, sy) of a north-up raster `w` x `h` with
+/// transform `gt` (geographic CRSs at the raster's central latitude); `geo`
+/// gets the transform and WKT. False when the raster carries no usable
+/// georeferencing.
+bool spacing_from_geo(GDALDatasetH ds, const double gt[6], int w, int h, double& sx, double& sy,
+                      GeoTransform& geo);
 
 }  // namespace terrasprite::detail

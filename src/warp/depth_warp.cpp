@@ -4,7 +4,8 @@
 // then per output pixel a sub-pixel correction and a bilinear read.
 //
 //   1. splat: every real-frame pixel goes to the new image at its depth; the
-//      nearest one wins each output pixel (64-bit atomic min of depth | index).
+//      nearest one wins each output pixel (a 32-bit atomic slot holding the
+//      winner's real pixel; its depth is recomputed to compare).
 //   2. resolve: an output pixel with a winner reads the real frame at the
 //      winner's position moved by the sub-pixel offset of its landing point.
 //      One without (a crack, or a disocclusion) starts from its farthest
@@ -17,10 +18,12 @@
 // Speed: both passes work in spans of a row, first a loop without branches
 // that vectorises (where each real pixel lands; where each output pixel
 // reads, from its winner or, for an empty pixel, from its direction: sky is
-// a homography of the rotation alone), then one pixel at a time. An empty
-// pixel with no winner within 2 px is sky or a hole at once; only those near
-// winners (cracks, silhouettes) pay the neighbour search and iteration. The
-// buffers come from the caller's Warper.
+// a homography of the rotation alone), then every pixel of the span is read
+// and written as a winner would be, and only the others are visited one at
+// a time. An empty pixel with no winner within 2 px is sky or a hole at
+// once; only those near winners (cracks, silhouettes) pay the neighbour
+// search and iteration. The buffers come from the caller's Warper; the
+// winner slots are 32 bits (the real pixel, its depth recomputed).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -37,7 +40,7 @@
 namespace terrasprite::warp {
 namespace {
 
-constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
+constexpr std::uint32_t kEmpty = ~0u;
 
 // Real-frame pixel -> new-camera coordinates, linear along a row:
 // q = z (row_base(j) + i step) + offset, in the new camera's (right, up, forward).
@@ -61,6 +64,12 @@ struct SplatMap {
     smx = float(s.mx), smy = float(s.my), sfx = float(s.fx), sfy = float(s.fy);
   }
   glm::vec3 row_base(int j) const { return base0 + float(j) * base_j; }
+  // New-camera depth of real pixel (i, j) at depth z: the same arithmetic as
+  // land_span's, so the same bits.
+  float depth(int i, int j, float z) const {
+    const glm::vec3 base = row_base(j);
+    return z * (base.z + float(i) * step.z) + offset.z;
+  }
   // New-image position (pixel coordinates) and depth of real pixel (i, j) at depth z.
   bool land(int i, int j, float z, float& x, float& y, float& zt) const {
     const glm::vec3 q = z * (row_base(j) + float(i) * step) + offset;
@@ -73,9 +82,11 @@ struct SplatMap {
   }
 };
 
-// A winner's key: depth bits above the real pixel (i, j) as j << 14 | i (both
-// < 16384), so the smallest key is the nearest, ties to the first in row
-// order, and decoding needs no division.
+// A winner's key: the real pixel (i, j) as j << 14 | i (both < 16384), so
+// decoding needs no division. The nearest wins, ties to the first in row
+// order: (depth bits, key) compared as one 64-bit number, the depth
+// recomputed from the reference (SplatMap::depth) rather than stored, which
+// halves the buffer.
 constexpr int kIndexBits = 14;
 // Output pixel -> where its direction (a point at infinity) lies in the
 // real frame: a homography of the rotation alone, linear along a row in
@@ -101,15 +112,23 @@ struct SkyMap {
   }
 };
 
-std::uint64_t pack(float depth, int i, int j) {
-  return (std::uint64_t(std::bit_cast<std::uint32_t>(depth)) << 32) |
-         (std::uint32_t(j) << kIndexBits) | std::uint32_t(i);
+std::uint32_t pack(int i, int j) {
+  return (std::uint32_t(j) << kIndexBits) | std::uint32_t(i);
 }
-int key_i(std::uint64_t key) {
+int key_i(std::uint32_t key) {
   return int(key & ((1u << kIndexBits) - 1));
 }
-int key_j(std::uint64_t key) {
-  return int(std::uint32_t(key) >> kIndexBits);
+int key_j(std::uint32_t key) {
+  return int(key >> kIndexBits);
+}
+// Depth and key as one number: the smaller is the winner.
+std::uint64_t rank(float depth, std::uint32_t key) {
+  return (std::uint64_t(std::bit_cast<std::uint32_t>(depth)) << 32) | key;
+}
+// The new-camera depth of a (non-empty) key's real pixel.
+float key_depth(const SplatMap& map, const Reference& ref, std::uint32_t key) {
+  const int i = key_i(key), j = key_j(key);
+  return map.depth(i, j, ref.frame.depth[std::size_t(j) * ref.cam.w + i]);
 }
 
 // Where real pixels [i0, i1) of row j land: the output pixel index (or
@@ -139,7 +158,7 @@ void land_span(const SplatMap& map, const float* __restrict depth, int i0, int i
 }
 
 void splat(const Reference& ref, const SplatMap& map, int w, int h,
-           std::vector<std::uint64_t>& win) {
+           std::vector<std::uint32_t>& win) {
   const int sw = ref.cam.w;
   tbb::parallel_for(
       tbb::blocked_range<int>(0, ref.cam.h, 8), [&](const tbb::blocked_range<int>& rows) {
@@ -152,11 +171,13 @@ void splat(const Reference& ref, const SplatMap& map, int w, int h,
             land_span(map, depth, i0, i1, j, w, h, target, zt);
             for (int i = i0; i < i1; ++i) {
               if (target[i - i0] == kNowhere) continue;
-              // The nearest wins: a 64-bit atomic min of (depth | index).
-              const std::uint64_t key = pack(zt[i - i0], i, j);
-              std::atomic_ref<std::uint64_t> slot(win[target[i - i0]]);
-              std::uint64_t cur = slot.load(std::memory_order_relaxed);
-              while (key < cur &&
+              // The nearest wins: an atomic min of rank(depth, key), the
+              // occupant's depth recomputed on each try.
+              const std::uint32_t key = pack(i, j);
+              const std::uint64_t mine = rank(zt[i - i0], key);
+              std::atomic_ref<std::uint32_t> slot(win[target[i - i0]]);
+              std::uint32_t cur = slot.load(std::memory_order_relaxed);
+              while ((cur == kEmpty || mine < rank(key_depth(map, ref, cur), cur)) &&
                      !slot.compare_exchange_weak(cur, key, std::memory_order_relaxed)) {
               }
             }
@@ -199,12 +220,12 @@ struct Resolver {
   const Reference* second;
   const Pinhole& out;
   const SplatMap& map;
-  const std::vector<std::uint64_t>& win;
+  const std::vector<std::uint32_t>& win;
   bool keep_sources;
   WarpedFrame& result;
 
   // Where winner `key` says new pixel (x, y) reads the reference; its depth.
-  bool from_winner(std::uint64_t key, double x, double y, double& sx, double& sy, float& zt) const {
+  bool from_winner(std::uint32_t key, double x, double y, double& sx, double& sy, float& zt) const {
     const int i = key_i(key), j = key_j(key);
     float lx, ly;
     if (!map.land(i, j, ref.frame.depth[std::size_t(j) * ref.cam.w + i], lx, ly, zt)) return false;
@@ -214,15 +235,15 @@ struct Resolver {
   }
 
   // The farthest winner among the 5 x 5 neighbours of (px, py), or kEmpty.
-  std::uint64_t farthest_neighbour(int px, int py) const {
-    std::uint64_t best = kEmpty;
+  std::uint32_t farthest_neighbour(int px, int py) const {
+    std::uint32_t best = kEmpty;
     float best_z = -1.f;
     for (int r = 1; r <= 2 && best == kEmpty; ++r)
       for (int b = std::max(py - r, 0); b <= std::min(py + r, out.h - 1); ++b)
         for (int a = std::max(px - r, 0); a <= std::min(px + r, out.w - 1); ++a) {
-          const std::uint64_t k = win[std::size_t(b) * out.w + a];
+          const std::uint32_t k = win[std::size_t(b) * out.w + a];
           if (k == kEmpty) continue;
-          const float z = std::bit_cast<float>(std::uint32_t(k >> 32));
+          const float z = key_depth(map, ref, k);
           if (z > best_z) {
             best_z = z;
             best = k;
@@ -242,7 +263,7 @@ struct Resolver {
   }
 
   // Pixel (px, py) with a winner whose landing point says where to read.
-  bool winner(std::uint64_t key, int px, int py) {
+  bool winner(std::uint32_t key, int px, int py) {
     double sx, sy;
     float zt;
     if (!from_winner(key, px + 0.5, py + 0.5, sx, sy, zt)) return false;
@@ -259,12 +280,12 @@ struct Resolver {
     const double x = px + 0.5, y = py + 0.5;
     double sx, sy, zt = Frame::kSky;
     float zf;
-    const std::uint64_t key = win[at];
+    const std::uint32_t key = win[at];
     bool ok = key != kEmpty && from_winner(key, x, y, sx, sy, zf);
     if (ok) {
       zt = zf;
     } else {
-      const std::uint64_t nb = farthest_neighbour(px, py);
+      const std::uint32_t nb = farthest_neighbour(px, py);
       ok =
           nb != kEmpty && from_winner(nb, x, y, sx, sy, zf) && converge(ref, out, x, y, sx, sy, zt);
       if (!ok && sees_sky(ref, out, x, y, sx, sy)) {
@@ -297,9 +318,9 @@ struct Resolver {
     const std::size_t at = std::size_t(py) * out.w + px;
     const double x = px + 0.5, y = py + 0.5;
     double sx, sy, zt, d;
-    const std::uint64_t nb = farthest_neighbour(px, py);
+    const std::uint32_t nb = farthest_neighbour(px, py);
     if (nb != kEmpty) {
-      const float z = std::bit_cast<float>(std::uint32_t(nb >> 32));
+      const float z = key_depth(map, ref, nb);
       if (second->cam.project(out.unproject(x, y, z), sx, sy, d) &&
           converge(*second, out, x, y, sx, sy, zt)) {
         second->color_at(sx, sy, rgba);
@@ -357,7 +378,7 @@ struct SpanMap {
 // Resolver::from_winner); an empty one gets its direction's position in the
 // reference (the sky homography), read only if the reference sees sky there.
 TS_CLONES_AVX2
-void map_span(const SplatMap& map, glm::vec3 dir, glm::vec3 dir_step, const std::uint64_t* keys,
+void map_span(const SplatMap& map, glm::vec3 dir, glm::vec3 dir_step, const std::uint32_t* keys,
               const float* __restrict ref_depth, int sw, int sh, float kx, float ky, int x0, int x1,
               int y, SpanMap& m) {
   const float py = float(y) + 0.5f, fw = float(sw), fh = float(sh);
@@ -365,12 +386,12 @@ void map_span(const SplatMap& map, glm::vec3 dir, glm::vec3 dir_step, const std:
   int ii[kSpan], jj[kSpan], vv[kSpan];
   float zz[kSpan];
   for (int k = 0; k < n; ++k) {
-    // kEmpty decodes to (0, 0): its lower half is all ones.
-    const std::uint32_t lo = std::uint32_t(keys[x0 + k]);
-    const std::uint32_t index = lo == 0xffffffffu ? 0u : lo;
+    // kEmpty decodes to (0, 0).
+    const std::uint32_t key = keys[x0 + k];
+    const std::uint32_t index = key == kEmpty ? 0u : key;
     ii[k] = int(index & ((1u << kIndexBits) - 1));
     jj[k] = int(index >> kIndexBits);
-    vv[k] = lo != 0xffffffffu;
+    vv[k] = key != kEmpty;
   }
   for (int k = 0; k < n; ++k) zz[k] = ref_depth[jj[k] * sw + ii[k]];
   // Locals, so nothing in the loop can alias the stores.
@@ -412,10 +433,10 @@ void map_span(const SplatMap& map, glm::vec3 dir, glm::vec3 dir_step, const std:
 
 // column[x] = 1 where output rows y-2..y+2 hold a winner in column x.
 TS_CLONES_AVX2
-void winner_columns(const std::uint64_t* win, int w, int h, int y, std::uint8_t* column) {
+void winner_columns(const std::uint32_t* win, int w, int h, int y, std::uint8_t* column) {
   for (int x = 0; x < w; ++x) column[x] = 0;
   for (int b = std::max(y - 2, 0); b <= std::min(y + 2, h - 1); ++b) {
-    const std::uint64_t* k = win + std::size_t(b) * w;
+    const std::uint32_t* k = win + std::size_t(b) * w;
     for (int x = 0; x < w; ++x) column[x] |= std::uint8_t(k[x] != kEmpty);
   }
 }
@@ -427,7 +448,7 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
   const SplatMap map(ref.cam, out);
   const SkyMap sky(ref.cam, out);
   const std::size_t n = std::size_t(out.w) * out.h;
-  std::vector<std::uint64_t>& win = scratch.win;
+  std::vector<std::uint32_t>& win = scratch.win;
   win.resize(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 16),
                     [&](const tbb::blocked_range<std::size_t>& r) {
@@ -446,7 +467,7 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
     SpanMap m;
     for (int y = rows.begin(); y < rows.end(); ++y) {
       const std::size_t row = std::size_t(y) * out.w;
-      const std::uint64_t* keys = win.data() + row;
+      const std::uint32_t* keys = win.data() + row;
       std::uint8_t* miss = unresolved.data();
       // At the row's first empty pixel: which columns hold a winner within
       // 2 rows, so an empty pixel knows whether one lies within 2 px (it
@@ -460,23 +481,35 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
       bool any = false;
       for (int x0 = 0; x0 < out.w; x0 += kSpan) {
         const int x1 = std::min(x0 + kSpan, out.w);
-        if (!tiny)
-          map_span(map, dir, step, keys, ref.frame.depth.data(), sw, sh, kx, ky, x0, x1, y, m);
+        if (tiny) {
+          for (int x = x0; x < x1; ++x) {
+            const bool ok =
+                (keys[x] != kEmpty && local.winner(keys[x], x, y)) || local.search(x, y);
+            miss[x] = !ok;
+            any = any || !ok;
+          }
+          continue;
+        }
+        map_span(map, dir, step, keys, ref.frame.depth.data(), sw, sh, kx, ky, x0, x1, y, m);
+        // Every pixel first as a winner reads (and sky, from its direction):
+        // passes without branches; the other kinds overwrite theirs below.
+        const int n = x1 - x0;
+        for (int k = 0; k < n; ++k)
+          color[x0 + k] = bilinear_block(src, m.off[k], sw, m.wx[k], m.wy[k]);
+        for (int k = 0; k < n; ++k) {
+          depth[x0 + k] = m.zt[k];
+          hole[x0 + k] = 0;
+          miss[x0 + k] = 0;
+        }
+        if (options.keep_sources) {
+          std::copy_n(m.sx, n, result.source_x.data() + row + x0);
+          std::copy_n(m.sy, n, result.source_y.data() + row + x0);
+        }
         for (int x = x0; x < x1; ++x) {
           const int k = x - x0;
+          if (m.kind[k] == kWinner) continue;
           bool ok;
-          if (tiny) {
-            ok = (keys[x] != kEmpty && local.winner(keys[x], x, y)) || local.search(x, y);
-          } else if (m.kind[k] == kWinner) {
-            color[x] = bilinear_block(src, m.off[k], sw, m.wx[k], m.wy[k]);
-            depth[x] = m.zt[k];
-            hole[x] = 0;
-            if (options.keep_sources) {
-              result.source_x[row + x] = m.sx[k];
-              result.source_y[row + x] = m.sy[k];
-            }
-            ok = true;
-          } else if (m.kind[k] == kSearch) {
+          if (m.kind[k] == kSearch) {
             ok = local.search(x, y);
           } else {
             // A crack has a winner beside it (checked first); otherwise the
@@ -493,7 +526,8 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
               ok = local.search(x, y);
             } else {
               // Sky where the reference sees sky in this direction (the
-              // three probes of sees_sky); else a hole.
+              // three probes of sees_sky; its colour and source are already
+              // written); else a hole.
               const float sx = m.sx[k], sy = m.sy[k];
               auto sky_at = [&](float px, float py) {
                 const int i = std::clamp(int(px), 0, sw - 1), j = std::clamp(int(py), 0, sh - 1);
@@ -501,13 +535,7 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
               };
               if (m.sky[k] && (sky_at(sx, sy) || sky_at(sx + 0.5f, sy + 0.5f) ||
                                sky_at(sx - 0.5f, sy - 0.5f))) {
-                color[x] = bilinear_block(src, m.off[k], sw, m.wx[k], m.wy[k]);
                 depth[x] = Frame::kSky;
-                hole[x] = 0;
-                if (options.keep_sources) {
-                  result.source_x[row + x] = sx;
-                  result.source_y[row + x] = sy;
-                }
                 ok = true;
               } else {
                 ok = local.hole(x, y);

@@ -14,7 +14,7 @@ namespace terrasprite {
 
 /// Per-Warper scratch the depth warp reuses between calls.
 struct Warper::Scratch {
-  std::vector<std::uint64_t> win;  ///< splat winners, one per output pixel
+  std::vector<std::uint32_t> win;  ///< splat winners (real-pixel keys), one per output pixel
 };
 
 namespace warp {

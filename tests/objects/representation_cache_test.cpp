@@ -3,6 +3,8 @@
 // reads the LOD chain and both impostors instead of building them and draws
 // the very same pixels; another build parameter is another entry; a damaged
 // entry is reported, rebuilt and replaced; a disabled cache writes nothing.
+#include "terrasprite/representation_cache.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -12,7 +14,6 @@
 #include "object_test_util.h"
 #include "terrasprite/gl_context.h"
 #include "terrasprite/object_renderer.h"
-#include "terrasprite/representation_cache.h"
 
 namespace ts = terrasprite;
 namespace fs = std::filesystem;
@@ -25,7 +26,8 @@ class RepresentationCacheTest : public ::testing::Test {
  protected:
   void SetUp() override {
     dir = fs::path(::testing::TempDir()) /
-          ("repcache_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+          ("repcache_" +
+           std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir);
   }
   void TearDown() override { fs::remove_all(dir); }

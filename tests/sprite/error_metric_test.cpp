@@ -145,6 +145,29 @@ TEST(ErrorMetric, ResampleScaleIsTheChangeInPixelFootprint) {
   EXPECT_NEAR(sprite_error(g, k, overhead(glm::dvec3(0), 500.0)).resample_scale, 2.0, 1e-6);
 }
 
+// Over a plane seen at 60 degrees incidence from the key's distance, the
+// keyframe is shrunk by cos 60 = 1/2 along one axis and kept along the
+// other: the area's mean reads sqrt 2, the worst axis 2. A pure change of
+// height scales both axes alike, so both read the same.
+TEST(ErrorMetric, AnisotropicScaleReadsTheWorstAxis) {
+  Heightfield h = flat(65, 10.0);
+  CoarseGrid g = make_coarse_grid(h, 4);
+  Camera key = overhead(glm::dvec3(0), 1000.0);
+  KeyframeSamples k = make_keyframe_samples(g, key, 256, 256, all_visible(g));
+  EXPECT_NEAR(sprite_error(g, k, key).resample_aniso, 1.0, 1e-6);
+  EXPECT_NEAR(sprite_error(g, k, overhead(glm::dvec3(0), 2000.0)).resample_aniso, 2.0, 1e-4);
+  const double a = glm::radians(60.0);
+  Camera tilted = Camera::look_at(glm::dvec3(0, -1000.0 * std::sin(a), 1000.0 * std::cos(a)),
+                                  glm::dvec3(0), 60.0, 1.0);
+  tilted.near_m = 1.0;
+  tilted.far_m = 1e5;
+  const SpriteError e = sprite_error(g, k, tilted);
+  ASSERT_GT(e.samples, 8);
+  EXPECT_NEAR(e.resample_scale, std::sqrt(2.0), 0.15);
+  EXPECT_NEAR(e.resample_aniso, 2.0, 0.25);
+  EXPECT_GT(e.resample_aniso, 1.25 * e.resample_scale);
+}
+
 TEST(Visibility, DepthBufferHidesPointsBehindNearerSurface) {
   Camera key = overhead(glm::dvec3(0), 1000.0);
   std::vector<float> depth(64 * 64, 1000.f);

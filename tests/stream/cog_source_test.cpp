@@ -1,0 +1,257 @@
+// SPDX-License-Identifier: MIT
+// An existing COG as a streamed terrain (open_cog, bench stream --cog): each
+// level reads the overview it should, at that overview's pixel centres, as
+// GDAL reads the same window; the bounds computed at open bound every level's
+// samples (cubic overviews overshoot); the bench flies it; bad inputs are one
+// line and exit 2 with no output directory.
+#include "stream/cog_source.h"
+
+#include <gdal.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "stream/tile_file.h"
+#include "terrasprite/error.h"
+#include "terrasprite/tiled_terrain.h"
+#include "test_util.h"
+
+namespace terrasprite {
+namespace {
+
+float height_at(int x, int y) {  // ridges sharp enough that cubic overviews overshoot
+  return 100.f + 60.f * std::sin(float(x) * 0.09f) * std::cos(float(y) * 0.07f) +
+         (((x / 16) + (y / 16)) % 2 ? 25.f : 0.f);
+}
+
+struct Raster {
+  std::string driver = "COG";
+  std::vector<std::string> options;
+  int bands = 1;
+  GDALDataType type = GDT_Float32;
+  std::vector<int> overviews;  // GTiff: factors built after writing
+};
+
+// Writes an n x n raster at `path` (30 m, no CRS) and returns the path.
+std::string make_raster(const std::filesystem::path& path, int n, const Raster& r) {
+  GDALAllRegister();
+  GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", n, n, r.bands, r.type, nullptr);
+  double gt[6] = {500000, 30, 0, 4000000, 0, -30};
+  GDALSetGeoTransform(mem, gt);
+  std::vector<float> v(std::size_t(n) * n);
+  for (int b = 1; b <= r.bands; ++b) {
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x)
+        v[std::size_t(y) * n + x] =
+            r.bands == 1 ? height_at(x, y) : float((x * 3 + y * b * 5) % 256);
+    EXPECT_EQ(GDALRasterIO(GDALGetRasterBand(mem, b), GF_Write, 0, 0, n, n, v.data(), n, n,
+                           GDT_Float32, 0, 0),
+              CE_None);
+  }
+  std::vector<const char*> opts;
+  for (const auto& o : r.options) opts.push_back(o.c_str());
+  opts.push_back(nullptr);
+  GDALDatasetH out = GDALCreateCopy(GDALGetDriverByName(r.driver.c_str()), path.c_str(), mem, FALSE,
+                                    const_cast<char**>(opts.data()), nullptr, nullptr);
+  EXPECT_NE(out, nullptr) << path;
+  if (out && !r.overviews.empty()) {
+    EXPECT_EQ(
+        GDALBuildOverviews(out, "AVERAGE", int(r.overviews.size()),
+                           const_cast<int*>(r.overviews.data()), 0, nullptr, nullptr, nullptr),
+        CE_None);
+  }
+  if (out) GDALClose(out);
+  GDALClose(mem);
+  return path.string();
+}
+
+std::string make_cog(const std::filesystem::path& path, int n, const char* resampling = "CUBIC",
+                     int block = 128) {
+  return make_raster(path, n,
+                     {"COG",
+                      {"BLOCKSIZE=" + std::to_string(block), "COMPRESS=DEFLATE",
+                       std::string("OVERVIEW_RESAMPLING=") + resampling}});
+}
+
+// Every sample of level L' is under the bound of the cell holding it at
+// every bound level L >= L' + 2 (and level 0's samples under level 0's).
+void expect_bounds_hold(const TileSetInfo& set) {
+  TileFile file(set);
+  std::vector<TileData> level(std::size_t(set.grid.bound_levels));
+  for (int L = 0; L < set.grid.bound_levels; ++L) {
+    std::string error;
+    ASSERT_TRUE(file.read_level(L, level[std::size_t(L)], error)) << error;
+  }
+  for (int Ls = 0; Ls <= set.grid.coarsest_level; ++Ls) {
+    const TileBlock& s = level[std::size_t(Ls)].block;
+    for (int L = Ls == 0 ? 0 : Ls + 2; L < set.grid.bound_levels; L += (L == 0 ? 2 : 1)) {
+      const TileBlock& b = level[std::size_t(L)].block;
+      int bad = 0;
+      for (int j = 0; j < s.h; ++j)
+        for (int i = 0; i < s.w; ++i) {
+          const int X = std::min(i << Ls, set.grid.width - 1),
+                    Y = std::min(j << Ls, set.grid.height - 1);
+          const int a = std::min(X >> L, set.tiles_cells_w(L) - 1),
+                    c = std::min(Y >> L, set.tiles_cells_h(L) - 1);
+          const bool over = s.height[std::size_t(j) * s.stride + i] >
+                            b.bound[std::size_t(c) * b.bound_stride + a];
+          if (over && bad == 0)
+            ADD_FAILURE() << "level " << Ls << " sample " << i << "," << j << " = "
+                          << s.height[std::size_t(j) * s.stride + i] << " > bound "
+                          << b.bound[std::size_t(c) * b.bound_stride + a] << " of cell " << a << ","
+                          << c << " at level " << L;
+          bad += over;
+        }
+      EXPECT_EQ(bad, 0) << "samples of level " << Ls << " above the bounds of level " << L;
+    }
+  }
+}
+
+TEST(CogSource, TilesAreGdalReadsOfTheSelectedOverviewAtPixelCentres) {
+  tstest::TempDir t;
+  std::filesystem::create_directories(t.path);
+  const std::string cog = make_cog(t.path / "dem.tif", 513);
+  const TileSetInfo set = open_cog(cog);
+  ASSERT_TRUE(set.cog);
+  const auto& rs = set.cog->height_rasters;
+  ASSERT_GE(rs.size(), 3u);               // the COG driver's own overviews: 257, 129, 65
+  EXPECT_EQ(set.grid.coarsest_level, 8);  // 513, 257, ..., 3: the in-memory pyramid's levels
+  EXPECT_NEAR(set.grid.spacing_x, 30.0, 1e-9);
+  GDALDatasetH ds = GDALOpen(cog.c_str(), GA_ReadOnly);
+  ASSERT_NE(ds, nullptr);
+  GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+  TileFile file(set);
+  for (int L = 0; L <= set.grid.coarsest_level; ++L) {
+    const int r =
+        std::min<int>(L, int(rs.size()) - 1);  // overview L - 1 while one exists, then the coarsest
+    ASSERT_EQ(cog_raster_for_level(rs, L), r) << "level " << L;
+    GDALRasterBandH rb = r == 0 ? band : GDALGetOverview(band, r - 1);
+    const int rw = GDALGetRasterBandXSize(rb), rh = GDALGetRasterBandYSize(rb);
+    std::vector<float> px(std::size_t(rw) * rh);
+    ASSERT_EQ(GDALRasterIO(rb, GF_Read, 0, 0, rw, rh, px.data(), rw, rh, GDT_Float32, 0, 0),
+              CE_None);
+    // Vertex-aligned sample i of level L sits at level-0 index i 2^L, i.e.
+    // at (i 2^L + 0.5) rw / W - 0.5 in the overview's pixel centres.
+    auto at = [&](int i, int n0, int n) {
+      const double X = std::min(double(i << L), double(n0 - 1));
+      return std::clamp((X + 0.5) * n / n0 - 0.5, 0.0, double(n - 1));
+    };
+    for (int ty = 0; ty < set.tiles_y[std::size_t(L)]; ++ty)
+      for (int tx = 0; tx < set.tiles_x[std::size_t(L)]; ++tx) {
+        TileData d;
+        std::string error;
+        ASSERT_TRUE(file.read(L, tx, ty, d, error)) << error;
+        const TileBlock& b = d.block;
+        ASSERT_EQ(b.x0, tx * 128);
+        ASSERT_EQ(b.y0, ty * 128);
+        if (L == 0) {  // level 0 is the raster: GDAL's window exactly
+          std::vector<float> w(std::size_t(b.w) * b.h);
+          ASSERT_EQ(GDALRasterIO(band, GF_Read, b.x0, b.y0, b.w, b.h, w.data(), b.w, b.h,
+                                 GDT_Float32, 0, 0),
+                    CE_None);
+          EXPECT_EQ(w, d.height) << "tile " << tx << "," << ty;
+          continue;
+        }
+        double worst = 0;
+        for (int j = 0; j < b.h; ++j)
+          for (int i = 0; i < b.w; ++i) {
+            const double u = at(b.x0 + i, set.grid.width, rw),
+                         v = at(b.y0 + j, set.grid.height, rh);
+            const int u0 = int(u), v0 = int(v), u1 = std::min(u0 + 1, rw - 1),
+                      v1 = std::min(v0 + 1, rh - 1);
+            auto p = [&](int x, int y) { return double(px[std::size_t(y) * rw + x]); };
+            const double want = (p(u0, v0) * (u0 + 1 - u) + p(u1, v0) * (u - u0)) * (v0 + 1 - v) +
+                                (p(u0, v1) * (u0 + 1 - u) + p(u1, v1) * (u - u0)) * (v - v0);
+            worst = std::max(worst, std::abs(want - b.height[std::size_t(j) * b.stride + i]));
+          }
+        EXPECT_LT(worst, 1e-3) << "level " << L << " tile " << tx << "," << ty;
+      }
+  }
+  GDALClose(ds);
+  expect_bounds_hold(set);
+}
+
+TEST(CogSource, EachLevelReadsItsOverviewAndTheBoundsCoverThemAll) {
+  // A tiled GeoTIFF whose overviews hold constants, so a level shows which it read.
+  tstest::TempDir t;
+  std::filesystem::create_directories(t.path);
+  const std::string tif = make_raster(
+      t.path / "ovr.tif", 257,
+      {"GTiff", {"TILED=YES", "BLOCKXSIZE=64", "BLOCKYSIZE=64"}, 1, GDT_Float32, {2, 4}});
+  {
+    GDALDatasetH ds = GDALOpen(tif.c_str(), GA_Update);
+    ASSERT_NE(ds, nullptr);
+    GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+    ASSERT_EQ(GDALGetOverviewCount(band), 2);
+    for (int k = 0; k < 2; ++k) {
+      GDALRasterBandH o = GDALGetOverview(band, k);
+      const int w = GDALGetRasterBandXSize(o), h = GDALGetRasterBandYSize(o);
+      std::vector<float> c(std::size_t(w) * h, 1000.f * float(k + 1));
+      ASSERT_EQ(GDALRasterIO(o, GF_Write, 0, 0, w, h, c.data(), w, h, GDT_Float32, 0, 0), CE_None);
+    }
+    GDALClose(ds);
+  }
+  for (long long held : {1LL << 22, 1024LL}) {  // all bound levels held; from level 3 up only
+    const TileSetInfo set = open_cog(tif, "", 4, held);
+    EXPECT_EQ(set.cog->bound_from, held == 1024 ? 3 : 0);
+    TileFile file(set);
+    for (int L = 1; L <= set.grid.coarsest_level; ++L) {
+      TileData d;
+      std::string error;
+      ASSERT_TRUE(file.read(L, 0, 0, d, error)) << error;
+      const float want = L == 1 ? 1000.f : 2000.f;
+      for (float v : d.height) ASSERT_NEAR(v, want, 1e-2) << "level " << L;
+    }
+    expect_bounds_hold(set);  // the overviews' 1000s and 2000s are in the bounds
+    EXPECT_GE(set.tile_max[std::size_t(set.grid.bound_levels - 1)][0], 2000.f);
+  }
+}
+
+TEST(CogSource, BenchStreamFliesACogAndRefusesBadOnesWithExit2) {
+  tstest::TempDir t;
+  std::filesystem::create_directories(t.path);
+  // 32-cell tiles; 16 MB pins the whole terrain, so every frame compares with the in-memory one.
+  const std::string cog = make_cog(t.path / "dem.tif", 257, "AVERAGE", 32);
+  const std::string tex = make_raster(
+      t.path / "tex.tif", 257, {"COG", {"BLOCKSIZE=128", "COMPRESS=DEFLATE"}, 3, GDT_Byte, {}});
+  auto r = tstest::run_cli("bench stream --cog " + cog + " --texture " + tex +
+                           " --cache-mb 16 --size 96x64 --frames 8 --json " + (t / "s.json") +
+                           " --out " + (t / "s"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(t / "s.json"));
+  EXPECT_EQ(j["terrain"]["samples"][0], 257);
+  EXPECT_GE(j["cog"]["bounds_ms"].get<double>(), 0.0);
+  EXPECT_EQ(j["images_equal_when_resident"]["frames_compared"],
+            j["images_equal_when_resident"]["frames_equal"]);
+  EXPECT_GT(j["images_equal_when_resident"]["frames_compared"].get<int>(), 0);
+  EXPECT_EQ(j["per_frame"].size(), 8u);
+  EXPECT_EQ(j["terrain"]["tile_cells"], 32);  // the COG's blocks
+
+  std::ofstream(t / "text.tif") << "not a raster";
+  const std::string strips =
+      make_raster(t.path / "strips.tif", 257, {"GTiff", {}, 1, GDT_Float32, {2, 4}});
+  const std::string flat =
+      make_raster(t.path / "flat.tif", 257, {"GTiff", {"TILED=YES"}, 1, GDT_Float32, {}});
+  const std::string small_tex =
+      make_raster(t.path / "small.tif", 129, {"COG", {}, 3, GDT_Byte, {}});
+  for (const auto& [args, named] : std::vector<std::pair<std::string, std::string>>{
+           {"--cog " + (t / "text.tif"), t / "text.tif"},
+           {"--cog " + (t / "missing.tif"), t / "missing.tif"},
+           {"--cog " + strips, strips},
+           {"--cog " + flat, flat},
+           {"--cog " + tex, tex},
+           {"--cog " + cog + " --texture " + small_tex, small_tex},
+           {"--cog " + cog + " --tiles " + (t / "s"), "--tiles"}}) {
+    r = tstest::run_cli("bench stream " + args + " --frames 2 --size 32x24 --out " + (t / "bad"));
+    EXPECT_EQ(r.status, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(named), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(t.path / "bad")) << args;
+  }
+}
+
+}  // namespace
+}  // namespace terrasprite

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <map>
 #include <random>
@@ -17,6 +18,7 @@
 #include "hybrid_bench.h"
 #include "objects_table.h"
 #include "terrasprite/camera_path.h"
+#include "terrasprite/cost_calibration.h"
 #include "terrasprite/error.h"
 #include "terrasprite/gl_context.h"
 #include "terrasprite/hybrid_renderer.h"
@@ -29,14 +31,16 @@ namespace {
 
 struct HybridArgs {
   TerrainOptions terrain;
-  std::string scene, models_dir = "../shared/data", size = "1280x720", path, json, cache;
+  std::string scene, models_dir = "../shared/data", size = "320x180", path, json, cache;
   std::string out = "out/bench_hybrid";
-  double target_ms = 400;
+  std::string target = "auto";
+  double full_over_target = 5;
   int frames = 160, score_every = 2, instances = 0, terrain_quads = 64;
-  std::string table_sizes = "200,50", relief_resolutions = "32,64,128,256",
+  std::string table_sizes = "200,50,16", relief_resolutions = "32,64,128,256",
               octahedral_resolutions = "32,64,128";
   double table_angle_step = 45;
   std::string figure6 = "C";
+  std::string calibration_sizes = "auto";
 };
 
 /// Keeps `count` instances (0: all), drawn at random (seeded) so the model mix stays.
@@ -68,7 +72,8 @@ std::vector<TableOptions> table_options(const HybridArgs& a) {
     for (int r : o.resolutions)
       if (r < 16 || r > 512) throw InputError(fmt::format("{}: {} is outside 16..512", option, r));
     for (int px : o.sizes_px)
-      if (px < 16 || px > 2048) throw InputError(fmt::format("--table-sizes: {} is outside 16..2048", px));
+      if (px < 16 || px > 2048)
+        throw InputError(fmt::format("--table-sizes: {} is outside 16..2048", px));
     out.push_back(std::move(o));
   }
   return out;
@@ -264,7 +269,19 @@ std::vector<PathCheckpoint> snapped(std::vector<PathCheckpoint> cps, int score_e
 void run_bench(const HybridArgs& a) {
   auto [w, h] = parse_size(a.size, "--size");
   check_outputs(a.out, {a.json});
-  if (!(a.target_ms > 0)) throw InputError("--target-ms must be positive");
+  double target_ms = 0;  // 0: auto, decided once full geometry has been timed
+  if (a.target != "auto") {
+    std::size_t used = 0;
+    try {
+      target_ms = std::stod(a.target, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != a.target.size() || !(target_ms > 0) || !std::isfinite(target_ms))
+      throw InputError(
+          fmt::format("--target-ms {}: not a positive number of milliseconds or auto", a.target));
+  }
+  if (!(a.full_over_target >= 1)) throw InputError("--full-over-target must be at least 1");
   const std::vector<TableOptions> table_sampling = table_options(a);
   const Terrain terrain = load_terrain_verbose(a.terrain);
   check_lod_quads(a.terrain_quads, terrain.heights, "--terrain-quads");
@@ -292,13 +309,40 @@ void run_bench(const HybridArgs& a) {
   Scene ground(terrain);
   ground.prepare(a.terrain_quads);
   ObjectSet set(scene, LodOptions{}, a.cache.empty() ? default_cache_dir() : a.cache);
-  std::vector<QualityTable> tables;
-  for (std::size_t i = 0; i < set.model_count(); ++i) tables.push_back(model_table(set, i, table_sampling, a.cache));
-  DrawCostModel cost = calibrated_cost(tables);
-
   HybridBenchResult result;
+  std::vector<QualityTable> tables;
+  for (std::size_t i = 0; i < set.model_count(); ++i)
+    tables.push_back(model_table(set, i, table_sampling, a.cache));
+  DrawCostModel cost = calibrated_cost(tables);
+  {
+    // The tables time 50-200 px in a small image; the walkthrough draws
+    // instances up to larger than the image: time every representation at
+    // those sizes in an image of the frames' size, and fit per kind.
+    CostCalibrationOptions co;
+    co.width = w;
+    co.height = h;
+    co.fov_y_deg = path.front().fov_y_deg;
+    co.sizes_px = a.calibration_sizes == "auto"
+                      ? std::vector<int>{std::max(8, h / 8), std::max(16, h / 2), 2 * h}
+                      : int_list(a.calibration_sizes, "--calibration-sizes");
+    for (int px : co.sizes_px)
+      if (px < 4 || px > 8192)
+        throw InputError(fmt::format("--calibration-sizes: {} is outside 4..8192", px));
+    std::vector<std::vector<Representation>> reps(set.model_count());
+    for (std::size_t m = 0; m < set.model_count(); ++m)
+      for (const RepresentationQuality& r : tables[m].representations) reps[m].push_back(r.rep);
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::vector<CalibrationDraw> draws = measure_draw_costs(set, reps, co);
+    fmt::print(stderr, "cost model from the tables' draws only: {}",
+               calibration_report(cost, draws));
+    fit_draw_costs(cost, draws);
+    result.calibration = calibration_report(cost, draws);
+    fmt::print(stderr, "after calibration ({} draws, {:.1f} s): {}", draws.size(),
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+               result.calibration);
+  }
+
   result.gl_renderer = gl.renderer();
-  result.target_ms = a.target_ms;
   result.width = w;
   result.height = h;
   result.instances = int(set.instance_count());
@@ -314,11 +358,38 @@ void run_bench(const HybridArgs& a) {
     result.terrain_ms = summarize(ms).median;
     cost.set_frame_ms(result.terrain_ms);
   }
-
   HybridOptions ho;
   ho.width = w;
   ho.height = h;
-  ho.target_ms = a.target_ms;
+  for (const TableOptions& o : table_sampling)
+    for (int px : o.sizes_px) ho.max_impostor_size_px = std::max(ho.max_impostor_size_px, 2.0 * px);
+  {
+    // Full geometry on the same six path frames: the issue's "full at least
+    // 5 times over the target" made the default (auto) target.
+    HybridObjects full_objects(set, tables, cost, scenarios().front(), ho);
+    HybridRenderer full_only(ground, &full_objects, "full", w, h, a.terrain_quads);
+    // Twelve frames spread over the path: six (as for the terrain) fell on
+    // the heaviest stretches and put the run's median at 2.7-3.7x the target.
+    // A first pass unmeasured: the first draws of each mesh run 1.5-2x
+    // slower (uploads, first-use faults) and set the target too high.
+    std::vector<double> ms;
+    for (int pass = 0; pass < 2; ++pass)
+      for (int k = 0; k < 12; ++k) {
+        const double t = full_only.draw(path[std::size_t(k * (path.size() - 1) / 11)]).ms;
+        if (pass == 1) ms.push_back(t);
+      }
+    result.full_ms_at_start = summarize(ms).median;
+    result.target_auto = target_ms == 0;
+    if (result.target_auto)
+      target_ms = std::max(1.0, std::round(result.full_ms_at_start / a.full_over_target));
+    fmt::print(stderr,
+               "terrain alone {:.1f} ms (median of 6 path frames), full geometry {:.1f} ms (median "
+               "of 12); target {:.0f} ms{}\n",
+               result.terrain_ms, result.full_ms_at_start, target_ms,
+               result.target_auto ? fmt::format(" (auto: full / {:g})", a.full_over_target) : "");
+  }
+  result.target_ms = target_ms;
+  ho.target_ms = target_ms;
   std::vector<std::unique_ptr<HybridObjects>> objects;
   std::vector<std::unique_ptr<HybridRenderer>> renderers;
   for (const HybridScenario& sc : scenarios()) {
@@ -365,7 +436,7 @@ void run_bench(const HybridArgs& a) {
   const ExperimentResult r = experiment.run(cameras, eo);
   result.frames = r.frames;
   for (const HybridScenario& sc : scenarios())
-    result.scenarios.push_back(summarise(r.run(sc.name), a.target_ms, checkpoints));
+    result.scenarios.push_back(summarise(r.run(sc.name), target_ms, checkpoints));
   result.selection = selection_figures(r.run("mixed-optimal"));
 
   const nlohmann::json j = hybrid_json(result);
@@ -379,8 +450,10 @@ void run_bench(const HybridArgs& a) {
         "{:14} median {:7.1f} ms  p95 {:7.1f} ms  p99 {:7.1f} ms  (target {:.0f} ms, {:.0f}% "
         "within +10%)  "
         "mean SSIM {:.4f}, objects {:.4f}, {:.2f} switches/frame\n",
-        s.name, s.ms.median, s.ms.p95, s.ms.p99, a.target_ms, 100 * s.within_10pct, s.mean_ssim,
+        s.name, s.ms.median, s.ms.p95, s.ms.p99, target_ms, 100 * s.within_10pct, s.mean_ssim,
         s.mean_ssim_objects, s.switches_per_frame);
+  fmt::print("full geometry's median over the run: {:.1f}x the target\n",
+             result.scenarios.front().ms.median / target_ms);
   fmt::print(
       "selection (optimal): {:.3f} ms/frame median, p95 {:.3f}; objective optimal {:.5f} vs greedy "
       "{:.5f} "
@@ -404,7 +477,13 @@ void add_bench_hybrid(CLI::App& bench) {
   cmd->add_option("--instances", a->instances, "keep this many instances, drawn at random (0: all)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1000000));
-  cmd->add_option("--target-ms", a->target_ms, "target frame time, ms")->capture_default_str();
+  cmd->add_option("--target-ms", a->target,
+                  "target frame time, ms, or auto: full geometry's median time over twelve path "
+                  "frames (timed first) / --full-over-target")
+      ->capture_default_str();
+  cmd->add_option("--full-over-target", a->full_over_target,
+                  "auto target: full geometry's time over the target")
+      ->capture_default_str();
   cmd->add_option("--size", a->size, "image size WxH")->capture_default_str();
   cmd->add_option("--frames", a->frames, "frames along the path")
       ->capture_default_str()
@@ -426,6 +505,10 @@ void add_bench_hybrid(CLI::App& bench) {
       ->capture_default_str();
   cmd->add_option("--octahedral-resolutions", a->octahedral_resolutions,
                   "octahedral impostor resolutions")
+      ->capture_default_str();
+  cmd->add_option("--calibration-sizes", a->calibration_sizes,
+                  "cost calibration: on-screen sizes, px (each representation timed alone); auto: "
+                  "image height / 8, / 2 and x 2")
       ->capture_default_str();
   cmd->add_option("--figure6", a->figure6, "checkpoint shown in Figure 6")->capture_default_str();
   cmd->add_option("--cache", a->cache,

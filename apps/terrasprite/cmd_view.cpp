@@ -28,6 +28,7 @@ struct ViewOpts {
   std::string script, stats, record, play;
   viewer::ViewerOptions viewer;
   bool lighting = false, free = false;
+  bool sync_keyframes = false;  ///< sprite: keyframes drawn in the frame (no second thread)
 };
 
 /// The voxel mode: the ray caster at the panel's pixel-to-voxel ratio,
@@ -70,14 +71,16 @@ class VoxelViewRenderer : public viewer::ViewRenderer {
 class StackRenderer : public viewer::ViewRenderer {
  public:
   StackRenderer(const Terrain& t, const viewer::LiveSettings& s, int w, int h, bool lighting,
-                GlContext* context)
-      : stack_(make_render_stack(s.mode, t, w, h, s.lod_quads, lighting, s.threshold_px, context)),
+                bool async_keyframes, GlContext* context)
+      : stack_(make_render_stack(s.mode, t, w, h, s.lod_quads, lighting, s.threshold_px, context,
+                                 async_keyframes)),
         sprite_(dynamic_cast<SpriteRenderer*>(stack_.renderer.get())) {}
   Renderer& renderer() override { return *stack_.renderer; }
   std::string device() const override { return stack_.device; }
   double error_px() const override {
     return sprite_ ? sprite_->last_error().value(sprite_->options().metric) : -1;
   }
+  bool landed_keyframe() const override { return sprite_ && sprite_->last_landed(); }
 
  private:
   RenderStack stack_;
@@ -119,17 +122,18 @@ void run(ViewOpts& o) {
   if (!o.play.empty()) load_path_file(o.play, terrain.heights, 2, double(w) / h);  // validate
   v.play = o.play;
   v.record = o.record;
-  const bool lighting = o.lighting;
+  const bool lighting = o.lighting, async_keyframes = !o.sync_keyframes;
   viewer::RunStats stats = viewer::run_viewer(
       terrain.heights, start_camera(terrain.heights, double(w) / h), v,
-      [&terrain, w, h, lighting, pyramid = std::shared_ptr<VoxelTerrain>()](
+      [&terrain, w, h, lighting, async_keyframes, pyramid = std::shared_ptr<VoxelTerrain>()](
           const viewer::LiveSettings& s,
           GlContext* context) mutable -> std::unique_ptr<viewer::ViewRenderer> {
         if (s.mode == "voxel") {
           if (!pyramid) pyramid = std::make_shared<VoxelTerrain>(terrain);
           return std::make_unique<VoxelViewRenderer>(*pyramid, s, w, h);
         }
-        return std::make_unique<StackRenderer>(terrain, s, w, h, lighting, context);
+        return std::make_unique<StackRenderer>(terrain, s, w, h, lighting, async_keyframes,
+                                               context);
       });
   nlohmann::json j = viewer::stats_json(stats);
   if (!o.stats.empty()) write_json(j, o.stats);
@@ -159,6 +163,9 @@ void add_view(CLI::App& app) {
   cmd->add_option("--real-every", o->viewer.settings.real_every,
                   "voxel with --warp: every n-th frame real, 1..64 (default 4)");
   cmd->add_flag("--lighting", o->lighting, "simple sun lighting on top of the texture");
+  cmd->add_flag("--sync-keyframes", o->sync_keyframes,
+                "sprite: draw keyframes inside the frame, which then waits for them (default: on "
+                "a second thread, for the camera predicted for when they land)");
   cmd->add_option("--script", o->script,
                   "replay timed input events from this JSON file (ends 1 s after the last)");
   cmd->add_option("--stats", o->stats, "write frame-rate and latency statistics JSON here");

@@ -42,7 +42,11 @@ struct HybridBenchResult {
   double target_ms = 0;
   int width = 0, height = 0;
   int frames = 0, instances = 0, score_every = 1;
-  double terrain_ms = 0;  ///< terrain alone, median
+  double terrain_ms = 0;        ///< terrain alone, median
+  double full_ms_at_start = 0;  ///< full geometry on six path frames, median
+  bool target_auto = false;     ///< target_ms = full_ms_at_start / --full-over-target
+  /// The cost calibration's measured / predicted table (calibration_report).
+  std::string calibration;
   long long full_triangles_max = 0;
   std::vector<HybridScenarioResult> scenarios;  ///< full first
   SelectionFigures selection;

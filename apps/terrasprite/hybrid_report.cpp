@@ -129,6 +129,8 @@ nlohmann::json hybrid_json(const HybridBenchResult& r) {
           {"score_every", r.score_every},
           {"instances", r.instances},
           {"terrain_ms", r.terrain_ms},
+          {"full_ms_at_start", r.full_ms_at_start},
+          {"target_auto", r.target_auto},
           {"full_triangles_max", r.full_triangles_max},
           {"scenarios", scenarios},
           {"selection",
@@ -177,6 +179,8 @@ void write_hybrid_report(const HybridBenchResult& r, OutputDir& out) {
       "vs greedy {:.5f} on the same frames (mean gain {:.3f}%, largest {:.3f}%).</p>\n",
       r.selection.ms_per_frame, r.selection.ms_p95, r.selection.objective_optimal,
       r.selection.objective_greedy, 100 * r.selection.gain_mean, 100 * r.selection.gain_max);
+  if (!r.calibration.empty())
+    h << "<h2>Cost model calibration</h2><pre>" << r.calibration << "</pre>\n";
   h << "<h2>Figure 4: frame time</h2><img src='fig4_frame_time.png'>\n"
        "<h2>Figure 5: triangles</h2><img src='fig5_triangles.png'>\n<h2>Table 2: quality against "
        "full geometry</h2>"

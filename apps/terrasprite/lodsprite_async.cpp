@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <thread>
 
 #include "terrasprite/experiment.h"
 #include "terrasprite/quality.h"
@@ -23,10 +25,13 @@ struct Shown {
 };
 
 DisplayRun display(Scene& scene, std::span<const Camera> path, int w, int h, const SpriteOptions& o,
-                   std::vector<Shown>* shown) {
+                   double period_ms, std::vector<Shown>* shown) {
   SpriteRenderer r(scene, w, h, o);
   DisplayRun run;
-  Clock::time_point last;
+  run.period_ms = period_ms;
+  const auto period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double, std::milli>(period_ms));
+  Clock::time_point last, slot;  // the last presentation; the next frame's slot
   Experiment pass;
   pass.add({.renderer = &r,
             .name = "sprite",
@@ -34,12 +39,24 @@ DisplayRun display(Scene& scene, std::span<const Camera> path, int w, int h, con
             .after_warmup = [&] { r.reset(); },
             .annotate =
                 [&](const Frame& f, FrameResult&) {
-                  const Clock::time_point now = Clock::now();  // presented
+                  Clock::time_point now = Clock::now();  // drawn
+                  if (period_ms > 0 && !run.frame_ms.empty()) {
+                    // Presented at its slot, or at the first one after a miss;
+                    // the display sleeps till then (the worker gets the CPU).
+                    if (now > slot) {
+                      ++run.late_frames;
+                      slot += period * ((now - slot) / period + 1);
+                    }
+                    std::this_thread::sleep_until(slot);
+                    now = slot;
+                  }
                   run.frame_ms.push_back(
                       run.frame_ms.empty()
                           ? f.ms
                           : std::chrono::duration<double, std::milli>(now - last).count());
+                  run.draw_ms.push_back(f.ms);
                   last = now;
+                  slot = now + period;
                   run.decision_ms.push_back(r.last_decision_ms());
                   run.keyframes_in_frame += f.cls == "key";
                   if (f.cls != "key") run.sprite_ms.push_back(run.frame_ms.back());
@@ -57,6 +74,8 @@ DisplayRun display(Scene& scene, std::span<const Camera> path, int w, int h, con
   run.total_ms = all.total;
   run.sprite_median_ms = median(run.sprite_ms);
   run.sprite_p99_ms = percentile(run.sprite_ms, 99);
+  run.draw_median_ms = median(run.draw_ms);
+  run.draw_p99_ms = percentile(run.draw_ms, 99);
   return run;
 }
 
@@ -95,13 +114,15 @@ void score_replay(Scene& scene, std::span<const Camera> path, int w, int h, Spri
 
 AsyncComparison run_async_display(const GlContext& gl, Scene& scene, std::span<const Camera> path,
                                   int w, int h, SpriteOptions o, const std::vector<Image>& refs,
-                                  int every) {
+                                  int every, double display_hz) {
   AsyncComparison c;
+  c.display_hz = display_hz;
+  const double period_ms = display_hz > 0 ? 1000.0 / display_hz : 0.0;
   o.async_context = nullptr;
-  c.sync = display(scene, path, w, h, o, nullptr);
+  c.sync = display(scene, path, w, h, o, period_ms, nullptr);
   std::vector<Shown> shown;
   o.async_context = &gl;
-  c.async = display(scene, path, w, h, o, &shown);
+  c.async = display(scene, path, w, h, o, period_ms, &shown);
   score_replay(scene, path, w, h, o, shown, refs, every, c.async);
   return c;
 }
@@ -119,7 +140,12 @@ nlohmann::json async_json(const AsyncComparison& c) {
                           {"sprite_frames_p99_ms", r.sprite_p99_ms},
                           {"decision_cpu_median_ms", median(r.decision_ms)},
                           {"decision_cpu_p99_ms", percentile(r.decision_ms, 99)},
-                          {"frame_ms", r.frame_ms}};
+                          {"draw_median_ms", r.draw_median_ms},
+                          {"draw_p99_ms", r.draw_p99_ms},
+                          {"period_ms", r.period_ms},
+                          {"late_frames", r.late_frames},
+                          {"frame_ms", r.frame_ms},
+                          {"draw_ms", r.draw_ms}};
   };
   nlohmann::json sync = figures(c.sync), async = figures(c.async);
   const AsyncKeyframeStats& st = c.async.stats;
@@ -134,7 +160,8 @@ nlohmann::json async_json(const AsyncComparison& c) {
   async["landed_frames"] = c.async.landed_frames;
   async["mean_ssim"] = c.async.mean_ssim;
   async["mean_psnr"] = c.async.mean_psnr;
-  return {{"sync_display", sync},
+  return {{"display_hz", c.display_hz},
+          {"sync_display", sync},
           {"async_display", async},
           {"p99_ms", c.async.p99_ms},
           {"p99_over_median", c.async.p99_over_median()},
@@ -150,7 +177,10 @@ nlohmann::json async_json(const AsyncComparison& c) {
             {"mean_ssim_within_0_005_of_sync", c.ssim_target_met()}}},
           {"method",
            "two simulated displays after the main run, each its own pass through the experiment "
-           "driver with nothing read back: every frame presented as soon as drawn, frame time "
+           "driver with nothing read back. Paced (display_hz > 0): a frame is presented at the "
+           "first refresh slot at or after its draw ends (a frame not ready by its own slot is "
+           "late and waits for the next), the display sleeping until then, and the next frame "
+           "starts at once; display_hz 0: every frame presented as soon as drawn. Frame time "
            "= interval between successive presentations (frame 0: its draw). sync_display: "
            "keyframes drawn inside the frame; async_display: keyframes on a second thread and "
            "GL context, requested for the camera predicted for their landing. The async "

@@ -79,6 +79,29 @@ std::string pass(bool ok) {
   return ok ? "<b style='color:#1a7f37'>met</b>" : "<b style='color:#b42318'>missed</b>";
 }
 
+// The async displays' frame times, frame by frame (async.dat), and the
+// gnuplot lines of their plot.
+std::string async_plot(const AsyncComparison& a, OutputDir& out) {
+  std::ostringstream d;
+  const std::size_t n = std::min(a.sync.frame_ms.size(), a.async.frame_ms.size());
+  for (std::size_t i = 0; i < n; ++i)
+    d << fmt::format("{} {:.3f} {:.3f} {:.3f} {:.3f}\n", i, a.sync.frame_ms[i],
+                     a.async.frame_ms[i], a.sync.draw_ms[i], a.async.draw_ms[i]);
+  write_text(out.file("async.dat"), "frame sync_ms async_ms sync_draw_ms async_draw_ms\n" + d.str());
+  const double median = a.async.median_ms, p99 = a.async.p99_ms;
+  return fmt::format(
+      "set output 'async_frame_time.png'\n"
+      "set title 'Simulated display{}: frame time = interval between presentations'\n"
+      "set xlabel 'frame'; set ylabel 'ms (log)'; set logscale y; set key top right\n"
+      "plot 'async.dat' u \"frame\":\"sync_ms\" w l lc rgb '#888888' t 'synchronous keyframes', \\\n"
+      "     '' u \"frame\":\"async_ms\" w l lw 1.5 lc rgb '#1f77b4' t 'async keyframes', \\\n"
+      "     {:.4f} w l dt 2 lc rgb '#1f77b4' t 'async median {:.1f} ms', \\\n"
+      "     {:.4f} w l dt 3 lc rgb '#d62728' t 'async p99 {:.1f} ms'\n"
+      "unset logscale y\n",
+      a.display_hz > 0 ? fmt::format(" at {:g} Hz", a.display_hz) : "",
+      median, median, p99, p99);
+}
+
 }  // namespace
 
 void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
@@ -118,6 +141,7 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
   };
   replace_all("THRESHOLD_COL", paper ? "error_px" : "error_px_exact");
   replace_all("THRESHOLD", fmt::format("{}", j.threshold_px));
+  if (j.async) gp += async_plot(*j.async, out);
   write_text(out.file("plots.gp"), gp);
   const std::string plot_error = run_gnuplot(out.partial().string(), "plots.gp");
   const bool plotted = plot_error.empty();
@@ -217,10 +241,20 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
     const AsyncKeyframeStats& st = a.async.stats;
     h << "<h2>Asynchronous keyframes (simulated display, frame time = interval between "
          "presentations)</h2><table>\n";
-    for (auto [name, d] : {std::pair{"synchronous", &a.sync}, {"async", &a.async}})
+    h << row("display",
+             a.display_hz > 0
+                 ? fmt::format("paced at {:g} Hz (a frame not ready by its slot is late and "
+                               "waits for the next)",
+                               a.display_hz)
+                 : std::string("flat out (each frame presented as soon as drawn)"));
+    for (auto [name, d] : {std::pair{"synchronous", &a.sync}, {"async", &a.async}}) {
       h << row(fmt::format("{} display: median / p99 / max frame", name),
                fmt::format("{:.2f} / {:.2f} / {:.1f} ms (p99 / median {:.2f})", d->median_ms,
                            d->p99_ms, d->max_ms, d->p99_over_median()));
+      h << row(fmt::format("{} display: draw median / p99; late frames", name),
+               fmt::format("{:.2f} / {:.2f} ms; {} of {}", d->draw_median_ms, d->draw_p99_ms,
+                           d->late_frames, d->frame_ms.size()));
+    }
     h << row("async keyframes: requested / used / late (used anyway); mean latency",
              fmt::format("{} / {} / {} ({}); {:.1f} frames", st.requested, st.used, st.late,
                          st.late_used, st.mean_latency_frames));
@@ -230,6 +264,7 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
     h << row("p99 at most 2x the median frame", pass(a.p99_target_met()));
     h << row("mean SSIM within 0.005 of the synchronous run", pass(a.ssim_target_met()));
     h << "</table>\n";
+    if (plotted) h << "<p><img src='async_frame_time.png' alt='async frame times'></p>\n";
   }
   h << "<h2>Targets: the paper's keyframe budget, speed-up and quality against plain "
        "LOD</h2><table>\n";

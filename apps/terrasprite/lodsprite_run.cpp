@@ -120,6 +120,8 @@ void validate(const LodspriteConfig& c) {
                     2.0 * c.width * c.height * 8 / (1 << 20)));
   if (!(c.cache_accept > 0 && c.cache_accept <= 1))
     throw InputError(fmt::format("--cache-accept {}: must be in (0, 1]", c.cache_accept));
+  if (!(c.display_hz >= 0) || c.display_hz > 1000)
+    throw InputError(fmt::format("--display-hz {}: must be 0 (flat out) to 1000", c.display_hz));
   if (c.async && c.cache_bytes > 0)
     throw InputError("--async with --cache: the keyframe cache is not used with async keyframes");
   if (c.sweep_score_every < 1)
@@ -327,7 +329,7 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   // ---- the display simulated with asynchronous keyframes, beside a synchronous one ----
   if (cfg.async) {
     AsyncComparison& ac =
-        res.async.emplace(run_async_display(gl, scene, path, w, h, so, refs, every));
+        res.async.emplace(run_async_display(gl, scene, path, w, h, so, refs, every, cfg.display_hz));
     ac.main_run_mean_ssim = mean_every(sp_ssim);
     ac.main_run_mean_psnr = mean_every(sp_psnr);
     std::vector<double> sprite_ssim;

@@ -42,6 +42,9 @@ struct LodspriteConfig {
   /// Also fly the path as two simulated displays, synchronous and with
   /// asynchronous keyframes (JSON `async_run`); not with the cache.
   bool async = false;
+  /// The simulated displays' refresh rate (frames presented on its slots, so
+  /// the keyframe worker gets the CPU between frames); 0 = flat out.
+  double display_hz = 60;
   int sweep_score_every = 1;  ///< sweeps score SSIM on every n-th frame
   bool flip = true;           ///< FLIP per frame in the main run
   /// Called with (frame, sprite frame) after scoring, e.g. to save it.

@@ -19,7 +19,7 @@ std::vector<std::string> render_modes() {
 
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
                               int height, int lod_quads, bool lighting, double sprite_threshold_px,
-                              GlContext* context) {
+                              GlContext* context, bool async_keyframes) {
   RenderStack s;
   // GL modes: the caller's current context, else one of our own.
   auto use_gl = [&] {
@@ -48,7 +48,9 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
     SpriteOptions o;
     o.lod_quads = lod_quads;
     o.threshold_px = sprite_threshold_px;
+    o.lighting = lighting;
     use_gl();
+    if (async_keyframes) o.async_context = context ? context : s.gl.get();
     s.scene = std::make_unique<Scene>(terrain);
     s.renderer = std::make_unique<SpriteRenderer>(*s.scene, width, height, o);
     return s;

@@ -26,10 +26,12 @@ struct RenderStack {
 /// LOD-sprite keyframe threshold. `context` (may be null): a GL context current
 /// on the calling thread that the stack draws with instead of creating its
 /// own (e.g. the viewer's context sharing objects with its window); it must
-/// outlive the stack.
+/// outlive the stack. `async_keyframes`: sprite draws its keyframes on a second
+/// thread in a context shared with the stack's (SpriteOptions::async_context).
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
                               int height, int lod_quads, bool lighting = false,
-                              double sprite_threshold_px = 1.0, GlContext* context = nullptr);
+                              double sprite_threshold_px = 1.0, GlContext* context = nullptr,
+                              bool async_keyframes = false);
 
 /// The modes make_render_stack accepts, for CLI11's check.
 std::vector<std::string> render_modes();

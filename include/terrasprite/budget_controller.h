@@ -4,6 +4,7 @@
 // corrected by the measured frame time (a PI loop on the budget), and keeps
 // one surprising frame (a keyframe, an impostor build) from throwing it off.
 #pragma once
+#include <deque>
 
 namespace terrasprite {
 
@@ -13,10 +14,23 @@ struct BudgetControllerOptions {
   double ki = 0.05;  ///< integral gain (per frame)
   /// measured / predicted is smoothed with this weight for the newest frame.
   double ratio_smoothing = 0.6;
-  /// A frame measured over this many times its prediction is a one-off
-  /// surprise: it neither moves the ratio nor the integral.
+  /// A frame whose measured/predicted ratio is this many times over (or
+  /// under) the smoothed one is a one-off surprise: it neither moves the
+  /// ratio nor the integral. Only one frame in a row: the second such frame
+  /// is taken as the machine's pace.
   double outlier_factor = 2.5;
   double integral_limit = 0.5;  ///< anti-windup, relative
+  /// The loop aims the median frame below the target by the frame-to-frame
+  /// noise of measured/predicted (sigma, log domain) so that the z-quantile
+  /// lands at `tolerance` x target: setpoint = target x min(1, tolerance x
+  /// exp(-z sigma')), sigma' = sigma with the budget's own noise added. A noisy machine (frames 2x
+  /// apart on a shared 2-core box) is held by its p95, not its median; a steady one at the target.
+  /// sigma is robust: the median absolute change of log(measured/predicted)
+  /// between successive frames over the last `spread_window` frames, / 0.954
+  /// (a normal's), so a step in load (one large change) is not noise.
+  double z = 1.645;  ///< one-sided 95%
+  double tolerance = 1.1;
+  int spread_window = 15;
 };
 
 class BudgetController {
@@ -29,13 +43,22 @@ class BudgetController {
   /// representations and what the frame took.
   void update(double predicted_ms, double measured_ms);
   double ratio() const { return ratio_; }
+  /// Whether the last frame was set aside as a one-off surprise.
+  bool last_was_surprise() const { return surprise_; }
+  /// The frame time the loop currently aims at (see `z`), ms.
+  double setpoint_ms() const;
+  /// The measured noise sigma (log domain; see `spread_window`).
+  double noise() const;
 
  private:
   BudgetControllerOptions o_;
   double ratio_ = 1.0;  ///< smoothed measured / predicted
   double integral_ = 0;
+  double last_log_ratio_ = 0;
+  std::deque<double> changes_;  ///< |successive change of log ratio|, newest last
   double budget_ms_;
   bool first_ = true;
+  bool surprise_ = false;
 };
 
 /// The paper's controller: raise the target quality while frames come in
@@ -44,6 +67,9 @@ class BudgetController {
 struct QualityStepOptions {
   double target_ms = 100;
   double step = 0.005;
+  /// Over the target, the step is taken once per 10% of the target missed,
+  /// up to this many times (1: the paper's fixed step). Raising stays one step.
+  double max_steps = 10;
   double min_quality = 0.80, max_quality = 0.995;
   double start_quality = 0.95;
 };

@@ -5,7 +5,9 @@
 // measured frame times.
 #pragma once
 #include <array>
+#include <map>
 #include <span>
+#include <tuple>
 
 #include "terrasprite/object_renderer.h"
 
@@ -30,9 +32,30 @@ struct DrawSample {
   double ms = 0;
 };
 
+/// One representation's measured cost of one instance at its on-screen
+/// size: fixed + per_pixel * pixels (its draw call's share not included).
+/// Calibrated per representation because the per-pixel work differs by far
+/// between them (a relief impostor ray-marches 16 to 48 steps per pixel
+/// depending on its resolution) and near the camera pixels dominate.
+struct RepresentationCost {
+  double fixed_ms = 0;
+  double per_pixel_ms = 0;
+};
+
+/// One timed draw of one representation: covered pixels (the on-screen disc
+/// clipped to the image) and the time of one instance.
+struct PixelSample {
+  double pixels = 0;
+  double ms = 0;
+};
+
 /// What a frame draws, per kind (sums over its instances).
 struct FrameLoad {
   std::array<DrawSample, 3> kinds{};  ///< indexed by ObjectKind; `ms` unused
+  /// Per kind, the calibrated (not refit) fixed and per-pixel milliseconds of
+  /// its instances, summed by DrawCostModel::add. Zero for both with
+  /// instances drawn: the kind's terms apply to the sums in `kinds`.
+  std::array<double, 3> fixed_ms{}, pixel_ms{};
 };
 
 struct CostModelOptions {
@@ -61,29 +84,60 @@ class DrawCostModel {
   void set_terms(ObjectKind kind, const DrawCostTerms& terms);
   void set_frame_ms(double ms) {
     frame_ms_ = ms;
+    effective_ = terms_;
     prior_set_ = false;
   }
-  const DrawCostTerms& terms(ObjectKind kind) const { return terms_[std::size_t(kind)]; }
-  double frame_ms() const { return frame_ms_; }
+  /// The kind's terms as refit so far.
+  const DrawCostTerms& terms(ObjectKind kind) const { return effective_[std::size_t(kind)]; }
+  double frame_ms() const { return frame_ms_ * m(0); }
+
+  /// Fits `rep`'s own cost (least squares on the relative error, non-negative
+  /// terms) to timed draws at several sizes: of model `model`'s `rep`, or
+  /// (model = kAnyModel) of `rep` on every model not calibrated on its own.
+  /// It then overrides the kind's terms for `rep`.
+  static constexpr int kAnyModel = -1;
+  void calibrate(const Representation& rep, std::span<const PixelSample> samples,
+                 int model = kAnyModel);
+  bool calibrated(const Representation& rep, int model = kAnyModel) const;
+  /// `rep`'s own calibrated cost (the model's, else any model's), or null.
+  const RepresentationCost* cost(const Representation& rep, int model = kAnyModel) const {
+    return find(rep, model);
+  }
+  void set_cost(const Representation& rep, const RepresentationCost& cost, int model = kAnyModel);
 
   /// Expected time of one instance drawn as `kind` (its draw call's share not included).
   double instance_ms(ObjectKind kind, double triangles, double pixels) const;
+  /// Expected time of one instance of `model` drawn as `rep`: its own
+  /// calibration when it has one (the model's, else any model's), else its
+  /// kind's terms; the online refit applies to all.
+  double instance_ms(const Representation& rep, double triangles, double pixels,
+                     int model = kAnyModel) const;
+  /// Adds one instance drawn as `rep` to a frame's load.
+  void add(FrameLoad& load, const Representation& rep, double triangles, double pixels,
+           int model = kAnyModel) const;
   /// Expected time of a frame: the fixed term plus every kind's load.
   double predict(const FrameLoad& load) const;
 
   /// Moves every term towards explaining `measured_ms` for `load`: recursive
-  /// least squares on a multiplier per term (prior 1 +- prior_fraction, each
-  /// clamped to [0.05, 20]) over the ten terms' calibrated contributions.
+  /// least squares on a multiplier (prior 1 +- prior_fraction, clamped to
+  /// [0.05, 20]) per calibrated contribution: the frame's fixed term, and per
+  /// kind its draw calls, its instances' fixed and their per-pixel time.
   void observe(const FrameLoad& load, double measured_ms);
+  /// The refit's multiplier of kind `kind`'s per-pixel time (1: as calibrated).
+  double pixel_multiplier(ObjectKind kind) const;
 
  private:
-  static constexpr int kTerms = 13;
+  static constexpr int kTerms = 10;  // frame; per kind: draw, fixed, pixel
+  std::array<double, kTerms> contributions(const FrameLoad& load) const;
   void reset_prior();
-  std::array<double, kTerms> theta() const;
-  std::array<double, kTerms> calibrated_{};
+  double m(int i) const { return prior_set_ ? multipliers_[std::size_t(i)] : 1.0; }
   std::array<double, kTerms> multipliers_{};
   CostModelOptions options_;
-  std::array<DrawCostTerms, 3> terms_{};
+  std::array<DrawCostTerms, 3> terms_{};      ///< as calibrated
+  std::array<DrawCostTerms, 3> effective_{};  ///< as refit (terms())
+  const RepresentationCost* find(const Representation& rep, int model) const;
+  /// (model or kAnyModel, kind, level, resolution) -> cost
+  std::map<std::tuple<int, int, int, int>, RepresentationCost> reps_;
   double frame_ms_ = 0;
   std::array<double, kTerms * kTerms> covariance_{};
   double prior_trace_ = 0;

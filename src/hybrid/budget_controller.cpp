@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace terrasprite {
 
@@ -14,23 +15,53 @@ BudgetController::BudgetController(const BudgetControllerOptions& options)
 void BudgetController::update(double predicted_ms, double measured_ms) {
   if (!(predicted_ms > 0) || !(measured_ms > 0)) return;
   const double r = measured_ms / predicted_ms;
-  const bool surprise = !first_ && r > o_.outlier_factor * ratio_;
-  if (!surprise) {
+  // One frame far over (or under) its expected ratio is a surprise; the
+  // next one too is the machine's new pace (a sustained slowdown must not
+  // freeze the loop). A single fast frame would otherwise raise the next
+  // budget 2x and make the next frame the slow one.
+  const bool far = r > o_.outlier_factor * ratio_ || r * o_.outlier_factor < ratio_;
+  surprise_ = !first_ && far && !surprise_;
+  if (!surprise_) {
     // Log-domain smoothing: a ratio of 2 and one of 0.5 weigh alike.
+    if (!first_) changes_.push_back(std::abs(std::log(r) - last_log_ratio_));
+    while (int(changes_.size()) > std::max(1, o_.spread_window)) changes_.pop_front();
+    last_log_ratio_ = std::log(r);
     ratio_ = first_ ? r
                     : std::exp((1 - o_.ratio_smoothing) * std::log(ratio_) +
                                o_.ratio_smoothing * std::log(r));
     first_ = false;
-    const double error = std::clamp((o_.target_ms - measured_ms) / o_.target_ms, -1.0, 1.0);
+    const double setpoint = setpoint_ms();
+    const double error = std::clamp((setpoint - measured_ms) / o_.target_ms, -1.0, 1.0);
     integral_ = std::clamp(integral_ + o_.ki * error, -o_.integral_limit, o_.integral_limit);
     const double correction = std::max(0.1, 1.0 + o_.kp * error + integral_);
-    budget_ms_ = o_.target_ms / ratio_ * correction;
+    budget_ms_ = setpoint / ratio_ * correction;
   }
 }
 
+double BudgetController::noise() const {
+  if (changes_.size() < 5) return 0.0;
+  std::vector<double> c(changes_.begin(), changes_.end());
+  std::nth_element(c.begin(), c.begin() + std::ptrdiff_t(c.size() / 2), c.end());
+  // |X1 - X2| of two normals has median 0.6745 * sqrt(2) sigma.
+  return c[c.size() / 2] / (0.6745 * std::sqrt(2.0));
+}
+
+double BudgetController::setpoint_ms() const {
+  // The budget follows the smoothed ratio, which carries w / (2 - w) of the
+  // frames' noise variance into the next frame: the spread to cover is the
+  // frame's own and the budget's together.
+  const double w = o_.ratio_smoothing;
+  const double sigma = noise() * std::sqrt(1 + w / (2 - w));
+  return o_.target_ms * std::min(1.0, o_.tolerance * std::exp(-o_.z * sigma));
+}
+
 void QualityStepController::update(double measured_ms) {
+  // The step grows with the miss (one step per 10% of the target, at most
+  // `max_steps`): a frame at 3x the target must not wait 40 frames.
+  const double miss = std::abs(measured_ms - o_.target_ms) / (0.1 * o_.target_ms);
+  const double step = o_.step * std::clamp(std::floor(miss), 1.0, o_.max_steps);
   if (measured_ms > o_.target_ms)
-    quality_ -= o_.step;
+    quality_ -= step;
   else if (measured_ms < 0.9 * o_.target_ms)
     quality_ += o_.step;
   quality_ = std::clamp(quality_, o_.min_quality, o_.max_quality);

@@ -52,15 +52,10 @@ bool solve_subset(std::span<const DrawSample> samples, const std::array<bool, 3>
   return true;
 }
 
-std::array<double, 13> features(const FrameLoad& load) {
-  std::array<double, 13> x{1.0};
-  for (std::size_t k = 0; k < 3; ++k) {
-    x[1 + 4 * k] = load.kinds[k].draws;
-    x[2 + 4 * k] = load.kinds[k].instances;
-    x[3 + 4 * k] = load.kinds[k].triangles;
-    x[4 + 4 * k] = load.kinds[k].pixels;
-  }
-  return x;
+/// A representation's calibration key: meshes by level, impostors by kind and resolution.
+std::tuple<int, int, int, int> key(const Representation& rep, int model) {
+  return {model, int(rep.kind), rep.kind == ObjectKind::kMesh ? rep.level : 0,
+          rep.kind == ObjectKind::kMesh ? 0 : rep.resolution};
 }
 
 }  // namespace
@@ -69,6 +64,7 @@ DrawCostModel::DrawCostModel(const CostModelOptions& options) : options_(options
 
 void DrawCostModel::set_terms(ObjectKind kind, const DrawCostTerms& terms) {
   terms_[std::size_t(kind)] = terms;
+  effective_ = terms_;
   prior_set_ = false;
 }
 
@@ -96,42 +92,109 @@ void DrawCostModel::calibrate(ObjectKind kind, std::span<const DrawSample> sampl
   }
 }
 
+void DrawCostModel::calibrate(const Representation& rep, std::span<const PixelSample> samples,
+                              int model) {
+  if (samples.empty()) return;
+  // Least squares on (1, pixels) through the same solver: instances = 1,
+  // triangles = 0 (a representation's triangles are fixed: in the constant).
+  // Each row divided by its time: the relative error is minimised, so a
+  // 0.1 ms draw at 48 px counts as much as a 100 ms one filling the image.
+  std::vector<DrawSample> s;
+  for (const PixelSample& p : samples)
+    if (p.ms > 0) s.push_back({1, 1 / p.ms, 0, p.pixels / p.ms, 1.0});
+  std::array<double, 3> t{};
+  RepresentationCost c;
+  if (solve_subset(s, {true, false, true}, t) && t[0] >= 0 && t[2] >= 0) {
+    c = {t[0], t[2]};
+  } else {
+    // One of them negative (or a single size): the better of either alone.
+    double sp = 0, spp = 0, sm = 0;
+    for (const PixelSample& p : samples) {
+      sp += p.pixels * p.ms;
+      spp += p.pixels * p.pixels;
+      sm += p.ms;
+    }
+    const double mean = sm / double(samples.size()), slope = spp > 0 ? sp / spp : 0.0;
+    double e_const = 0, e_slope = 0;
+    for (const PixelSample& p : samples) {
+      e_const += (p.ms - mean) * (p.ms - mean);
+      e_slope += (p.ms - slope * p.pixels) * (p.ms - slope * p.pixels);
+    }
+    c = e_slope < e_const ? RepresentationCost{0, std::max(0.0, slope)}
+                          : RepresentationCost{std::max(0.0, mean), 0};
+  }
+  set_cost(rep, c, model);
+}
+
+void DrawCostModel::set_cost(const Representation& rep, const RepresentationCost& cost, int model) {
+  reps_[key(rep, model)] = cost;
+}
+
+const RepresentationCost* DrawCostModel::find(const Representation& rep, int model) const {
+  auto it = reps_.find(key(rep, model));
+  if (it == reps_.end() && model != kAnyModel) it = reps_.find(key(rep, kAnyModel));
+  return it == reps_.end() ? nullptr : &it->second;
+}
+
+bool DrawCostModel::calibrated(const Representation& rep, int model) const {
+  return find(rep, model) != nullptr;
+}
+
 double DrawCostModel::instance_ms(ObjectKind kind, double triangles, double pixels) const {
-  const DrawCostTerms& t = terms_[std::size_t(kind)];
+  const DrawCostTerms& t = effective_[std::size_t(kind)];
   return t.per_instance_ms + t.per_triangle_ms * triangles + t.per_pixel_ms * pixels;
 }
 
-double DrawCostModel::predict(const FrameLoad& load) const {
-  double ms = frame_ms_;
-  for (int k = 0; k < 3; ++k) {
+double DrawCostModel::instance_ms(const Representation& rep, double triangles, double pixels,
+                                  int model) const {
+  const RepresentationCost* c = find(rep, model);
+  if (!c) return instance_ms(rep.kind, triangles, pixels);
+  const int k = int(rep.kind);
+  return m(2 + 3 * k) * c->fixed_ms + m(3 + 3 * k) * c->per_pixel_ms * pixels;
+}
+
+void DrawCostModel::add(FrameLoad& load, const Representation& rep, double triangles, double pixels,
+                        int model) const {
+  const std::size_t k = std::size_t(rep.kind);
+  DrawSample& s = load.kinds[k];
+  s.instances += 1;
+  s.triangles += triangles;
+  s.pixels += pixels;
+  const RepresentationCost* c = find(rep, model);
+  const DrawCostTerms& t = terms_[k];
+  load.fixed_ms[k] += c ? c->fixed_ms : t.per_instance_ms + t.per_triangle_ms * triangles;
+  load.pixel_ms[k] += c ? c->per_pixel_ms * pixels : t.per_pixel_ms * pixels;
+}
+
+std::array<double, DrawCostModel::kTerms> DrawCostModel::contributions(
+    const FrameLoad& load) const {
+  std::array<double, kTerms> z{frame_ms_};
+  for (std::size_t k = 0; k < 3; ++k) {
     const DrawSample& s = load.kinds[k];
-    const DrawCostTerms& t = terms_[std::size_t(k)];
-    ms += t.per_draw_ms * s.draws + t.per_instance_ms * s.instances +
-          t.per_triangle_ms * s.triangles + t.per_pixel_ms * s.pixels;
+    const DrawCostTerms& t = terms_[k];
+    z[1 + 3 * k] = t.per_draw_ms * s.draws;
+    const bool summed = load.fixed_ms[k] > 0 || load.pixel_ms[k] > 0;
+    z[2 + 3 * k] = summed ? load.fixed_ms[k]
+                          : t.per_instance_ms * s.instances + t.per_triangle_ms * s.triangles;
+    z[3 + 3 * k] = summed ? load.pixel_ms[k] : t.per_pixel_ms * s.pixels;
   }
+  return z;
+}
+
+double DrawCostModel::predict(const FrameLoad& load) const {
+  const std::array<double, kTerms> z = contributions(load);
+  double ms = 0;
+  for (int i = 0; i < kTerms; ++i) ms += m(i) * z[std::size_t(i)];
   return ms;
 }
 
-std::array<double, DrawCostModel::kTerms> DrawCostModel::theta() const {
-  return {frame_ms_,
-          terms_[0].per_draw_ms,
-          terms_[0].per_instance_ms,
-          terms_[0].per_triangle_ms,
-          terms_[0].per_pixel_ms,
-          terms_[1].per_draw_ms,
-          terms_[1].per_instance_ms,
-          terms_[1].per_triangle_ms,
-          terms_[1].per_pixel_ms,
-          terms_[2].per_draw_ms,
-          terms_[2].per_instance_ms,
-          terms_[2].per_triangle_ms,
-          terms_[2].per_pixel_ms};
+double DrawCostModel::pixel_multiplier(ObjectKind kind) const {
+  return m(3 + 3 * int(kind));
 }
 
 void DrawCostModel::reset_prior() {
-  // The unknowns are multipliers on the calibrated terms (1 = as calibrated),
-  // so every unknown has the same scale whatever its unit.
-  calibrated_ = theta();
+  // The unknowns are multipliers on the calibrated contributions (1 = as
+  // calibrated), so every unknown has the same scale whatever its unit.
   multipliers_.fill(1.0);
   covariance_.fill(0);
   for (int i = 0; i < kTerms; ++i)
@@ -142,10 +205,7 @@ void DrawCostModel::reset_prior() {
 
 void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
   if (!prior_set_) reset_prior();
-  const std::array<double, kTerms> x = features(load);
-  std::array<double, kTerms> z{};  // each term's calibrated contribution, ms
-  for (int i = 0; i < kTerms; ++i)
-    z[std::size_t(i)] = calibrated_[std::size_t(i)] * x[std::size_t(i)];
+  const std::array<double, kTerms> z = contributions(load);  // each term's calibrated ms
   auto P = [&](int i, int j) -> double& { return covariance_[std::size_t(i * kTerms + j)]; };
   std::array<double, kTerms> pz{};
   double zpz = 0, predicted = 0;
@@ -172,10 +232,12 @@ void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
   // Forgetting inflates directions no frame excites; never past the prior's size.
   if (trace > prior_trace_)
     for (double& v : covariance_) v *= prior_trace_ / trace;
-  const auto m = [&](int i) { return calibrated_[std::size_t(i)] * multipliers_[std::size_t(i)]; };
-  frame_ms_ = m(0);
-  for (int k = 0; k < 3; ++k)
-    terms_[std::size_t(k)] = {m(1 + 4 * k), m(2 + 4 * k), m(3 + 4 * k), m(4 + 4 * k)};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const DrawCostTerms& t = terms_[k];
+    const double draw = m(int(1 + 3 * k)), fixed = m(int(2 + 3 * k)), pixel = m(int(3 + 3 * k));
+    effective_[k] = {t.per_draw_ms * draw, t.per_instance_ms * fixed, t.per_triangle_ms * fixed,
+                     t.per_pixel_ms * pixel};
+  }
 }
 
 }  // namespace terrasprite

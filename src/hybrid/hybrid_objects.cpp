@@ -100,6 +100,7 @@ long long HybridObjects::draw(const Camera& camera) {
   const double px_per_m = o.height / (2 * std::tan(glm::radians(camera.fov_y_deg) / 2));
   std::vector<InstanceOptions> frame;
   std::vector<std::pair<std::size_t, std::size_t>> where;  // (model, instance index)
+  std::vector<double> pixels_of;                           // covered pixels, per entry
   HybridFrameStats st;
   int id = 0;
   for (std::size_t m = 0; m < s.set.model_count(); ++m) {
@@ -110,18 +111,27 @@ long long HybridObjects::draw(const Camera& camera) {
       const InstanceView v = view_instance(camera, o.height, instances[i],
                                            glm::dvec3(model.center()), model.bounding_radius());
       if (!v.visible || s.offers[m].empty()) continue;
-      InstanceOptions inst{id, v.size_px, std::min(1.0, v.size_px * v.size_px / image_px), {}};
-      const double pixels = std::min(image_px, M_PI / 4 * v.size_px * v.size_px);
+      InstanceOptions inst{id, v.size_px, std::min(1.0, v.pixels / image_px), {}};
+      const double pixels = v.pixels;
       // One table lookup per instance; every representation on the same views reuses it.
+      const double radius = model.bounding_radius() * instances[i].scale;
       const QualityInterpolator::Weights w =
           s.offers[m].front().quality.weights(v.phi_deg, v.theta_deg, v.size_px);
       for (const Offer& f : s.offers[m]) {
         if (scenario_.full && !(f.rep.kind == ObjectKind::kMesh && f.rep.level == 0)) continue;
+        // Beyond the tables' sizes an impostor's quality is unknown, and
+        // near the camera it is far worse than they say (checkpoint D).
+        // Within two radii the camera is inside or at the impostor's box.
+        if (f.rep.kind != ObjectKind::kMesh && o.max_impostor_size_px > 0 &&
+            (v.size_px > o.max_impostor_size_px || v.distance_m < 2 * radius) &&
+            scenario_.policy != SelectionPolicy::kImpostorOnly)
+          continue;
         const ExpectedQuality q =
             f.shared_layout ? f.quality.at(w) : f.quality.at(v.phi_deg, v.theta_deg, v.size_px);
         const double err_px =
             f.error_m * instances[i].scale * px_per_m / std::max(v.distance_m, 1e-6);
-        inst.options.push_back({f.rep, s.cost.instance_ms(f.rep.kind, double(f.triangles), pixels),
+        inst.options.push_back({f.rep,
+                                s.cost.instance_ms(f.rep, double(f.triangles), pixels, int(m)),
                                 q.ssim, q.psnr, f.triangles, err_px});
       }
       long long lo = inst.options.front().triangles;
@@ -130,6 +140,7 @@ long long HybridObjects::draw(const Camera& camera) {
       st.triangles_max += model.triangles();
       frame.push_back(std::move(inst));
       where.push_back({m, i});
+      pixels_of.push_back(pixels);
     }
     // A draw call per (model, representation) the knapsack cannot see as a
     // fixed cost: each visible instance of the model carries its share of it
@@ -149,8 +160,11 @@ long long HybridObjects::draw(const Camera& camera) {
     case HybridScenario::Control::kNone:
       break;
     case HybridScenario::Control::kQualityStep:
+      // The paper's quality step for the impostors; the meshes' budget is
+      // the target as the same measured-time loop corrects it (a fixed
+      // budget in predicted milliseconds would miss by the model's error).
       po.target_ssim = s.quality_step.quality();
-      budget = o.target_ms;
+      budget = s.controller.budget_ms();
       break;
     case HybridScenario::Control::kBudgetPi:
       budget = s.controller.budget_ms();
@@ -182,10 +196,7 @@ long long HybridObjects::draw(const Camera& camera) {
     auto& g = groups[{m, int(r.kind), r.level, r.resolution}];
     g.first = r;
     g.second.push_back(s.set.instances(m)[i]);
-    DrawSample& ld = s.load.kinds[std::size_t(r.kind)];
-    ld.instances += 1;
-    ld.triangles += double(opt.triangles);
-    ld.pixels += std::min(image_px, M_PI / 4 * frame[k].size_px * frame[k].size_px);
+    s.cost.add(s.load, r, double(opt.triangles), pixels_of[k], int(m));
     st.triangles += opt.triangles;
     st.instances_by_kind[std::size_t(r.kind)] += 1;
   }
@@ -201,8 +212,7 @@ void HybridObjects::feedback(double measured_ms) {
   s.controller.update(last_.predicted_ms, measured_ms);
   s.quality_step.update(measured_ms);
   // A one-off surprise (an impostor build, a stall) says nothing about the terms.
-  if (measured_ms < s.options.controller.outlier_factor * last_.predicted_ms)
-    s.cost.observe(s.load, measured_ms);
+  if (!s.controller.last_was_surprise()) s.cost.observe(s.load, measured_ms);
 }
 
 }  // namespace terrasprite

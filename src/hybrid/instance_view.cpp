@@ -38,6 +38,21 @@ InstanceView view_instance(const Camera& camera, int height_px, const ObjectInst
                   ? height_px * (r / std::sqrt(v.distance_m * v.distance_m - r * r)) / ty
                   : double(height_px);
   v.size_px = std::min(v.size_px, 4.0 * height_px);
+  // Where the centre lands on screen (pixels from the image centre; behind
+  // the eye it is anywhere: the whole image), and the disc's share inside.
+  const double width_px = height_px * camera.aspect;
+  const double half = v.size_px / 2;
+  double cx = 0, cy = 0;
+  if (z > 1e-9) {
+    cx = x / (z * tx) * width_px / 2;
+    cy = y / (z * ty) * height_px / 2;
+  }
+  auto overlap = [&](double c, double extent) {
+    return std::max(0.0, std::min(c + half, extent / 2) - std::max(c - half, -extent / 2));
+  };
+  const double covered =
+      z > 1e-9 ? overlap(cx, width_px) * overlap(cy, height_px) : width_px * double(height_px);
+  v.pixels = M_PI / 4 * covered;
   // The camera's direction from the centre, in the model's frame.
   const glm::dvec3 d = heading_rotate(-to / std::max(v.distance_m, 1e-12), -heading);
   v.theta_deg = glm::degrees(std::acos(std::clamp(d.z, -1.0, 1.0)));

@@ -61,10 +61,15 @@ void RenderWorker::request(const Camera& camera, std::uint64_t generation,
 }
 
 std::optional<RenderedFrame> RenderWorker::take() {
-  std::lock_guard lock(m_);
-  if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
-  if (done_) shown_slot_ = done_->slot;
-  return std::exchange(done_, std::nullopt);
+  std::optional<RenderedFrame> f;
+  {
+    std::lock_guard lock(m_);
+    if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
+    if (done_) shown_slot_ = done_->slot;
+    f = std::exchange(done_, std::nullopt);
+  }
+  if (f) cv_.notify_all();  // the worker waits for its last frame to be taken
+  return f;
 }
 
 void RenderWorker::wait(double timeout_s) {
@@ -126,6 +131,7 @@ RenderedFrame RenderWorker::draw(ViewRenderer& r, const Camera& camera, Targets*
     out.frame = r.renderer().render(camera, ReadBack::kColor);
   }
   out.error_px = r.error_px();
+  out.landed = r.landed_keyframe();
   out.device = r.device();
   return out;
 }
@@ -144,7 +150,10 @@ void RenderWorker::loop() {
       bool compare = false;
       {
         std::unique_lock lock(m_);
-        cv_.wait(lock, [&] { return stop_ || has_request_; });
+        // A finished frame not yet taken is not drawn over: a frame nobody
+        // sees would only take the CPU from the window and from a keyframe
+        // worker (LOD-sprite's second thread), and take() wakes us at once.
+        cv_.wait(lock, [&] { return stop_ || (has_request_ && !done_); });
         if (stop_) break;
         compare = std::exchange(compare_, false);
         camera = camera_;

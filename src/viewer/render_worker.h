@@ -58,6 +58,9 @@ class ViewRenderer {
   virtual std::string device() const = 0;
   /// The LOD-sprite error of the last frame against its keyframe (pixels), or -1.
   virtual double error_px() const { return -1; }
+  /// Whether the last frame took a keyframe that a second thread finished
+  /// (LOD-sprite with asynchronous keyframes).
+  virtual bool landed_keyframe() const { return false; }
 };
 /// Builds the renderer for `settings`; `context` is the worker's GL context
 /// (current on the calling thread; null when there is none), for GL renderers.
@@ -72,6 +75,7 @@ struct RenderedFrame {
   unsigned texture = 0;          ///< the GL texture holding the frame (rows bottom-up), or 0
   std::uint64_t generation = 0;  ///< the input generation its camera included
   double error_px = -1;
+  bool landed = false;  ///< it took a keyframe finished on another thread
   std::string device;
   LiveSettings settings;
   int slot = -1;
@@ -88,7 +92,8 @@ class RenderWorker {
   RenderWorker& operator=(const RenderWorker&) = delete;
 
   /// The camera (with the input generation it includes) and settings to render
-  /// next; replaces an older request. The worker renders continuously.
+  /// next; replaces an older request. The worker renders continuously, each
+  /// frame once the one before it was taken (none drawn only to be dropped).
   void request(const Camera& camera, std::uint64_t generation, const LiveSettings& settings);
   /// The newest frame finished since the last take(), if any; its texture
   /// stays untouched until the next take() returns a frame. Rethrows an

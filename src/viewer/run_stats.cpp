@@ -38,6 +38,7 @@ nlohmann::json stats_json(const RunStats& s) {
           {"camera_start", pose(s.camera_start)},
           {"camera_end", pose(s.camera_end)},
           {"classes", s.classes},
+          {"keyframes_landed", s.keyframes_landed},
           {"comparisons", compared}};
 }
 

@@ -25,6 +25,7 @@ struct RunStats {
   std::vector<EventLatency> events;
   Camera camera_start, camera_end;     ///< the flight's first and last pose
   std::map<std::string, int> classes;  ///< displayed new frames by class (key, sprite, warp, ...)
+  int keyframes_landed = 0;  ///< displayed frames that took a keyframe drawn on another thread
   struct Compared {
     std::string mode;
     double psnr = 0, ssim = 0, flip = 0;
@@ -35,7 +36,7 @@ struct RunStats {
 /// The stats file: mode, size, frames, fps_median, fps_low_1pct (the rate of
 /// the 99th-percentile frame time), frames (displayed new frames), frame_ms_p50, frame_ms_p99,
 /// render_ms_p50, latency_ms_p95, latency_ms_max, events [{t, latency_ms}], camera_start and
-/// camera_end ({position, yaw_deg, pitch_deg}), classes {class: frames} and
+/// camera_end ({position, yaw_deg, pitch_deg}), classes {class: frames}, keyframes_landed and
 /// comparisons [{mode, psnr, ssim, flip}] (against full resolution).
 nlohmann::json stats_json(const RunStats& s);
 

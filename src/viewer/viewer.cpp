@@ -265,7 +265,7 @@ void Loop::present(std::optional<RenderedFrame>& f, Clock::time_point now) {
     }
     info_.render_ms = f->frame.ms;
     info_.triangles = f->frame.triangles;
-    info_.cls = f->frame.cls;
+    info_.cls = f->landed ? f->frame.cls + " (keyframe landed)" : f->frame.cls;
     info_.error_px = f->error_px;
     info_.device = f->device;
     shown_at_ = now;
@@ -306,7 +306,8 @@ void Loop::present(std::optional<RenderedFrame>& f, Clock::time_point now) {
   if (stats_.frames > 0) {
     const double ms = seconds(swapped - last_new_swap_) * 1000;
     stats_.frame_ms.push_back(ms);
-    info_.history.push_back({float(ms), f->frame.cls == "key" || f->frame.cls == "voxel"});
+    info_.history.push_back(
+        {float(ms), f->frame.cls == "key" || f->frame.cls == "voxel" || f->landed});
     if (info_.history.size() > 240) info_.history.pop_front();
     double sum = 0;
     for (const auto& s : info_.history) sum += s.ms;
@@ -314,6 +315,7 @@ void Loop::present(std::optional<RenderedFrame>& f, Clock::time_point now) {
   }
   stats_.render_ms.push_back(f->frame.ms);
   ++stats_.classes[f->frame.cls];
+  stats_.keyframes_landed += f->landed;
   if (!begun_) begin(swapped);
   ++stats_.frames;
   last_new_swap_ = swapped;

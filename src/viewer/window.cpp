@@ -71,6 +71,7 @@ Window::Window(int width, int height, const std::string& title) {
   }
   glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
   shared_ = glfwCreateWindow(16, 16, "terrasprite render", nullptr, window_);  // null: none
+  if (shared_) keyframes_ = glfwCreateWindow(16, 16, "terrasprite keyframes", nullptr, window_);
   glfwSetWindowUserPointer(window_, this);
   glfwMakeContextCurrent(window_);
   glfwSwapInterval(0);
@@ -92,6 +93,7 @@ Window::~Window() {
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
+  if (keyframes_) glfwDestroyWindow(keyframes_);
   if (shared_) glfwDestroyWindow(shared_);
   glfwDestroyWindow(window_);
   glfwTerminate();
@@ -103,6 +105,16 @@ std::unique_ptr<GlContext> Window::adopt_shared_context() {
   GlContext::External e;
   e.make_current = [w] { glfwMakeContextCurrent(w); };
   e.release_current = [] { glfwMakeContextCurrent(nullptr); };
+  e.create_shared = [this]() -> std::unique_ptr<GlContext> {
+    if (!keyframes_ || keyframes_held_.exchange(true))
+      throw DeviceError("view: no further GL context shared with the window is free");
+    GLFWwindow* k = keyframes_;
+    GlContext::External x;
+    x.make_current = [k] { glfwMakeContextCurrent(k); };
+    x.release_current = [] { glfwMakeContextCurrent(nullptr); };
+    x.destroy = [this] { keyframes_held_ = false; };
+    return GlContext::adopt(std::move(x));  // checks the caller's context: same hints, same GL
+  };
   return GlContext::adopt(std::move(e));
 }
 

@@ -3,6 +3,7 @@
 // input layer its callbacks feed. Scripted events enter through the very same
 // callbacks (inject), so a script exercises what a user's hands would.
 #pragma once
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -44,6 +45,10 @@ class Window {
   /// Makes that second context current on the calling thread (the render
   /// worker's) and wraps it; the window must outlive it, and it must be
   /// released (GlContext::release_current) before the window is destroyed.
+  /// Its create_shared() hands out a third context of the same share group
+  /// (another hidden window, made on the main thread with the window, since
+  /// GLFW makes windows only there), one holder at a time: the LOD-sprite
+  /// renderer's keyframe worker. It throws DeviceError while that one is held.
   std::unique_ptr<GlContext> adopt_shared_context();
   bool should_close() const;
   void poll();  ///< delivers pending window-system events to the callbacks
@@ -74,7 +79,9 @@ class Window {
   void push(InputEvent e);
 
   GLFWwindow* window_ = nullptr;
-  GLFWwindow* shared_ = nullptr;  // hidden, sharing objects with window_
+  GLFWwindow* shared_ = nullptr;     // hidden, sharing objects with window_
+  GLFWwindow* keyframes_ = nullptr;  // hidden too: the keyframe worker's context
+  std::atomic<bool> keyframes_held_{false};
   std::vector<ArrivedEvent> pending_;
   std::uint64_t next_seq_ = 1;
   bool captured_ = true, left_down_ = false, have_cursor_ = false;

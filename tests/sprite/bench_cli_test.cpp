@@ -108,14 +108,19 @@ TEST(BenchLodsprite, AsyncReportsBothDisplays) {
   for (const char* k : {"p99_ms", "p99_over_median", "p99_over_sync_sprite_median", "mean_ssim",
                         "mean_ssim_sync", "mean_psnr", "targets", "method"})
     EXPECT_TRUE(a.contains(k)) << k;
+  EXPECT_EQ(double(a["display_hz"]), 60.0);  // paced on a 60 Hz clock by default
   for (const char* display : {"sync_display", "async_display"}) {
     EXPECT_EQ(a[display]["frame_ms"].size(), 12u) << display;
+    EXPECT_EQ(a[display]["draw_ms"].size(), 12u) << display;
     EXPECT_GT(double(a[display]["median_ms"]), 0.0) << display;
+    EXPECT_GE(int(a[display]["late_frames"]), 0) << display;
   }
+  EXPECT_TRUE(std::filesystem::exists(out + "/async.dat"));  // the frame-time plot's data
   EXPECT_EQ(a["async_display"]["keyframes_in_frame"], 1);  // only the first frame waits
   EXPECT_GE(double(a["mean_ssim"]), 0.0);
   EXPECT_LE(double(a["mean_ssim"]), 1.0);
   EXPECT_EQ(run("bench lodsprite --async --cache"), 2);
+  EXPECT_EQ(run("bench lodsprite --async --display-hz -1"), 2);
 }
 
 }  // namespace

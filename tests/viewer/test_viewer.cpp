@@ -254,6 +254,28 @@ TEST(ViewCli, ScriptedRunUnderXvfbMovesRecordsAndReplays) {
               rec["keyframes"][0]["position"][0].get<double>(), 1e-3);
 }
 
+// Sprite mode with its keyframes on a second thread, through the window's
+// shared context (the keyframe worker takes the third hidden GLFW context):
+// only the first frame draws a keyframe inside a frame, and keyframes drawn
+// by the worker land while the camera flies and turns. CI cost: ~4 s.
+TEST(ViewCli, SpriteKeyframesLandFromASecondThreadUnderXvfb) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run missing";
+  tstest::TempDir tmp;
+  std::ofstream(tmp / "fly.json") << R"({"events": [
+    {"t": 0.2, "type": "key", "key": "W", "action": "press"},
+    {"t": 1.7, "type": "key", "key": "W", "action": "release"},
+    {"t": 1.8, "type": "mouse", "dx": 80, "dy": 0}]})";
+  auto r = view("--mode sprite --shared-context --script " + (tmp / "fly.json") + " --stats " +
+                (tmp / "s.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  auto s = read_json(tmp / "s.json");
+  EXPECT_EQ(s["classes"].value("key", 0), 1) << s["classes"];  // the first frame only
+  EXPECT_GE(s["classes"].value("sprite", 0), 5) << s["classes"];
+  EXPECT_GE(s["keyframes_landed"].get<int>(), 1) << s;
+  ASSERT_EQ(s["events"].size(), 3u);
+  for (const auto& e : s["events"]) EXPECT_GE(e["latency_ms"].get<double>(), 0) << e;
+}
+
 // Voxel mode with the warp (every third frame real) and the panel's compare
 // (F3): warped frames are displayed, and the comparison with full resolution
 // is in the stats. CI cost: ~5 s.

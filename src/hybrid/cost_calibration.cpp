@@ -1,0 +1,194 @@
+// SPDX-License-Identifier: MIT
+#include "terrasprite/cost_calibration.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "gl/render_target.h"
+#include "terrasprite/stats.h"
+
+namespace terrasprite {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// A camera looking level-ish (theta 75 deg) at the model's centre from where
+/// its bounding sphere spans `size_px` of the image height.
+Camera calibration_camera(const Model& m, const CostCalibrationOptions& o, int size_px) {
+  const double r = m.bounding_radius();
+  const double ty = std::tan(glm::radians(o.fov_y_deg) / 2);
+  const double k = double(size_px) / o.height * ty;  // r / sqrt(d^2 - r^2)
+  const double dist = r * std::sqrt(1.0 + 1.0 / (k * k));
+  const double phi = glm::radians(30.0), elev = glm::radians(15.0);
+  const glm::dvec3 c(m.center());
+  const glm::dvec3 eye = c + dist * glm::dvec3(-std::sin(phi) * std::cos(elev),
+                                               -std::cos(phi) * std::cos(elev), std::sin(elev));
+  Camera cam = Camera::look_at(eye, c, o.fov_y_deg, double(o.width) / o.height, 30.0);
+  cam.near_m = dist * 0.02;
+  cam.far_m = dist + 2 * r;
+  return cam;
+}
+
+/// The on-screen disc of a centred sphere `size_px` across, clipped to the image.
+double centred_pixels(int size_px, int width, int height) {
+  return M_PI / 4 * std::min(size_px, width) * std::min(size_px, height);
+}
+
+/// Median time of one draw of `n` instances on one spot, pipeline drained.
+double time_draw(gl::RenderTarget& target, GlModel& model, const Representation& rep,
+                 const Camera& cam, int n, int repeats) {
+  const std::vector<ObjectInstance> same(std::size_t(std::max(n, 1)));
+  std::vector<double> ms;
+  for (int k = 0; k < std::max(1, repeats); ++k) {
+    target.bind_and_clear();
+    glFinish();
+    const auto t0 = Clock::now();
+    model.draw(rep, same, cam);
+    glFinish();
+    ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+  }
+  return summarize(ms).median;
+}
+
+}  // namespace
+
+std::vector<CalibrationDraw> measure_draw_costs(
+    ObjectSet& set, const std::vector<std::vector<Representation>>& reps,
+    const CostCalibrationOptions& o) {
+  std::vector<CalibrationDraw> out;
+  gl::RenderTarget target(o.width, o.height);
+  std::map<std::pair<int, int>, int> impostor_models;  // (kind, resolution) -> models timed
+  const int smallest = *std::min_element(o.sizes_px.begin(), o.sizes_px.end());
+  const int largest = *std::max_element(o.sizes_px.begin(), o.sizes_px.end());
+  for (std::size_t m = 0; m < reps.size() && m < set.model_count(); ++m) {
+    GlModel& model = set.model(m);
+    std::vector<Representation> timed;
+    for (const Representation& rep : reps[m]) {
+      if (rep.kind == ObjectKind::kMesh) {
+        timed.push_back(rep);
+      } else if (impostor_models[{int(rep.kind), rep.resolution}]++ < o.impostor_models) {
+        model.prepare(rep);
+        timed.push_back(rep);
+      }
+    }
+    for (int size : o.sizes_px) {
+      const Camera cam = calibration_camera(model.model(), o, size);
+      if (size == smallest && o.batch > 1)
+        for (const Representation& rep : timed)
+          out.push_back({m, rep, size, double(model.triangles(rep)),
+                         centred_pixels(size, o.width, o.height),
+                         time_draw(target, model, rep, cam, o.batch, o.repeats), o.batch});
+      for (const Representation& rep : timed) {
+        if (rep.kind == ObjectKind::kMesh && o.mesh_two_sizes && size != smallest &&
+            size != largest)
+          continue;
+        out.push_back({m, rep, size, double(model.triangles(rep)),
+                       centred_pixels(size, o.width, o.height),
+                       time_draw(target, model, rep, cam, 1, o.repeats)});
+      }
+    }
+  }
+  return out;
+}
+
+void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& draws) {
+  // Meshes: the kind's terms over every model's levels (the fallback), and
+  // each (model, level) on its own: models differ in parts (draw calls) and
+  // in how their triangles fill pixels, more than one linear fit follows.
+  // Impostors: each (kind, resolution) over the models timed.
+  // The draw call: one instance against a batch of n on the same spot at the
+  // smallest size, t1 = draw + instance, tn = draw + n instance.
+  using Key = std::tuple<std::size_t, int, int, int, int>;  // model, kind, level, res, size
+  std::map<Key, double> single;
+  for (const CalibrationDraw& d : draws)
+    if (d.instances == 1)
+      single[{d.model, int(d.rep.kind), d.rep.level, d.rep.resolution, d.size_px}] = d.ms;
+  std::array<std::vector<double>, 3> per_draw;
+  for (const CalibrationDraw& d : draws) {
+    if (d.instances <= 1) continue;
+    const auto it =
+        single.find({d.model, int(d.rep.kind), d.rep.level, d.rep.resolution, d.size_px});
+    if (it == single.end()) continue;
+    const double instance = std::max(0.0, (d.ms - it->second) / (d.instances - 1));
+    per_draw[std::size_t(d.rep.kind)].push_back(std::max(0.0, it->second - instance));
+  }
+  for (std::size_t k = 0; k < 3; ++k)
+    if (!per_draw[k].empty()) {
+      DrawCostTerms t = model.terms(ObjectKind(k));
+      t.per_draw_ms = summarize(per_draw[k]).median;
+      model.set_terms(ObjectKind(k), t);
+    }
+  std::vector<DrawSample> mesh;
+  std::map<std::tuple<int, int, int, int>, std::vector<PixelSample>>
+      own;  // model, kind, level, res
+  std::map<std::tuple<int, int, int, int>, Representation> rep_of;
+  for (const CalibrationDraw& d : draws) {
+    if (d.instances != 1) continue;
+    // Fitted with the draw call in (a small instance's time is mostly the
+    // call: taken off first, what is left is noise); taken off the constant after.
+    const double ms = d.ms;
+    const bool mesh_rep = d.rep.kind == ObjectKind::kMesh;
+    // Relative least squares (each row over its time), as for the representations.
+    if (mesh_rep && ms > 0) mesh.push_back({0, 1 / ms, d.triangles / ms, d.pixels / ms, 1.0});
+    const std::tuple<int, int, int, int> k{mesh_rep ? int(d.model) : DrawCostModel::kAnyModel,
+                                           int(d.rep.kind), mesh_rep ? d.rep.level : 0,
+                                           mesh_rep ? 0 : d.rep.resolution};
+    own[k].push_back({d.pixels, ms});
+    rep_of[k] = d.rep;
+  }
+  if (!mesh.empty()) {
+    const double per_draw = model.terms(ObjectKind::kMesh).per_draw_ms;
+    model.calibrate(ObjectKind::kMesh, mesh, 0.0);
+    DrawCostTerms t = model.terms(ObjectKind::kMesh);
+    t.per_draw_ms = per_draw;
+    t.per_instance_ms = std::max(0.0, t.per_instance_ms - per_draw);
+    model.set_terms(ObjectKind::kMesh, t);
+  }
+  for (const auto& [k, samples] : own) {
+    const Representation& rep = rep_of[k];
+    model.calibrate(rep, samples, std::get<0>(k));
+    // Take the draw call off the fitted constant (it is the kind's term).
+    RepresentationCost c = *model.cost(rep, std::get<0>(k));
+    c.fixed_ms = std::max(0.0, c.fixed_ms - model.terms(rep.kind).per_draw_ms);
+    model.set_cost(rep, c, std::get<0>(k));
+  }
+}
+
+std::string calibration_report(const DrawCostModel& model,
+                               const std::vector<CalibrationDraw>& draws) {
+  std::map<std::pair<int, int>, std::vector<double>> ratio;  // (kind, size) -> measured/predicted
+  std::vector<int> sizes;
+  for (const CalibrationDraw& d : draws) {
+    if (d.instances != 1) continue;
+    const double predicted = model.instance_ms(d.rep, d.triangles, d.pixels, int(d.model)) +
+                             model.terms(d.rep.kind).per_draw_ms;
+    if (predicted > 0) ratio[{int(d.rep.kind), d.size_px}].push_back(d.ms / predicted);
+    if (std::find(sizes.begin(), sizes.end(), d.size_px) == sizes.end()) sizes.push_back(d.size_px);
+  }
+  std::string s = "measured / predicted draw time (median per kind and size):\n  kind      ";
+  for (int px : sizes) s += fmt::format(" {:>8}", fmt::format("{}px", px));
+  s += "\n";
+  for (int k = 0; k < 3; ++k) {
+    std::string line = fmt::format("  {:<10}", object_kind_name(ObjectKind(k)));
+    bool any = false;
+    for (int px : sizes) {
+      const auto it = ratio.find({k, px});
+      if (it == ratio.end()) {
+        line += fmt::format(" {:>8}", "-");
+        continue;
+      }
+      any = true;
+      line += fmt::format(" {:>8.2f}", summarize(it->second).median);
+    }
+    if (any) s += line + "\n";
+  }
+  return s;
+}
+
+}  // namespace terrasprite

@@ -88,6 +88,9 @@ void add_bench_lodsprite(CLI::App& bench) {
   cmd->add_option("--display-hz", o->config.display_hz,
                   "--async: the simulated displays present on a clock of this rate (a frame not "
                   "ready by its slot is late and waits for the next; default 60; 0 = flat out)");
+  cmd->add_option("--async-lead", o->config.async_lead,
+                  "--async: also request a keyframe when the error predicted where it would land "
+                  "exceeds this fraction of the threshold (default 0.6; 1 = at the threshold)");
   cmd->add_option("--thresholds", o->thresholds, "threshold sweep (default 0.25,0.5,1,2,4,8)");
   cmd->add_option("--frame-counts", o->frame_counts,
                   "frame-count sweep (default 115,230,460,920,1840)");

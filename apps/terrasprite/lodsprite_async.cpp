@@ -117,6 +117,7 @@ AsyncComparison run_async_display(const GlContext& gl, Scene& scene, std::span<c
                                   int every, double display_hz) {
   AsyncComparison c;
   c.display_hz = display_hz;
+  c.async_lead = o.async_lead;
   const double period_ms = display_hz > 0 ? 1000.0 / display_hz : 0.0;
   o.async_context = nullptr;
   c.sync = display(scene, path, w, h, o, period_ms, nullptr);
@@ -161,6 +162,7 @@ nlohmann::json async_json(const AsyncComparison& c) {
   async["mean_ssim"] = c.async.mean_ssim;
   async["mean_psnr"] = c.async.mean_psnr;
   return {{"display_hz", c.display_hz},
+          {"async_lead", c.async_lead},
           {"sync_display", sync},
           {"async_display", async},
           {"p99_ms", c.async.p99_ms},

@@ -42,6 +42,7 @@ struct DisplayRun {
 struct AsyncComparison {
   DisplayRun sync, async;
   double display_hz = 0;  ///< both displays' refresh rate; 0 = flat out
+  double async_lead = 1;  ///< SpriteOptions::async_lead of the async display
   double main_run_mean_ssim = 0, main_run_mean_psnr = 0;  ///< the interleaved synchronous run
   double ssim_change() const { return async.mean_ssim - main_run_mean_ssim; }
   double p99_over_sync_median() const { return async.p99_ms / std::max(sync.median_ms, 1e-9); }

@@ -122,6 +122,8 @@ void validate(const LodspriteConfig& c) {
     throw InputError(fmt::format("--cache-accept {}: must be in (0, 1]", c.cache_accept));
   if (!(c.display_hz >= 0) || c.display_hz > 1000)
     throw InputError(fmt::format("--display-hz {}: must be 0 (flat out) to 1000", c.display_hz));
+  if (!(c.async_lead > 0 && c.async_lead <= 1))
+    throw InputError(fmt::format("--async-lead {}: must be in (0, 1]", c.async_lead));
   if (c.async && c.cache_bytes > 0)
     throw InputError("--async with --cache: the keyframe cache is not used with async keyframes");
   if (c.sweep_score_every < 1)
@@ -162,6 +164,7 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   SpriteOptions so;
   so.lod_quads = cfg.lod_quads;
   so.threshold_px = cfg.threshold_px;
+  so.async_lead = cfg.async_lead;
   so.metric = cfg.metric;
   so.max_fallback_fraction = cfg.max_fallback_fraction;
   so.max_resample_scale = cfg.max_resample_scale;
@@ -328,8 +331,8 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
 
   // ---- the display simulated with asynchronous keyframes, beside a synchronous one ----
   if (cfg.async) {
-    AsyncComparison& ac =
-        res.async.emplace(run_async_display(gl, scene, path, w, h, so, refs, every, cfg.display_hz));
+    AsyncComparison& ac = res.async.emplace(
+        run_async_display(gl, scene, path, w, h, so, refs, every, cfg.display_hz));
     ac.main_run_mean_ssim = mean_every(sp_ssim);
     ac.main_run_mean_psnr = mean_every(sp_psnr);
     std::vector<double> sprite_ssim;

@@ -110,6 +110,8 @@ const SpriteOptions& validated(const SpriteOptions& o) {
     throw InputError("async keyframes and the keyframe cache cannot be combined");
   if (!(o.cache_accept > 0 && o.cache_accept <= 1))
     throw InputError(fmt::format("cache_accept {}: must be in (0, 1]", o.cache_accept));
+  if (!(o.async_lead > 0 && o.async_lead <= 1))
+    throw InputError(fmt::format("async_lead {}: must be in (0, 1]", o.async_lead));
   if (!(o.threshold_px > 0))
     throw InputError(
         fmt::format("threshold_px {}: must be a positive number of pixels", o.threshold_px));
@@ -352,7 +354,9 @@ SpriteError SpriteRenderer::land_and_request(const Camera& camera, SpriteError e
   }
   if (!s.async->busy()) {
     const Camera ahead = s.predictor.predict(s.latency_frames, s.scene.terrain().heights);
-    if (trigger_for(e) || trigger_for(sprite_error(s.grid, s.current().samples, ahead))) {
+    const SpriteError at_landing = sprite_error(s.grid, s.current().samples, ahead);
+    if (trigger_for(e) || trigger_for(at_landing) ||
+        at_landing.value(s.options.metric) > s.options.async_lead * s.options.threshold_px) {
       s.async->request(ahead);
       s.requested_at = s.tick;
       ++st.requested;

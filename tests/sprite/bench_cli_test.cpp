@@ -109,6 +109,7 @@ TEST(BenchLodsprite, AsyncReportsBothDisplays) {
                         "mean_ssim_sync", "mean_psnr", "targets", "method"})
     EXPECT_TRUE(a.contains(k)) << k;
   EXPECT_EQ(double(a["display_hz"]), 60.0);  // paced on a 60 Hz clock by default
+  EXPECT_EQ(double(a["async_lead"]), 0.6);  // keyframes requested before the threshold
   for (const char* display : {"sync_display", "async_display"}) {
     EXPECT_EQ(a[display]["frame_ms"].size(), 12u) << display;
     EXPECT_EQ(a[display]["draw_ms"].size(), 12u) << display;
@@ -121,6 +122,8 @@ TEST(BenchLodsprite, AsyncReportsBothDisplays) {
   EXPECT_LE(double(a["mean_ssim"]), 1.0);
   EXPECT_EQ(run("bench lodsprite --async --cache"), 2);
   EXPECT_EQ(run("bench lodsprite --async --display-hz -1"), 2);
+  EXPECT_EQ(run("bench lodsprite --async --async-lead 0"), 2);
+  EXPECT_EQ(run("bench lodsprite --async --async-lead 1.5"), 2);
 }
 
 }  // namespace

@@ -128,9 +128,7 @@ std::string table_cache_key(const std::string& model_file, const ModelOptions& m
                         fmt::join(o.sizes_px, ","), o.angle_step_deg, o.full_sphere, o.views,
                         o.timing_instances, fmt::join(o.ssim_targets, ","),
                         fmt::join(o.psnr_targets, ","));
-  std::uint64_t h = fnv1a(read_file_bytes(model_file));
-  if (!m.texture.empty()) h = fnv1a(read_file_bytes(m.texture), h);
-  return fmt::format("{:016x}{:016x}", h, fnv1a(params));
+  return fmt::format("{:016x}{:016x}", model_files_hash(model_file, m), fnv1a(params));
 }
 
 

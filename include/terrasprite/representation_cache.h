@@ -8,6 +8,7 @@
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -34,6 +35,10 @@ bool write_file_atomically(const std::filesystem::path& file, std::string_view b
 /// The objects cache folder: $TERRASPRITE_CACHE/objects, else
 /// $XDG_CACHE_HOME/terrasprite/objects, else ~/.cache/terrasprite/objects.
 std::string default_cache_dir();
+
+/// FNV-1a of the model file's bytes, then of `options.texture`'s (if any).
+/// Throws InputError when a file cannot be read.
+std::uint64_t model_files_hash(const std::string& model_file, const ModelOptions& options);
 
 /// Hex key of a model's source: FNV-1a of the model file's bytes and of
 /// `options.texture`'s, and the options themselves. Throws InputError when a
@@ -62,8 +67,12 @@ class RepresentationCache {
   RepresentationCache(std::filesystem::path dir, std::string key, std::string stem);
 
   bool enabled() const { return !dir_.empty(); }
-  /// The payload stored under `what` (e.g. "relief-128"), if present and intact.
-  std::optional<std::string> read(const std::string& what) const;
+  /// The payload stored under `what` (e.g. "relief-128"), if present, intact
+  /// and accepted by `check` (which returns nullptr, or the problem with a
+  /// payload its caller cannot use: reported and counted like a damaged one).
+  std::optional<std::string> read(
+      const std::string& what,
+      const std::function<const char*(std::string_view)>& check = nullptr) const;
   /// Stores `payload` under `what`; a failure is a warning, never an error.
   void write(const std::string& what, std::string_view payload) const;
   std::filesystem::path file(const std::string& what) const;

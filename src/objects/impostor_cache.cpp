@@ -8,6 +8,14 @@
 
 namespace terrasprite::objects {
 
+namespace {
+std::size_t total_bytes(std::initializer_list<TextureLevel> textures) {
+  std::size_t n = 0;
+  for (const TextureLevel& t : textures) n += t.bytes();
+  return n;
+}
+}  // namespace
+
 double ms_now() {
   return std::chrono::duration<double, std::milli>(
              std::chrono::steady_clock::now().time_since_epoch())
@@ -17,17 +25,12 @@ double ms_now() {
 bool load_impostor(const RepresentationCache& cache, const std::string& what,
                    std::initializer_list<TextureLevel> textures) {
   if (!cache.enabled()) return false;
-  std::optional<std::string> payload = cache.read(what);
+  const std::size_t total = total_bytes(textures);
+  const std::optional<std::string> payload =
+      cache.read(what, [total](std::string_view bytes) -> const char* {
+        return bytes.size() == total ? nullptr : "not the size of this impostor's textures";
+      });
   if (!payload) return false;
-  std::size_t total = 0;
-  for (const TextureLevel& t : textures) total += t.bytes();
-  if (payload->size() != total) {
-    fmt::print(stderr, "warning: ignoring the cache entry {}: {} bytes, expected {}\n",
-               cache.file(what).string(), payload->size(), total);
-    --cache.stats().hits;
-    ++cache.stats().rejected;
-    return false;
-  }
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   const char* p = payload->data();
   for (const TextureLevel& t : textures) {
@@ -43,8 +46,7 @@ bool load_impostor(const RepresentationCache& cache, const std::string& what,
 void store_impostor(const RepresentationCache& cache, const std::string& what,
                     std::initializer_list<TextureLevel> textures, double build_start_ms) {
   if (!cache.enabled()) return;
-  std::size_t total = 0;
-  for (const TextureLevel& t : textures) total += t.bytes();
+  const std::size_t total = total_bytes(textures);
   std::string payload(total, '\0');
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   char* p = payload.data();

@@ -114,9 +114,13 @@ std::string default_cache_dir() {
   return (fs::temp_directory_path() / "terrasprite-cache" / "objects").string();
 }
 
-std::string model_source_key(const std::string& model_file, const ModelOptions& m) {
+std::uint64_t model_files_hash(const std::string& model_file, const ModelOptions& m) {
   std::uint64_t h = fnv1a(read_file_bytes(model_file));
-  if (!m.texture.empty()) h = fnv1a(read_file_bytes(m.texture), h);
+  return m.texture.empty() ? h : fnv1a(read_file_bytes(m.texture), h);
+}
+
+std::string model_source_key(const std::string& model_file, const ModelOptions& m) {
+  const std::uint64_t h = model_files_hash(model_file, m);
   const std::string params = fmt::format("up{}|h{}|tex{}|c{},{},{},{}", int(m.up), m.height_m,
                                          m.texture, m.color.r, m.color.g, m.color.b, m.color.a);
   return fmt::format("{:016x}{:016x}", h, fnv1a(params));
@@ -130,7 +134,8 @@ std::filesystem::path RepresentationCache::file(const std::string& what) const {
   return dir_ / fmt::format("{}-{}-{}.rep", stem_, key_, what);
 }
 
-std::optional<std::string> RepresentationCache::read(const std::string& what) const {
+std::optional<std::string> RepresentationCache::read(
+    const std::string& what, const std::function<const char*(std::string_view)>& check) const {
   if (!enabled()) return std::nullopt;
   const auto t0 = std::chrono::steady_clock::now();
   const std::filesystem::path f = file(what);
@@ -161,7 +166,10 @@ std::optional<std::string> RepresentationCache::read(const std::string& what) co
     payload.resize(size);
     // The frame carries a checksum of its content: corruption fails here.
     const std::size_t n = ZSTD_decompress(payload.data(), size, r.in.data(), r.in.size());
-    if (ZSTD_isError(n) || n != size) problem = "checksum mismatch or corrupt data";
+    if (ZSTD_isError(n) || n != size)
+      problem = "checksum mismatch or corrupt data";
+    else if (check)
+      problem = check(payload);
   }
   if (problem) {
     fmt::print(stderr, "warning: ignoring the cache entry {}: {}; building it again\n", f.string(),
@@ -241,21 +249,20 @@ std::vector<LodLevel> cached_lod_chain(const Model& model, const LodOptions& o,
                                        const RepresentationCache& cache) {
   const std::string what =
       fmt::format("lod-r{}-f{}-t{}-c{}", o.ratio, o.min_fraction, o.min_triangles, o.crease_deg);
-  if (std::optional<std::string> bytes = cache.read(what)) {
-    if (auto chain = deserialize_lod_chain(*bytes, model.materials.size())) return *chain;
-    fmt::print(stderr, "warning: ignoring the cache entry {}: not a LOD chain; building it again\n",
-               cache.file(what).string());
-    --cache.stats().hits;
-    ++cache.stats().rejected;
-  }
+  std::optional<std::vector<LodLevel>> chain;
+  cache.read(what, [&](std::string_view bytes) -> const char* {
+    chain = deserialize_lod_chain(bytes, model.materials.size());
+    return chain ? nullptr : "not a LOD chain of this model";
+  });
+  if (chain) return std::move(*chain);
   const auto t0 = std::chrono::steady_clock::now();
-  std::vector<LodLevel> chain = build_lod_chain(model, o);
+  std::vector<LodLevel> built = build_lod_chain(model, o);
   if (cache.enabled()) {
     cache.stats().build_ms += ms_since(t0);
     ++cache.stats().misses;
-    cache.write(what, serialize_lod_chain(chain));
+    cache.write(what, serialize_lod_chain(built));
   }
-  return chain;
+  return built;
 }
 
 }  // namespace terrasprite

@@ -421,51 +421,52 @@ nlohmann::json summary_json(const BenchStreamOpts& o, const TileSetInfo& set, co
         equal += run.in_memory_hash[i] == run.frames[i].hash;
       }
   }
-  return {{"terrain",
-           {{"samples", {set.grid.width, set.grid.height}},
-            {"bytes_on_disk", set.bytes_on_disk},
-            {"levels", set.grid.coarsest_level + 1},
-            {"tile_cells", 1 << set.grid.tile_log2}}},
-          {"tiles", o.tiles.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.tiles)},
-          {"cog", set.cog ? nlohmann::json({{"file", o.cog},
-                                            {"texture", o.texture.empty() ? nlohmann::json(nullptr)
-                                                                          : nlohmann::json(o.texture)},
-                                            {"bounds_ms", set.cog->bounds_ms},
-                                            {"bound_levels_held_from", set.cog->bound_from}})
-                          : nlohmann::json(nullptr)},
-          {"cache_mb", o.cache_mb},
-          {"io_threads", o.io_threads},
-          {"size", {w, h}},
-          {"path", o.path},
-          {"frames", int(ms.size())},
-          {"stream",
-           {{"median_ms", s.median},
-            {"p99_ms", s.p99},
-            {"stall_frames", stall_frames(ms, mem_ms)},
-            {"degraded_samples_total", degraded},
-            {"degraded_fraction_after_warmup", double(degraded_late) / late_pixels},
-            {"hit_rate", lookups ? 1.0 - double(misses) / double(lookups) : 1.0},
-            {"hit_rate_after_warmup",
-             lookups_late ? 1.0 - double(misses_late) / double(lookups_late) : 1.0},
-            {"io_mb_s", double(bytes) / 1e6 / std::max(run.wall_ms / 1e3, 1e-9)},
-            {"bytes_read_mb", double(bytes) / 1e6},
-            {"peak_rss_mb", run.peak_rss_mb},
-            {"pinned_mb", double(run.pinned_bytes) / (1 << 20)},
-            {"first_frame_ms", run.first_frame_ms},
-            {"first_frame_parts_ms",
-             {{"open", run.open_ms}, {"path", run.path_ms}, {"pinned_levels", run.pinned_ms}}},
-            {"first_frame_method",
-             "from the start of the command to the first frame shown: open, then the path planned "
-             "while the pinned levels load (the two overlap), then frame 0; the in-memory peer's "
-             "load is not counted"}}},
-          {"in_memory", in_memory},
-          {"ratio_median",
-           mem_ms.empty()
-               ? nlohmann::json(nullptr)
-               : nlohmann::json(s.median / std::max(in_memory["median_ms"].get<double>(), 1e-9))},
-          {"images_equal_when_resident", {{"frames_compared", compared}, {"frames_equal", equal}}},
-          {"faults_injected", run.faults_injected},
-          {"faults_survived", run.faults_survived}};
+  return {
+      {"terrain",
+       {{"samples", {set.grid.width, set.grid.height}},
+        {"bytes_on_disk", set.bytes_on_disk},
+        {"levels", set.grid.coarsest_level + 1},
+        {"tile_cells", 1 << set.grid.tile_log2}}},
+      {"tiles", o.tiles.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.tiles)},
+      {"cog", set.cog ? nlohmann::json({{"file", o.cog},
+                                        {"texture", o.texture.empty() ? nlohmann::json(nullptr)
+                                                                      : nlohmann::json(o.texture)},
+                                        {"bounds_ms", set.cog->bounds_ms},
+                                        {"bound_levels_held_from", set.cog->bound_from}})
+                      : nlohmann::json(nullptr)},
+      {"cache_mb", o.cache_mb},
+      {"io_threads", o.io_threads},
+      {"size", {w, h}},
+      {"path", o.path},
+      {"frames", int(ms.size())},
+      {"stream",
+       {{"median_ms", s.median},
+        {"p99_ms", s.p99},
+        {"stall_frames", stall_frames(ms, mem_ms)},
+        {"degraded_samples_total", degraded},
+        {"degraded_fraction_after_warmup", double(degraded_late) / late_pixels},
+        {"hit_rate", lookups ? 1.0 - double(misses) / double(lookups) : 1.0},
+        {"hit_rate_after_warmup",
+         lookups_late ? 1.0 - double(misses_late) / double(lookups_late) : 1.0},
+        {"io_mb_s", double(bytes) / 1e6 / std::max(run.wall_ms / 1e3, 1e-9)},
+        {"bytes_read_mb", double(bytes) / 1e6},
+        {"peak_rss_mb", run.peak_rss_mb},
+        {"pinned_mb", double(run.pinned_bytes) / (1 << 20)},
+        {"first_frame_ms", run.first_frame_ms},
+        {"first_frame_parts_ms",
+         {{"open", run.open_ms}, {"path", run.path_ms}, {"pinned_levels", run.pinned_ms}}},
+        {"first_frame_method",
+         "from the start of the command to the first frame shown: open, then the path planned "
+         "while the pinned levels load (the two overlap), then frame 0; the in-memory peer's "
+         "load is not counted"}}},
+      {"in_memory", in_memory},
+      {"ratio_median",
+       mem_ms.empty()
+           ? nlohmann::json(nullptr)
+           : nlohmann::json(s.median / std::max(in_memory["median_ms"].get<double>(), 1e-9))},
+      {"images_equal_when_resident", {{"frames_compared", compared}, {"frames_equal", equal}}},
+      {"faults_injected", run.faults_injected},
+      {"faults_survived", run.faults_survived}};
 }
 
 nlohmann::json per_frame_json(const StreamRun& run, const std::vector<double>& mem) {

@@ -189,7 +189,6 @@ std::vector<int> int_list(const std::string& text, const char* option) {
   return out;
 }
 
-
 void add_objects_scene(CLI::App& objects);  // objects_scene.cpp
 
 void add_objects(CLI::App& app) {

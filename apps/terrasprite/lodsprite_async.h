@@ -55,10 +55,10 @@ struct AsyncComparison {
 
 /// Flies `path` as a display twice, synchronously and with asynchronous
 /// keyframes (`o` otherwise), through the experiment driver with nothing
-/// read back, both paced at `display_hz` (0: flat out). The async frames are then scored against `refs` (the
-/// full-resolution frames i with i % every == 0) by replaying them: each
-/// frame's keyframe camera is recorded, and a synchronous renderer draws the
-/// same keyframe and sprite again (the same pixels: same driver and shaders).
+/// read back, both paced at `display_hz` (0: flat out). The async frames are then scored against
+/// `refs` (the full-resolution frames i with i % every == 0) by replaying them: each frame's
+/// keyframe camera is recorded, and a synchronous renderer draws the same keyframe and sprite again
+/// (the same pixels: same driver and shaders).
 AsyncComparison run_async_display(const GlContext& gl, Scene& scene, std::span<const Camera> path,
                                   int width, int height, SpriteOptions o,
                                   const std::vector<Image>& refs, int every, double display_hz);

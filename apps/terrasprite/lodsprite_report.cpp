@@ -85,21 +85,22 @@ std::string async_plot(const AsyncComparison& a, OutputDir& out) {
   std::ostringstream d;
   const std::size_t n = std::min(a.sync.frame_ms.size(), a.async.frame_ms.size());
   for (std::size_t i = 0; i < n; ++i)
-    d << fmt::format("{} {:.3f} {:.3f} {:.3f} {:.3f}\n", i, a.sync.frame_ms[i],
-                     a.async.frame_ms[i], a.sync.draw_ms[i], a.async.draw_ms[i]);
-  write_text(out.file("async.dat"), "frame sync_ms async_ms sync_draw_ms async_draw_ms\n" + d.str());
+    d << fmt::format("{} {:.3f} {:.3f} {:.3f} {:.3f}\n", i, a.sync.frame_ms[i], a.async.frame_ms[i],
+                     a.sync.draw_ms[i], a.async.draw_ms[i]);
+  write_text(out.file("async.dat"),
+             "frame sync_ms async_ms sync_draw_ms async_draw_ms\n" + d.str());
   const double median = a.async.median_ms, p99 = a.async.p99_ms;
   return fmt::format(
       "set output 'async_frame_time.png'\n"
       "set title 'Simulated display{}: frame time = interval between presentations'\n"
       "set xlabel 'frame'; set ylabel 'ms (log)'; set logscale y; set key top right\n"
-      "plot 'async.dat' u \"frame\":\"sync_ms\" w l lc rgb '#888888' t 'synchronous keyframes', \\\n"
+      "plot 'async.dat' u \"frame\":\"sync_ms\" w l lc rgb '#888888' t 'synchronous keyframes', "
+      "\\\n"
       "     '' u \"frame\":\"async_ms\" w l lw 1.5 lc rgb '#1f77b4' t 'async keyframes', \\\n"
       "     {:.4f} w l dt 2 lc rgb '#1f77b4' t 'async median {:.1f} ms', \\\n"
       "     {:.4f} w l dt 3 lc rgb '#d62728' t 'async p99 {:.1f} ms'\n"
       "unset logscale y\n",
-      a.display_hz > 0 ? fmt::format(" at {:g} Hz", a.display_hz) : "",
-      median, median, p99, p99);
+      a.display_hz > 0 ? fmt::format(" at {:g} Hz", a.display_hz) : "", median, median, p99, p99);
 }
 
 }  // namespace

@@ -125,7 +125,7 @@ struct LodspriteResult {
   double threshold_px = 0;
   std::string metric;  ///< "paper" | "exact"
   double max_fallback_fraction = 0, sharp_px = 0;
-  double max_resample_scale = 0;  ///< may be +inf (the trigger off): JSON null
+  double max_resample_scale = 0;   ///< may be +inf (the trigger off): JSON null
   bool anisotropic_scale = false;  ///< the scale trigger reads the worst axis
   bool there_and_back = false;
   int sweep_score_every = 1;

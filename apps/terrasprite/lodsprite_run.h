@@ -45,7 +45,7 @@ struct LodspriteConfig {
   /// The simulated displays' refresh rate (frames presented on its slots, so
   /// the keyframe worker gets the CPU between frames); 0 = flat out.
   double display_hz = 60;
-  double async_lead = 0.6;  ///< SpriteOptions::async_lead
+  double async_lead = 0.6;    ///< SpriteOptions::async_lead
   int sweep_score_every = 1;  ///< sweeps score SSIM on every n-th frame
   bool flip = true;           ///< FLIP per frame in the main run
   /// Called with (frame, sprite frame) after scoring, e.g. to save it.

@@ -79,9 +79,9 @@ void add_objects_scene(CLI::App& objects) {
     Scene ground(terrain);
     const auto load_start = std::chrono::steady_clock::now();
     ObjectSet objects(scene, LodOptions{}, objects_cache_dir(o->cache));
-    const double load_ms = std::chrono::duration<double, std::milli>(
-                               std::chrono::steady_clock::now() - load_start)
-                               .count();
+    const double load_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start)
+            .count();
     print_cache_summary(objects);
     const Camera cam = overview_camera(objects, terrain.heights, double(w) / h);
     // The full-resolution renderer with and without the scene's objects,

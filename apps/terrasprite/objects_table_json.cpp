@@ -131,5 +131,4 @@ std::string table_cache_key(const std::string& model_file, const ModelOptions& m
   return fmt::format("{:016x}{:016x}", model_files_hash(model_file, m), fnv1a(params));
 }
 
-
 }  // namespace terrasprite::cli

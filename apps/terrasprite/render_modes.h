@@ -6,8 +6,8 @@
 #include <string>
 
 #include "terrasprite/gl_context.h"
-#include "terrasprite/scene.h"
 #include "terrasprite/renderer.h"
+#include "terrasprite/scene.h"
 #include "terrasprite/voxel_renderer.h"
 
 namespace terrasprite::cli {

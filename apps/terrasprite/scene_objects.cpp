@@ -31,9 +31,10 @@ std::string objects_cache_dir(const std::string& option) {
 void print_cache_summary(const ObjectSet& set) {
   const RepresentationCacheStats s = set.cache_stats();
   if (s.hits + s.misses + s.rejected == 0) return;
-  fmt::print("objects: {} representations read from the cache in {:.0f} ms, {} built in {:.0f} ms{}\n",
-             s.hits, s.read_ms, s.misses, s.build_ms,
-             s.rejected ? fmt::format(" ({} unreadable entries rebuilt)", s.rejected) : "");
+  fmt::print(
+      "objects: {} representations read from the cache in {:.0f} ms, {} built in {:.0f} ms{}\n",
+      s.hits, s.read_ms, s.misses, s.build_ms,
+      s.rejected ? fmt::format(" ({} unreadable entries rebuilt)", s.rejected) : "");
 }
 
 std::unique_ptr<ObjectSet> attach_objects(const ObjectsOptions& o, const Terrain& terrain,

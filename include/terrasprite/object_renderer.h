@@ -10,8 +10,8 @@
 
 #include "terrasprite/camera.h"
 #include "terrasprite/lod_chain.h"
-#include "terrasprite/representation_cache.h"
 #include "terrasprite/model.h"
+#include "terrasprite/representation_cache.h"
 
 namespace terrasprite {
 

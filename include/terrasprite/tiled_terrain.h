@@ -22,9 +22,9 @@ namespace terrasprite {
 
 /// How `write_tiled_terrain` encodes the files.
 struct TileWriteOptions {
-  int tile_log2 = 7;                    ///< tiles of 2^tile_log2 cells (4..9: 16..512)
-  std::string color_compress = "JPEG";  ///< JPEG, WEBP or DEFLATE (lossless)
-  int color_quality = 90;               ///< JPEG / WEBP quality, 1..100
+  int tile_log2 = 7;                        ///< tiles of 2^tile_log2 cells (4..9: 16..512)
+  std::string color_compress = "JPEG";      ///< JPEG, WEBP or DEFLATE (lossless)
+  int color_quality = 90;                   ///< JPEG / WEBP quality, 1..100
   std::string height_compress = "DEFLATE";  ///< DEFLATE or ZSTD, with PREDICTOR=3
   std::vector<InsetResult> insets;          ///< composited into the terrain: recorded in tiles.json
 };

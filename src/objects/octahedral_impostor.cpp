@@ -233,10 +233,10 @@ objects::OctahedralImpostor& GlModel::Impl::octahedral_impostor(int res, int vie
   r = std::max(r * 1.005f, 1e-6f);
   o.radius = r;
   const std::string what = fmt::format("octahedral-{}x{}", res, views);
-  const objects::TextureLevel albedo{o.albedo.id(), GL_TEXTURE_2D, size, size, 1,
-                                     GL_RGBA, GL_UNSIGNED_BYTE, 4};
-  const objects::TextureLevel geometry{o.geometry.id(), GL_TEXTURE_2D, size, size, 1,
-                                       GL_RGBA, GL_UNSIGNED_BYTE, 4};
+  const objects::TextureLevel albedo{o.albedo.id(), GL_TEXTURE_2D,    size, size, 1,
+                                     GL_RGBA,       GL_UNSIGNED_BYTE, 4};
+  const objects::TextureLevel geometry{o.geometry.id(), GL_TEXTURE_2D,    size, size, 1,
+                                       GL_RGBA,         GL_UNSIGNED_BYTE, 4};
   if (objects::load_impostor(cache, what, {albedo, geometry})) return o;
   const double t0 = objects::ms_now();
   gl::Texture depth(GL_TEXTURE_2D);

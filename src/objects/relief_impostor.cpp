@@ -182,9 +182,9 @@ objects::ReliefImpostor& GlModel::Impl::relief_impostor(int res) {
   r.bytes = std::size_t(res) * res * 6 * (4 + 8);
   const std::string what = fmt::format("relief-{}", res);
   const objects::TextureLevel albedo{r.albedo.id(), GL_TEXTURE_2D_ARRAY, res, res, 6,
-                                     GL_RGBA, GL_UNSIGNED_BYTE, 4};
+                                     GL_RGBA,       GL_UNSIGNED_BYTE,    4};
   const objects::TextureLevel geometry{r.geometry.id(), GL_TEXTURE_2D_ARRAY, res, res, 6,
-                                       GL_RGBA, GL_HALF_FLOAT, 8};
+                                       GL_RGBA,         GL_HALF_FLOAT,       8};
   if (objects::load_impostor(cache, what, {albedo, geometry})) return r;
   const double t0 = objects::ms_now();
   gl::Texture depth(GL_TEXTURE_2D);

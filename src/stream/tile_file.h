@@ -27,7 +27,8 @@ struct TileData {
 
 /// The window of tile (tx, ty) of `level`: first sample, samples across and
 /// down (cells + 1), as TileBlock states it.
-void tile_window(const TileSetInfo& set, int level, int tx, int ty, int& x0, int& y0, int& w, int& h);
+void tile_window(const TileSetInfo& set, int level, int tx, int ty, int& x0, int& y0, int& w,
+                 int& h);
 /// Bytes a tile of `level` takes once read (its storage; see TileData::bytes).
 std::size_t tile_bytes(const TileSetInfo& set, int level, int tx, int ty);
 
@@ -48,7 +49,8 @@ class TileFile {
  private:
   bool read_window(int level, int x0, int y0, int w, int h, TileData& out, std::string& error);
   /// read_window's reads from a `terrasprite tile` directory (vectors only).
-  bool read_tiles_window(int level, int x0, int y0, int w, int h, TileData& out, std::string& error);
+  bool read_tiles_window(int level, int x0, int y0, int w, int h, TileData& out,
+                         std::string& error);
   const TileSetInfo& set_;
   GDALDatasetH height_ = nullptr, color_ = nullptr, bound_ = nullptr;
 };

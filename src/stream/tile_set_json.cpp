@@ -25,7 +25,8 @@ int cells_at(int n0, int level) {
 // Opens `path` and checks its size and overview count; throws InputError.
 void check_raster(const std::string& path, int w, int h, int overviews, int bands) {
   detail::GdalErrorCapture capture;
-  GDALDatasetH ds = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+  GDALDatasetH ds =
+      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
   if (!ds) throw InputError(fmt::format("{}: cannot open: {}", path, capture.last()));
   const int rw = GDALGetRasterXSize(ds), rh = GDALGetRasterYSize(ds), rb = GDALGetRasterCount(ds);
   const int ro = rb > 0 ? GDALGetOverviewCount(GDALGetRasterBand(ds, 1)) : 0;
@@ -107,7 +108,9 @@ TileSetInfo read_tile_set(const std::string& dir) {
   detail::ensure_gdal();
   const std::string path = dir + "/tiles.json";
   std::ifstream f(path);
-  if (!f) throw InputError(fmt::format("{}: cannot open (is {} a directory written by terrasprite tile?)", path, dir));
+  if (!f)
+    throw InputError(
+        fmt::format("{}: cannot open (is {} a directory written by terrasprite tile?)", path, dir));
   TileSetInfo t;
   t.dir = dir;
   try {

@@ -4,10 +4,10 @@
 #include <epoxy/gl.h>
 // epoxy first: it replaces the GL header GLFW would include.
 #include <GLFW/glfw3.h>
-#include <fmt/format.h>
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <fmt/format.h>
+#include <imgui.h>
 
 #include <algorithm>
 #include <filesystem>

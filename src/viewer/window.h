@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "terrasprite/gl_context.h"
-
 #include "viewer/input_event.h"
 
 struct GLFWwindow;

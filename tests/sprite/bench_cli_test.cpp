@@ -109,7 +109,7 @@ TEST(BenchLodsprite, AsyncReportsBothDisplays) {
                         "mean_ssim_sync", "mean_psnr", "targets", "method"})
     EXPECT_TRUE(a.contains(k)) << k;
   EXPECT_EQ(double(a["display_hz"]), 60.0);  // paced on a 60 Hz clock by default
-  EXPECT_EQ(double(a["async_lead"]), 0.6);  // keyframes requested before the threshold
+  EXPECT_EQ(double(a["async_lead"]), 0.6);   // keyframes requested before the threshold
   for (const char* display : {"sync_display", "async_display"}) {
     EXPECT_EQ(a[display]["frame_ms"].size(), 12u) << display;
     EXPECT_EQ(a[display]["draw_ms"].size(), 12u) << display;
@@ -117,7 +117,7 @@ TEST(BenchLodsprite, AsyncReportsBothDisplays) {
     EXPECT_GE(int(a[display]["late_frames"]), 0) << display;
   }
   EXPECT_TRUE(std::filesystem::exists(out + "/async.dat"));  // the frame-time plot's data
-  EXPECT_EQ(a["async_display"]["keyframes_in_frame"], 1);  // only the first frame waits
+  EXPECT_EQ(a["async_display"]["keyframes_in_frame"], 1);    // only the first frame waits
   EXPECT_GE(double(a["mean_ssim"]), 0.0);
   EXPECT_LE(double(a["mean_ssim"]), 1.0);
   EXPECT_EQ(run("bench lodsprite --async --cache"), 2);

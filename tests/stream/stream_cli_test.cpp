@@ -22,8 +22,8 @@ TEST(StreamCli, TileThenBenchStreamWritesTheContractKeys) {
   // 1 run in 14); loads are exercised by the fault run below and test_stream's
   // StreamingTiles tests.
   r = tstest::run_cli("bench stream --tiles " + (t / "tiles") +
-                      " --cache-mb 16 --size 96x64 --frames 8 --json " + (t / "s.json") + " --out " +
-                      (t / "s"));
+                      " --cache-mb 16 --size 96x64 --frames 8 --json " + (t / "s.json") +
+                      " --out " + (t / "s"));
   ASSERT_EQ(r.status, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(t / "s.json"));
   for (const char* k : {"terrain", "cache_mb", "stream", "in_memory", "ratio_median",

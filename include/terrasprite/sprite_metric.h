@@ -3,6 +3,7 @@
 // Kaufman, IEEE Visualization 1999, section 3.2 Eq. 1-2 and section 3.3),
 // on the CPU and without GL, so it can be tested and simulated cheaply.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <span>
@@ -32,7 +33,8 @@ struct CoarseGrid {
   std::vector<std::uint8_t>
       has_centre;  ///< 0 where the quad is one sample wide (no vertex strictly inside)
   /// b of the paper's approximation: distance (m) from C to the quad's coarse
-  /// diagonal edge a-e, signed + where C lies above the edge, - below.
+  /// diagonal edge a-e (adaptive: the drawn edge C lies on), signed + where C
+  /// lies above the edge, - below (signed_edge_offset).
   std::vector<double> edge_offset;
   /// Unit surface normal of the full-resolution grid at C (central differences).
   std::vector<glm::dvec3> normal;
@@ -40,7 +42,23 @@ struct CoarseGrid {
   /// sample inside it and the coarse surface (its two triangles).
   std::vector<double> max_deviation;
 
+  /// The mesh as drawn, uniform and adaptive grids alike. A "quad" is a cell:
+  /// a uniform grid's quad, or a leaf of an adaptive mesh (adaptive_mesh.h),
+  /// whose per-cell arrays above then hold one entry per leaf (quads_y = 1,
+  /// quads_x = cells; `vertices`, xs and ys are empty, vertex() unusable).
+  /// Uniform: mesh_vertices == vertices and the same triangles as
+  /// build_grid_mesh (6 indices per quad).
+  std::vector<glm::dvec3> mesh_vertices;     ///< metres
+  std::vector<std::uint32_t> triangles;      ///< into mesh_vertices, grouped by cell
+  std::vector<int> cell_first;               ///< cell q: triangles[cell_first[q], cell_first[q+1])
+  std::vector<int> near_first, near_cells;   ///< adaptive: cells touching cell q (and q)
+  std::vector<std::array<int, 4>> cell_rect; ///< adaptive: sample rectangle x0, y0, x1, y1
+  bool adaptive = false;
+  /// Changes with every grid made (to tell grids apart without comparing them).
+  std::uint64_t serial = 0;
+
   int quad_count() const { return quads_x * quads_y; }
+  long long triangle_count() const { return static_cast<long long>(triangles.size() / 3); }
   const glm::dvec3& vertex(int col, int row) const {
     return vertices[static_cast<std::size_t>(row) * (quads_x + 1) + col];
   }
@@ -49,11 +67,22 @@ struct CoarseGrid {
 /// Builds the grid; quads is clamped like quad_indices. h has >= 2 x 2 samples.
 CoarseGrid make_coarse_grid(const Heightfield& h, int quads);
 
-/// Where the ray from `eye` through `point` meets the coarse surface of quad
-/// (col, row) or its 8 neighbours: the hit nearest to `point` along the ray.
+/// b of the paper's approximation for sample C over the drawn edge a-e: the
+/// distance from C to the segment, + where C lies above the edge (compared
+/// at C's horizontal position projected on it), - below.
+double signed_edge_offset(glm::dvec3 C, glm::dvec3 a, glm::dvec3 e);
+/// Unit surface normal of the full-resolution grid at sample (i, j) (central
+/// differences, one-sided at the borders; rows run south).
+glm::dvec3 grid_normal(const Heightfield& h, int i, int j);
+
+/// A fresh CoarseGrid::serial.
+std::uint64_t next_grid_serial();
+
+/// Where the ray from `eye` through `point` meets the coarse surface of cell
+/// `q` or the cells around it (a uniform grid's 8 neighbours, an adaptive
+/// mesh's touching leaves): the hit nearest to `point` along the ray.
 /// Returns `point` itself when the ray misses all of them (grazing rays).
-glm::dvec3 coarse_reprojection(const CoarseGrid& grid, int col, int row, glm::dvec3 eye,
-                               glm::dvec3 point);
+glm::dvec3 coarse_reprojection(const CoarseGrid& grid, int q, glm::dvec3 eye, glm::dvec3 point);
 
 /// Depth buffer of a keyframe: linear depth in metres along the key camera's
 /// view axis, width*height, row 0 on top (RenderTarget::read_depth), +inf = sky.

@@ -24,8 +24,24 @@ enum class CachePolicy {
 /// "lru", "farthest".
 const char* to_string(CachePolicy policy);
 
+/// The coarse mesh sprite frames draw.
+enum class CoarseMesh {
+  kUniform,   ///< the paper's: a uniform grid of lod_quads x lod_quads quads
+  kAdaptive,  ///< per keyframe, a screen-space-error quadtree for its camera (adaptive_mesh.h)
+};
+/// "uniform", "adaptive".
+const char* to_string(CoarseMesh mesh);
+
 struct SpriteOptions {
   int lod_quads = 16;         ///< coarse grid quads per side (>= 1)
+  CoarseMesh mesh = CoarseMesh::kUniform;
+  /// Adaptive mesh: at most this many triangles; 0 = the uniform grid's
+  /// 2 x lod_quads^2, so both meshes (and plain LOD of lod_quads) draw the
+  /// same budget. Otherwise >= 2.
+  long long mesh_triangles = 0;
+  /// Adaptive mesh: nodes whose screen-space error from the keyframe's
+  /// camera is at most this many pixels stay whole (0 = spend the budget).
+  double mesh_tolerance_px = 0;
   double threshold_px = 1.0;  ///< keyframe when the metric's RMS error (pixels) exceeds this (> 0)
   /// Which variant triggers keyframes (both are reported). The paper's, by
   /// measurement: on the synthetic paper path (115 frames, 1 px) it spent 17
@@ -179,7 +195,11 @@ class SpriteRenderer : public GlRenderer {
   /// Why the last draw drew a keyframe; none for a sprite frame.
   std::optional<Trigger> last_trigger() const;
   const SpriteOptions& options() const;
+  /// The coarse mesh sprite frames draw now: the current keyframe's (its own
+  /// with the adaptive mesh), or the uniform grid before any keyframe.
   const CoarseGrid& grid() const;
+  /// The adaptive mesh's triangle budget (0 with the uniform mesh).
+  long long mesh_budget() const;
   /// Per coarse quad of the current keyframe: 1 = drawn with the drape texture.
   const std::vector<std::uint8_t>& fallback_quads() const;
 

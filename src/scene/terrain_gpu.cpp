@@ -75,7 +75,9 @@ constexpr long long kMaxSinglePartSamples = 4097LL * 4097LL;
 constexpr int kPartQuads = 2048;  // tile size of chunked grids
 constexpr double kMaxMeshBytes = 4.0 * 1024 * 1024 * 1024;
 
-void upload(GpuMesh& g, const GridMesh& cpu) {
+}  // namespace
+
+void upload_grid_mesh(GpuMesh& g, const GridMesh& cpu) {
   glNamedBufferStorage(g.vertices.id(), GLsizeiptr(cpu.vertices.size() * sizeof(float)),
                        cpu.vertices.data(), 0);
   glNamedBufferStorage(g.indices.id(), GLsizeiptr(cpu.indices.size() * sizeof(std::uint32_t)),
@@ -93,8 +95,6 @@ void upload(GpuMesh& g, const GridMesh& cpu) {
   g.columns = cpu.columns;
   g.rows = cpu.rows;
 }
-
-}  // namespace
 
 TerrainGpu::TerrainGpu(const Terrain& terrain) : terrain_(terrain) {
   const Image& tex = terrain.texture;
@@ -166,7 +166,7 @@ const GpuMesh& TerrainGpu::mesh(int quads) {
                     h.name, xs.size(), ys.size(), bytes / (1024.0 * 1024 * 1024)));
   GpuMesh& g = meshes_[quads];
   if (static_cast<long long>(xs.size()) * ys.size() <= kMaxSinglePartSamples) {
-    upload(g, build_grid_mesh(h, xs, ys));
+    upload_grid_mesh(g, build_grid_mesh(h, xs, ys));
     return g;
   }
   // Too large for one resident mesh: tiles of kPartQuads quads sharing borders.
@@ -176,7 +176,7 @@ const GpuMesh& TerrainGpu::mesh(int quads) {
                   y1 = std::min(y0 + kPartQuads, ys.size() - 1);
       std::vector<int> px(xs.begin() + x0, xs.begin() + x1 + 1),
           py(ys.begin() + y0, ys.begin() + y1 + 1);
-      upload(g.parts.emplace_back(), build_grid_mesh(h, px, py));
+      upload_grid_mesh(g.parts.emplace_back(), build_grid_mesh(h, px, py));
       g.triangles += g.parts.back().triangles;
     }
   g.columns = int(xs.size());

@@ -27,6 +27,9 @@ struct GpuMesh {
   int columns = 0, rows = 0;
 };
 
+/// Uploads `cpu` into `g`'s buffers (immutable storage: once per GpuMesh).
+void upload_grid_mesh(GpuMesh& g, const GridMesh& cpu);
+
 /// Owned by a Scene; needs its GL context current. Keeps a reference to `terrain`.
 class TerrainGpu {
  public:

@@ -26,8 +26,8 @@ struct AsyncKeyframes::Slot {
 };
 
 AsyncKeyframes::AsyncKeyframes(const GlContext& share, const Terrain& terrain,
-                               const CoarseGrid& grid, int width, int height, bool lighting)
-    : grid_(grid), width_(width), height_(height), lighting_(lighting) {
+                               GridMaker make_grid, int width, int height, bool lighting)
+    : make_grid_(std::move(make_grid)), width_(width), height_(height), lighting_(lighting) {
   std::unique_ptr<GlContext> context = share.create_shared();
   worker_ = std::thread(&AsyncKeyframes::run, this, std::move(context), std::cref(terrain));
   std::unique_lock lock(mutex_);
@@ -78,7 +78,7 @@ void AsyncKeyframes::run(std::unique_ptr<GlContext> context, const Terrain& terr
     if (!slot) {
       slots_.push_back(std::make_unique<Slot>());
       slot = slots_.back().get();
-      slot->key = std::make_unique<Keyframe>(width_, height_, grid_);
+      slot->key = std::make_unique<Keyframe>(width_, height_);
     }
     slot->state = Slot::State::kRendering;
     const GLsync freed = std::exchange(slot->freed, nullptr);
@@ -118,7 +118,7 @@ void AsyncKeyframes::render(Slot& slot, const Camera& camera, TerrainGpu& terrai
   // sure the fence reaches the GL server before the caller waits on it.
   const long long triangles = terrain.mesh(0).triangles;
   const int pieces = int(std::clamp<long long>(triangles / kTrianglesPerPiece, 1, 1024));
-  slot.key->capture(terrain, grid_, camera, lighting_, pieces);
+  slot.key->capture(terrain, make_grid_(camera), camera, lighting_, pieces);
   slot.landed = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
   glFlush();
 }

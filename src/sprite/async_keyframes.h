@@ -6,6 +6,7 @@
 #pragma once
 #include <condition_variable>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -35,9 +36,11 @@ class AsyncKeyframes {
   /// Creates the shared context from `share` (which must outlive this), starts
   /// the worker and waits until its GL side (its own copy of the terrain's
   /// drape and full-resolution mesh: VAOs are not shared) is ready. Throws
-  /// DeviceError when the shared context cannot be made or used. `terrain` and
-  /// `grid` must outlive this.
-  AsyncKeyframes(const GlContext& share, const Terrain& terrain, const CoarseGrid& grid, int width,
+  /// DeviceError when the shared context cannot be made or used. `terrain`
+  /// must outlive this; `make_grid` gives each keyframe its coarse mesh for its
+  /// camera (called on the worker thread).
+  using GridMaker = std::function<std::shared_ptr<const CoarseGrid>(const Camera&)>;
+  AsyncKeyframes(const GlContext& share, const Terrain& terrain, GridMaker make_grid, int width,
                  int height, bool lighting);
   /// Stops the worker: a keyframe being rendered is finished first (GL has no
   /// way to abandon a draw), then the worker frees its GL objects and context.
@@ -70,7 +73,7 @@ class AsyncKeyframes {
   void render(Slot& slot, const Camera& camera, TerrainGpu& terrain);
   const Keyframe* take_locked(std::unique_lock<std::mutex>& lock);
 
-  const CoarseGrid& grid_;
+  const GridMaker make_grid_;
   const int width_, height_;
   const bool lighting_;
   mutable std::mutex mutex_;

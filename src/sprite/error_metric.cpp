@@ -5,6 +5,7 @@
 // vertex C to C' as seen from the new eye, and Eq. (2), a new keyframe when
 // the mean squared error (in pixels) exceeds the squared threshold.
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -45,6 +46,26 @@ bool project(const glm::dmat4& vp, int w, int h, glm::dvec3 p, glm::dvec2& pixel
 
 }  // namespace
 
+double signed_edge_offset(glm::dvec3 C, glm::dvec3 a, glm::dvec3 e) {
+  const glm::dvec3 ae = e - a;
+  const double t = std::clamp(glm::dot(C - a, ae) / glm::dot(ae, ae), 0.0, 1.0);
+  const glm::dvec3 closest = a + t * ae;
+  const glm::dvec2 axy(a), ae2(ae);
+  const double t2 = std::clamp(glm::dot(glm::dvec2(C) - axy, ae2) / glm::dot(ae2, ae2), 0.0, 1.0);
+  const double edge_z = a.z + t2 * ae.z;
+  const double dist = glm::length(C - closest);
+  return C.z >= edge_z ? dist : -dist;
+}
+
+glm::dvec3 grid_normal(const Heightfield& h, int i, int j) {
+  const int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, h.width - 1);
+  const int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, h.height - 1);
+  const double dzdx = i1 > i0 ? (h.at(i1, j) - h.at(i0, j)) / ((i1 - i0) * h.spacing_x) : 0.0;
+  const double dzdy = j1 > j0 ? (h.at(i, j0) - h.at(i, j1)) / ((j1 - j0) * h.spacing_y)
+                              : 0.0;  // rows run south
+  return glm::normalize(glm::dvec3(-dzdx, -dzdy, 1.0));
+}
+
 CoarseGrid make_coarse_grid(const Heightfield& h, int quads) {
   assert(h.width >= 2 && h.height >= 2);
   CoarseGrid g;
@@ -69,21 +90,8 @@ CoarseGrid make_coarse_grid(const Heightfield& h, int quads) {
       g.centre[q] = C;
       // Distance from C to the diagonal edge a (NW) - e (SE) beneath it.
       const glm::dvec3 a = g.vertex(c, r), e = g.vertex(c + 1, r + 1);
-      const glm::dvec3 ae = e - a;
-      const double t = std::clamp(glm::dot(C - a, ae) / glm::dot(ae, ae), 0.0, 1.0);
-      const glm::dvec3 closest = a + t * ae;
-      const glm::dvec2 axy(a), ae2(ae);
-      const double t2 =
-          std::clamp(glm::dot(glm::dvec2(C) - axy, ae2) / glm::dot(ae2, ae2), 0.0, 1.0);
-      const double edge_z = a.z + t2 * ae.z;
-      const double dist = glm::length(C - closest);
-      g.edge_offset[q] = C.z >= edge_z ? dist : -dist;
-      const int i0 = std::max(ci - 1, 0), i1 = std::min(ci + 1, h.width - 1);
-      const int j0 = std::max(cj - 1, 0), j1 = std::min(cj + 1, h.height - 1);
-      const double dzdx = i1 > i0 ? (h.at(i1, cj) - h.at(i0, cj)) / ((i1 - i0) * h.spacing_x) : 0.0;
-      const double dzdy = j1 > j0 ? (h.at(ci, j0) - h.at(ci, j1)) / ((j1 - j0) * h.spacing_y)
-                                  : 0.0;  // rows run south
-      g.normal[q] = glm::normalize(glm::dvec3(-dzdx, -dzdy, 1.0));
+      g.edge_offset[q] = signed_edge_offset(C, a, e);
+      g.normal[q] = grid_normal(h, ci, cj);
       // Coarse surface over the quad: triangles (a, d, e) below the diagonal, (a, e, b) above it.
       const double za = a.z, zb = g.vertex(c + 1, r).z, zd = g.vertex(c, r + 1).z, ze = e.z;
       double dev = 0;
@@ -97,24 +105,47 @@ CoarseGrid make_coarse_grid(const Heightfield& h, int quads) {
         }
       g.max_deviation[q] = dev;
     }
+  g.mesh_vertices = g.vertices;
+  const int columns = g.quads_x + 1;
+  for (int r = 0; r < g.quads_y; ++r)
+    for (int c = 0; c < g.quads_x; ++c) {
+      const std::uint32_t a = r * columns + c, b = a + 1, d = a + columns, e = d + 1;
+      g.cell_first.push_back(int(g.triangles.size()));
+      g.triangles.insert(g.triangles.end(), {a, d, e, a, e, b});  // as build_grid_mesh
+    }
+  g.cell_first.push_back(int(g.triangles.size()));
+  g.serial = next_grid_serial();
   return g;
 }
 
-glm::dvec3 coarse_reprojection(const CoarseGrid& g, int col, int row, glm::dvec3 eye,
-                               glm::dvec3 point) {
+std::uint64_t next_grid_serial() {
+  static std::atomic<std::uint64_t> next{1};
+  return next++;
+}
+
+glm::dvec3 coarse_reprojection(const CoarseGrid& g, int q, glm::dvec3 eye, glm::dvec3 point) {
   const glm::dvec3 to = point - eye;
   const double t_point = glm::length(to);
   if (t_point <= 0) return point;
   const glm::dvec3 d = to / t_point;
   double best_t = std::numeric_limits<double>::quiet_NaN();
-  for (int r = std::max(row - 1, 0); r <= std::min(row + 1, g.quads_y - 1); ++r)
-    for (int c = std::max(col - 1, 0); c <= std::min(col + 1, g.quads_x - 1); ++c) {
-      const glm::dvec3 a = g.vertex(c, r), b = g.vertex(c + 1, r), dd = g.vertex(c, r + 1),
-                       e = g.vertex(c + 1, r + 1);
-      for (double t : {ray_triangle(eye, d, a, dd, e), ray_triangle(eye, d, a, e, b)})
-        if (t > 0 && (std::isnan(best_t) || std::abs(t - t_point) < std::abs(best_t - t_point)))
-          best_t = t;
+  auto cell = [&](int n) {
+    for (int t = g.cell_first[n]; t < g.cell_first[n + 1]; t += 3) {
+      const double hit =
+          ray_triangle(eye, d, g.mesh_vertices[g.triangles[t]], g.mesh_vertices[g.triangles[t + 1]],
+                       g.mesh_vertices[g.triangles[t + 2]]);
+      if (hit > 0 && (std::isnan(best_t) || std::abs(hit - t_point) < std::abs(best_t - t_point)))
+        best_t = hit;
     }
+  };
+  if (g.adaptive) {
+    for (int i = g.near_first[q]; i < g.near_first[q + 1]; ++i) cell(g.near_cells[i]);
+  } else {
+    const int col = q % g.quads_x, row = q / g.quads_x;
+    for (int r = std::max(row - 1, 0); r <= std::min(row + 1, g.quads_y - 1); ++r)
+      for (int c = std::max(col - 1, 0); c <= std::min(col + 1, g.quads_x - 1); ++c)
+        cell(r * g.quads_x + c);
+  }
   return std::isnan(best_t) ? point : eye + best_t * d;
 }
 
@@ -130,22 +161,20 @@ KeyframeSamples make_keyframe_samples(const CoarseGrid& g, const Camera& key, in
   const glm::dvec3 fwd = key.forward();
   double best = -2.0;
   k.beta_reference = key.position + fwd * (0.5 * (key.near_m + key.far_m));
-  for (int r = 0; r < g.quads_y; ++r)
-    for (int c = 0; c < g.quads_x; ++c) {
-      const std::size_t q = static_cast<std::size_t>(r) * g.quads_x + c;
-      if (!g.has_centre[q]) {
-        k.visible[q] = 0;
-        k.c_prime[q] = g.centre[q];
-        continue;
-      }
-      k.c_prime[q] = coarse_reprojection(g, c, r, key.position, g.centre[q]);
-      if (!k.visible[q]) continue;
-      const double along = glm::dot(glm::normalize(g.centre[q] - key.position), fwd);
-      if (along > best) {
-        best = along;
-        k.beta_reference = g.centre[q];
-      }
+  for (std::size_t q = 0; q < visible.size(); ++q) {
+    if (!g.has_centre[q]) {
+      k.visible[q] = 0;
+      k.c_prime[q] = g.centre[q];
+      continue;
     }
+    k.c_prime[q] = coarse_reprojection(g, int(q), key.position, g.centre[q]);
+    if (!k.visible[q]) continue;
+    const double along = glm::dot(glm::normalize(g.centre[q] - key.position), fwd);
+    if (along > best) {
+      best = along;
+      k.beta_reference = g.centre[q];
+    }
+  }
   return k;
 }
 

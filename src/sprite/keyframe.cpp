@@ -6,12 +6,11 @@
 
 namespace terrasprite {
 
-Keyframe::Keyframe(int width, int height, const CoarseGrid& grid) : target(width, height) {
-  fallback.assign(static_cast<std::size_t>(grid.quad_count()), 1);
-}
+Keyframe::Keyframe(int width, int height) : target(width, height) {}
 
-void Keyframe::capture(TerrainGpu& scene, const CoarseGrid& grid, const Camera& c, bool lighting,
-                       int pieces) {
+void Keyframe::capture(TerrainGpu& scene, std::shared_ptr<const CoarseGrid> coarse,
+                       const Camera& c, bool lighting, int pieces) {
+  grid = std::move(coarse);
   camera = c;
   view_projection = glm::mat4(gl::view_projection_reversed_z(c));
   target.bind_and_clear();
@@ -26,25 +25,25 @@ void Keyframe::capture(TerrainGpu& scene, const CoarseGrid& grid, const Camera& 
 
   const std::vector<float> depth = target.read_depth(c.near_m, c.far_m);
   const DepthView dv{depth, target.width(), target.height()};
-  const int vx = grid.quads_x + 1, vy = grid.quads_y + 1;
-  std::vector<std::uint8_t> vertex_visible(static_cast<std::size_t>(vx) * vy);
+  const CoarseGrid& g = *grid;
+  std::vector<std::uint8_t> vertex_visible(g.mesh_vertices.size());
   for (std::size_t v = 0; v < vertex_visible.size(); ++v)
-    vertex_visible[v] = visible_in_keyframe(c, dv, grid.vertices[v]) ? 1 : 0;
-  std::vector<std::uint8_t> centre_visible(static_cast<std::size_t>(grid.quad_count()));
-  for (int r = 0; r < grid.quads_y; ++r)
-    for (int q0 = 0; q0 < grid.quads_x; ++q0) {
-      const std::size_t q = static_cast<std::size_t>(r) * grid.quads_x + q0;
-      const bool centre = grid.has_centre[q] && visible_in_keyframe(c, dv, grid.centre[q]);
-      centre_visible[q] = centre ? 1 : 0;
-      // Paper 3.3: a polygon with any vertex hidden or outside the keyframe
-      // takes the original texture. The centre vertex counts too: a ridge
-      // inside the quad can hide its middle while its corners show.
-      const bool corners = vertex_visible[r * vx + q0] && vertex_visible[r * vx + q0 + 1] &&
-                           vertex_visible[(r + 1) * vx + q0] &&
-                           vertex_visible[(r + 1) * vx + q0 + 1];
-      fallback[q] = (corners && (centre || !grid.has_centre[q])) ? 0 : 1;
-    }
-  samples = make_keyframe_samples(grid, c, target.width(), target.height(), centre_visible);
+    vertex_visible[v] = visible_in_keyframe(c, dv, g.mesh_vertices[v]) ? 1 : 0;
+  const std::size_t cells = static_cast<std::size_t>(g.quad_count());
+  std::vector<std::uint8_t> centre_visible(cells);
+  fallback.assign(cells, 1);
+  for (std::size_t q = 0; q < cells; ++q) {
+    const bool centre = g.has_centre[q] && visible_in_keyframe(c, dv, g.centre[q]);
+    centre_visible[q] = centre ? 1 : 0;
+    // Paper 3.3: a polygon with any vertex hidden or outside the keyframe
+    // takes the original texture. The centre vertex counts too: a ridge
+    // inside the quad can hide its middle while its corners show.
+    bool corners = true;
+    for (int t = g.cell_first[q]; t < g.cell_first[q + 1]; ++t)
+      corners = corners && vertex_visible[g.triangles[t]];
+    fallback[q] = (corners && (centre || !g.has_centre[q])) ? 0 : 1;
+  }
+  samples = make_keyframe_samples(g, c, target.width(), target.height(), centre_visible);
   valid = true;
 }
 

@@ -3,6 +3,7 @@
 // camera, and what the sprite frames need to know about it.
 #pragma once
 #include <glm/glm.hpp>
+#include <memory>
 #include <vector>
 
 #include "gl/render_target.h"
@@ -16,20 +17,22 @@ struct Keyframe {
       target;  // colour (transparent black on sky) + depth textures, sampled by sprite frames
   Camera camera;
   glm::mat4 view_projection{1.f};      // reversed-Z GL matrix the keyframe was drawn with
+  std::shared_ptr<const CoarseGrid> grid;  // the coarse mesh its sprite frames draw
   KeyframeSamples samples;             // the error metric's per-quad C' and visibility
   std::vector<std::uint8_t> fallback;  // per quad: 1 = takes the drape texture
   bool valid = false;
   long long used = 0;  // when it last stopped being the current keyframe (cache policy)
 
-  Keyframe(int width, int height, const CoarseGrid& grid);
+  Keyframe(int width, int height);
   /// Renders `camera` from the full-resolution mesh into the textures, reads
   /// the depth back, and classifies the coarse vertices and quad centres
   /// (visible, hidden, outside the view). Drains the pipeline (depth read-back).
   /// `pieces` > 1 draws the mesh in that many batches, each drained before
   /// the next (TerrainGpu::draw_in_pieces): for a keyframe drawn beside
   /// another context's frames on a shared software rasterizer.
-  void capture(TerrainGpu& scene, const CoarseGrid& grid, const Camera& camera, bool lighting,
-               int pieces = 1);
+  /// `grid` becomes the keyframe's coarse mesh (uniform, or adaptive to `camera`).
+  void capture(TerrainGpu& scene, std::shared_ptr<const CoarseGrid> grid, const Camera& camera,
+               bool lighting, int pieces = 1);
 };
 
 }  // namespace terrasprite

@@ -89,12 +89,11 @@ void SpritePass::composite_keyframe(const Keyframe& key) {
   glDepthFunc(GL_GREATER);
 }
 
-void SpritePass::split(const GpuMesh& coarse, std::span<const std::uint8_t> drape) {
-  if (source_ != coarse.vertices.id()) {
+void SpritePass::split(const GpuMesh& coarse, const CoarseGrid& grid,
+                       std::span<const std::uint8_t> drape) {
+  if (source_ != coarse.vertices.id() || grid_ != grid.serial) {
     source_ = coarse.vertices.id();
-    indices_.resize(static_cast<std::size_t>(coarse.index_count));
-    glGetNamedBufferSubData(coarse.indices.id(), 0,
-                            GLsizeiptr(indices_.size() * sizeof(std::uint32_t)), indices_.data());
+    grid_ = grid.serial;
     for (GpuMesh* m : {&key_mesh_, &drape_mesh_}) {
       const GLuint vao = m->vao.id();
       glVertexArrayVertexBuffer(vao, 0, source_, 0, 6 * sizeof(float));
@@ -110,13 +109,15 @@ void SpritePass::split(const GpuMesh& coarse, std::span<const std::uint8_t> drap
   if (std::equal(drape.begin(), drape.end(), last_drape_.begin(), last_drape_.end())) return;
   last_drape_.assign(drape.begin(), drape.end());
   std::vector<std::uint32_t> key, rest;
-  key.reserve(indices_.size());
-  rest.reserve(indices_.size());
-  for (std::size_t q = 0; q < drape.size() && 6 * q + 6 <= indices_.size(); ++q)
-    (drape[q] ? rest : key)
-        .insert((drape[q] ? rest : key).end(), indices_.begin() + 6 * q,
-                indices_.begin() + 6 * q + 6);
-  key_quads_ = int(key.size() / 6);
+  key.reserve(grid.triangles.size());
+  rest.reserve(grid.triangles.size());
+  key_quads_ = 0;
+  for (std::size_t q = 0; q < drape.size() && q + 1 < grid.cell_first.size(); ++q) {
+    std::vector<std::uint32_t>& to = drape[q] ? rest : key;
+    key_quads_ += drape[q] ? 0 : 1;
+    to.insert(to.end(), grid.triangles.begin() + grid.cell_first[q],
+              grid.triangles.begin() + grid.cell_first[q + 1]);
+  }
   for (auto [m, v] : {std::pair{&key_mesh_, &key}, std::pair{&drape_mesh_, &rest}}) {
     glNamedBufferData(m->indices.id(), GLsizeiptr(v->size() * sizeof(std::uint32_t)),
                       v->empty() ? nullptr : v->data(), GL_DYNAMIC_DRAW);
@@ -124,9 +125,10 @@ void SpritePass::split(const GpuMesh& coarse, std::span<const std::uint8_t> drap
   }
 }
 
-void SpritePass::draw(TerrainGpu& scene, const GpuMesh& coarse, const Keyframe& key,
-                      const glm::mat4& vp, std::span<const std::uint8_t> drape, bool lighting) {
-  split(coarse, drape);
+void SpritePass::draw(TerrainGpu& scene, const GpuMesh& coarse, const CoarseGrid& grid,
+                      const Keyframe& key, const glm::mat4& vp, std::span<const std::uint8_t> drape,
+                      bool lighting) {
+  split(coarse, grid, drape);
   if (key_mesh_.index_count > 0) {
     // Clip space [-1, 1] to texture space [0, 1], folded into the matrix.
     const glm::mat4 bias(0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 1, 0, 0.5f, 0.5f, 0, 1);

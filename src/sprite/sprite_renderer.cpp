@@ -17,6 +17,7 @@
 #include "sprite/keyframe.h"
 #include "sprite/keyframe_cache.h"
 #include "sprite/sprite_pass.h"
+#include "terrasprite/adaptive_mesh.h"
 #include "terrasprite/error.h"
 
 namespace terrasprite {
@@ -37,6 +38,10 @@ const char* to_string(Trigger t) {
   return "?";
 }
 
+const char* to_string(CoarseMesh m) {
+  return m == CoarseMesh::kUniform ? "uniform" : "adaptive";
+}
+
 const char* to_string(CachePolicy p) {
   return p == CachePolicy::kLeastRecentlyUsed ? "lru" : "farthest";
 }
@@ -51,7 +56,11 @@ constexpr double kInitialLatencyFrames = 8;
 struct SpriteRenderer::State {
   Scene& scene;
   SpriteOptions options;
-  CoarseGrid grid;
+  std::shared_ptr<const CoarseGrid> uniform;      // the uniform grid (always made)
+  std::unique_ptr<const AdaptiveMesher> mesher;  // with the adaptive mesh
+  AdaptiveMeshOptions mesh_options;
+  std::unique_ptr<GpuMesh> adaptive_gpu;  // the adaptive grid uploaded last
+  std::uint64_t uploaded = 0;             // its serial
   int width, height;
   std::unique_ptr<Keyframe> key;          // the keyframe drawn in this context (always allocated)
   std::unique_ptr<AsyncKeyframes> async;  // the keyframe worker, when on
@@ -75,11 +84,48 @@ struct SpriteRenderer::State {
   State(Scene& s, int w, int h, const SpriteOptions& o)
       : scene(s),
         options(o),
-        grid(make_coarse_grid(s.terrain().heights, o.lod_quads)),
+        uniform(std::make_shared<const CoarseGrid>(
+            make_coarse_grid(s.terrain().heights, o.lod_quads))),
         width(w),
         height(h),
-        key(std::make_unique<Keyframe>(w, h, grid)),
-        cache(cache_capacity(o, w, h), o.cache_policy) {}
+        key(std::make_unique<Keyframe>(w, h)),
+        cache(cache_capacity(o, w, h), o.cache_policy) {
+    if (o.mesh == CoarseMesh::kAdaptive) {
+      mesher = std::make_unique<const AdaptiveMesher>(s.terrain().heights);
+      mesh_options.triangle_budget =
+          o.mesh_triangles > 0 ? o.mesh_triangles : 2LL * o.lod_quads * o.lod_quads;
+      mesh_options.tolerance_px = o.mesh_tolerance_px;
+    }
+  }
+
+  /// The coarse mesh for a keyframe of `camera` (thread-safe).
+  std::shared_ptr<const CoarseGrid> grid_for(const Camera& camera) const {
+    if (!mesher) return uniform;
+    return std::make_shared<const CoarseGrid>(mesher->build(camera, width, height, mesh_options));
+  }
+  const CoarseGrid& grid() const { return current().grid ? *current().grid : *uniform; }
+  /// The GPU copy of the current keyframe's coarse mesh.
+  const GpuMesh& coarse_gpu(TerrainGpu& terrain) {
+    const CoarseGrid& g = grid();
+    if (!g.adaptive) return terrain.mesh(options.lod_quads);
+    if (uploaded != g.serial) {
+      const Heightfield& h = terrain.terrain().heights;
+      GridMesh cpu;
+      cpu.vertices.reserve(g.mesh_vertices.size() * 6);
+      for (const glm::dvec3& v : g.mesh_vertices) {
+        const int i = int(std::lround(v.x / h.spacing_x + (h.width - 1) * 0.5));
+        const int j = int(std::lround((h.height - 1) * 0.5 - v.y / h.spacing_y));
+        const glm::dvec3 n = grid_normal(h, i, j);
+        cpu.vertices.insert(cpu.vertices.end(), {float(v.x), float(v.y), float(v.z), float(n.x),
+                                                 float(n.y), float(n.z)});
+      }
+      cpu.indices = g.triangles;
+      adaptive_gpu = std::make_unique<GpuMesh>();
+      upload_grid_mesh(*adaptive_gpu, cpu);
+      uploaded = g.serial;
+    }
+    return *adaptive_gpu;
+  }
 
   static std::size_t keyframe_bytes(int w, int h) { return std::size_t(w) * std::size_t(h) * 8; }
   static int cache_capacity(const SpriteOptions& o, int w, int h) {
@@ -97,7 +143,7 @@ struct SpriteRenderer::State {
     ++serial;
     if (cache.capacity() == 0 || !key->valid) return;
     std::unique_ptr<Keyframe> spare = cache.put(std::move(key), tick, now);
-    key = spare ? std::move(spare) : std::make_unique<Keyframe>(width, height, grid);
+    key = spare ? std::move(spare) : std::make_unique<Keyframe>(width, height);
     key->valid = false;
   }
 };
@@ -112,6 +158,11 @@ const SpriteOptions& validated(const SpriteOptions& o) {
     throw InputError(fmt::format("cache_accept {}: must be in (0, 1]", o.cache_accept));
   if (!(o.async_lead > 0 && o.async_lead <= 1))
     throw InputError(fmt::format("async_lead {}: must be in (0, 1]", o.async_lead));
+  if (o.mesh_triangles != 0 && o.mesh_triangles < 2)
+    throw InputError(fmt::format("mesh_triangles {}: must be 0 (the uniform grid's) or at least 2",
+                                 o.mesh_triangles));
+  if (!(o.mesh_tolerance_px >= 0))
+    throw InputError(fmt::format("mesh_tolerance_px {}: must be at least 0", o.mesh_tolerance_px));
   if (!(o.threshold_px > 0))
     throw InputError(
         fmt::format("threshold_px {}: must be a positive number of pixels", o.threshold_px));
@@ -126,13 +177,16 @@ SpriteRenderer::SpriteRenderer(Scene& scene, int width, int height, SpriteOption
   scene.prepare(0);
   scene.prepare(options.lod_quads);
   if (options.async_context)
-    s_->async = std::make_unique<AsyncKeyframes>(*options.async_context, scene.terrain(), s_->grid,
-                                                 width, height, options.lighting);
+    s_->async = std::make_unique<AsyncKeyframes>(
+        *options.async_context, scene.terrain(),
+        [s = s_.get()](const Camera& c) { return s->grid_for(c); }, width, height,
+        options.lighting);
 }
 
 SpriteRenderer::~SpriteRenderer() = default;
 
 std::string SpriteRenderer::name() const {
+  if (s_->mesher) return fmt::format("sprite-adaptive{}", s_->mesh_options.triangle_budget);
   return fmt::format("sprite{}", s_->options.lod_quads);
 }
 bool SpriteRenderer::has_keyframe() const {
@@ -161,7 +215,10 @@ const SpriteOptions& SpriteRenderer::options() const {
   return s_->options;
 }
 const CoarseGrid& SpriteRenderer::grid() const {
-  return s_->grid;
+  return s_->grid();
+}
+long long SpriteRenderer::mesh_budget() const {
+  return s_->mesher ? s_->mesh_options.triangle_budget : 0;
 }
 const std::vector<std::uint8_t>& SpriteRenderer::fallback_quads() const {
   return s_->current().fallback;
@@ -200,7 +257,7 @@ bool SpriteRenderer::last_cache_hit() const {
 
 SpriteError SpriteRenderer::error(const Camera& camera) const {
   if (!s_->current().valid) return {};
-  return sprite_error(s_->grid, s_->current().samples, camera);
+  return sprite_error(*s_->current().grid, s_->current().samples, camera);
 }
 
 std::optional<Trigger> SpriteRenderer::trigger_for(const SpriteError& e) const {
@@ -215,23 +272,24 @@ std::optional<Trigger> SpriteRenderer::trigger_for(const SpriteError& e) const {
 
 void SpriteRenderer::make_keyframe(const Camera& camera) {
   s_->retire_current(camera);
-  s_->key->capture(s_->scene.terrain_gpu(), s_->grid, camera, s_->options.lighting);
+  s_->key->capture(s_->scene.terrain_gpu(), s_->grid_for(camera), camera, s_->options.lighting);
 }
 
 void SpriteRenderer::draw_sprite_pass(const Camera& camera) {
   State& s = *s_;
   TerrainGpu& terrain = s.scene.terrain_gpu();
+  const CoarseGrid& g = s.grid();
   s.flags = s.current().fallback;
   if (s.options.sharp_px > 0) {
     // Quads whose coarse geometry is already right at this distance take the drape texture.
     const double limit = s.options.sharp_px * camera.pixel_angle(height());
     for (std::size_t q = 0; q < s.flags.size(); ++q)
-      if (!s.flags[q] &&
-          s.grid.max_deviation[q] < limit * glm::length(s.grid.centre[q] - camera.position))
+      if (!s.flags[q] && g.max_deviation[q] < limit * glm::length(g.centre[q] - camera.position))
         s.flags[q] = 1;
   }
+  const GpuMesh& coarse = s.coarse_gpu(terrain);
   begin_output();
-  s.pass.draw(terrain, terrain.mesh(s.options.lod_quads), s.current(),
+  s.pass.draw(terrain, coarse, g, s.current(),
               glm::mat4(gl::view_projection_reversed_z(camera)), s.flags, s.options.lighting);
 }
 
@@ -258,7 +316,7 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
     if (s.trigger && s.cache.size() > 0) {
       // A cached keyframe that no trigger rejects for this view, least error first.
       std::unique_ptr<Keyframe> hit = s.cache.take_best([&](const Keyframe& k) {
-        const SpriteError ek = sprite_error(s.grid, k.samples, camera);
+        const SpriteError ek = sprite_error(*k.grid, k.samples, camera);
         const double v = ek.value(s.options.metric);
         // A keyframe from elsewhere may see the view only in part: the
         // quads it lacks would take the drape texture, so few may be missing.
@@ -286,7 +344,8 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
   long long triangles = 0;
   if (key) {
     s.retire_current(camera);
-    s.key->capture(terrain, s.grid, camera, s.options.lighting);
+    s.key->capture(terrain, s.grid_for(camera), camera, s.options.lighting);
+    if (s.mesher) s.coarse_gpu(terrain);  // upload the new mesh inside the keyframe's frame
     // The keyframe textures are the frame; a caller's target, or a frame
     // with objects over the terrain, gets a copy (keyframes hold terrain only).
     if (output().framebuffer != own_target().framebuffer() || s.scene.has_objects()) {
@@ -296,7 +355,7 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
     triangles = terrain.mesh(0).triangles;
   } else {
     draw_sprite_pass(camera);
-    triangles = terrain.mesh(s.options.lod_quads).triangles;
+    triangles = s.grid().triangle_count();
   }
   triangles += s.scene.draw_objects(camera);  // over the sprite, against its depth
   const gl::FrameTime t = timer().end();
@@ -338,7 +397,7 @@ SpriteError SpriteRenderer::land_and_request(const Camera& camera, SpriteError e
     st.last_latency_frames = double(s.tick - s.requested_at);
     st.mean_latency_frames += (st.last_latency_frames - st.mean_latency_frames) / double(st.landed);
     s.latency_frames = st.last_latency_frames;
-    const SpriteError ek = sprite_error(s.grid, k->samples, camera);
+    const SpriteError ek = sprite_error(*k->grid, k->samples, camera);
     const bool late = trigger_for(ek).has_value();
     st.late += late;
     if (!late || ek.value(m) < e.value(m)) {
@@ -354,7 +413,7 @@ SpriteError SpriteRenderer::land_and_request(const Camera& camera, SpriteError e
   }
   if (!s.async->busy()) {
     const Camera ahead = s.predictor.predict(s.latency_frames, s.scene.terrain().heights);
-    const SpriteError at_landing = sprite_error(s.grid, s.current().samples, ahead);
+    const SpriteError at_landing = sprite_error(*s.current().grid, s.current().samples, ahead);
     if (trigger_for(e) || trigger_for(at_landing) ||
         at_landing.value(s.options.metric) > s.options.async_lead * s.options.threshold_px) {
       s.async->request(ahead);

@@ -52,10 +52,10 @@ TEST(AsyncKeyframes, LandedTexturesEqualAKeyframeDrawnHere) {
   Terrain t = small_mountains();
   Scene scene(t);
   const int w = 64, h = 64;
-  const CoarseGrid grid = make_coarse_grid(t.heights, 16);
+  const auto grid = std::make_shared<const CoarseGrid>(make_coarse_grid(t.heights, 16));
   const std::vector<Camera> path = paper_path(t.heights, 20, 1.0);
-  AsyncKeyframes worker(gl, t, grid, w, h, false);
-  Keyframe here(w, h, grid);
+  AsyncKeyframes worker(gl, t, [&](const Camera&) { return grid; }, w, h, false);
+  Keyframe here(w, h);
   for (int i : {0, 10, 19}) {
     worker.request(path[i]);
     const Keyframe* k = worker.wait();

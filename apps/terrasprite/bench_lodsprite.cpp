@@ -7,6 +7,7 @@
 #include "cli_common.h"
 #include "lodsprite_report.h"
 #include "lodsprite_run.h"
+#include "render_modes.h"
 #include "terrasprite/error.h"
 
 namespace terrasprite::cli {
@@ -43,11 +44,18 @@ void add_bench_lodsprite(CLI::App& bench) {
     std::string json;
     double cache_mb = 0;
     std::string cache_policy = "lru";
+    std::string mesh = "uniform";
   };
   auto o = std::make_shared<Opts>();
   o->terrain.resample = 513;  // the paper's 512 x 512 quads
   add_terrain_options(*cmd, o->terrain);
   cmd->add_option("--lod-quads", o->config.lod_quads, "coarse grid quads per side (default 16)");
+  cmd->add_option("--mesh", o->mesh,
+                  "the sprite's coarse mesh: uniform (default, the --lod-quads grid) | adaptive "
+                  "(per keyframe, a screen-space-error quadtree for its camera)");
+  cmd->add_option("--mesh-triangles", o->config.mesh_triangles,
+                  "--mesh adaptive: triangle budget (default 0 = the uniform grid's 2 x "
+                  "lod-quads^2, what plain LOD draws)");
   cmd->add_option("--path", o->config.path, "'paper' (default) or a JSON path file");
   cmd->add_option("--frames", o->config.frames, "frames along the path (default 460)");
   cmd->add_option("--size", o->size, "image size WxH (default 512x512)");
@@ -104,6 +112,8 @@ void add_bench_lodsprite(CLI::App& bench) {
     LodspriteConfig c = o->config;
     std::tie(c.width, c.height) = parse_size(o->size, "--size");
     c.metric = parse_metric(o->metric);
+    c.mesh = parse_mesh(o->mesh);
+    check_mesh_triangles(c.mesh_triangles);
     if (!(o->cache_mb >= 0 && o->cache_mb <= 1 << 20))
       throw InputError(fmt::format("--cache-mb {}: must be between 0 and 1048576", o->cache_mb));
     c.cache_bytes = std::size_t(o->cache_mb * (1 << 20));

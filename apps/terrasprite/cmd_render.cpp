@@ -30,6 +30,8 @@ struct RenderOpts {
   TerrainOptions terrain;
   std::string mode = "full";
   int lod_quads = 16;
+  std::string mesh = "uniform";  // --mode sprite: its coarse mesh
+  long long mesh_triangles = 0;
   std::string path = "paper";
   int frames = 460;
   std::string size = "512x512";
@@ -119,6 +121,8 @@ void run(const RenderOpts& o) {
   if (!o.warp.empty()) warp = parse_warp_method(o.warp);
   if (o.real_every < 1)
     throw InputError(fmt::format("--real-every {}: must be at least 1", o.real_every));
+  const CoarseMesh mesh = parse_mesh(o.mesh);
+  check_mesh_triangles(o.mesh_triangles);
   if (!(o.warp_margin >= 0 && o.warp_margin <= 1))
     throw InputError(fmt::format("--warp-margin {}: must be within 0..1", o.warp_margin));
   // With --warp the real renderer draws a margin around the image (a wider
@@ -126,7 +130,8 @@ void run(const RenderOpts& o) {
   const int mx = warp ? int(std::lround(o.warp_margin * w)) : 0;
   const int my = warp ? int(std::lround(o.warp_margin * h)) : 0;
   RenderStack stack =
-      make_render_stack(o.mode, terrain, w + 2 * mx, h + 2 * my, o.lod_quads, o.lighting);
+      make_render_stack(o.mode, terrain, w + 2 * mx, h + 2 * my, o.lod_quads, o.lighting, 1.0,
+                        nullptr, false, mesh, o.mesh_triangles);
   const std::unique_ptr<ObjectSet> objects =
       attach_objects(o.objects, terrain, stack.scene.get(), o.mode);
   std::unique_ptr<WarpScheduler> scheduler;
@@ -249,6 +254,12 @@ void add_render(CLI::App& app) {
   cmd->add_option("--mode", o->mode, "renderer")->check(CLI::IsMember(render_modes()));
   cmd->add_option("--lod-quads", o->lod_quads,
                   "coarse grid quads per side for lod modes (default 16)");
+  cmd->add_option("--mesh", o->mesh,
+                  "--mode sprite: coarse mesh, uniform (default, the --lod-quads grid) | adaptive "
+                  "(per keyframe, a screen-space-error quadtree for its camera)");
+  cmd->add_option("--mesh-triangles", o->mesh_triangles,
+                  "--mesh adaptive: triangle budget (default 0 = the uniform grid's 2 x "
+                  "lod-quads^2)");
   cmd->add_option("--path", o->path, "'paper', 'low-fast' or a JSON path file");
   cmd->add_option("--frames", o->frames, "frames along the path (default 460)");
   cmd->add_option("--size", o->size, "image size WxH (default 512x512)");

@@ -122,6 +122,8 @@ struct LodspriteResult {
   int frames = 0;  ///< displayed frames (2 x the path's with there_and_back)
   std::string path;
   int lod_quads = 0;
+  std::string mesh = "uniform";  ///< the sprite's coarse mesh: "uniform" | "adaptive"
+  long long mesh_triangles = 0;  ///< its triangle budget (uniform: 2 x lod_quads^2, plain LOD's)
   double threshold_px = 0;
   std::string metric;  ///< "paper" | "exact"
   double max_fallback_fraction = 0, sharp_px = 0;

@@ -163,6 +163,8 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   MeshRenderer full(scene, w, h, 0), lod(scene, w, h, cfg.lod_quads);
   SpriteOptions so;
   so.lod_quads = cfg.lod_quads;
+  so.mesh = cfg.mesh;
+  so.mesh_triangles = cfg.mesh_triangles;
   so.threshold_px = cfg.threshold_px;
   so.async_lead = cfg.async_lead;
   so.metric = cfg.metric;
@@ -219,6 +221,9 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   res.frames = n;
   res.path = cfg.path;
   res.lod_quads = cfg.lod_quads;
+  res.mesh = to_string(cfg.mesh);
+  res.mesh_triangles = sprite.mesh_budget() > 0 ? sprite.mesh_budget()
+                                                : 2LL * cfg.lod_quads * cfg.lod_quads;
   res.threshold_px = cfg.threshold_px;
   res.metric = metric_name(cfg.metric);
   res.max_fallback_fraction = cfg.max_fallback_fraction;

@@ -22,6 +22,8 @@ struct LodspriteConfig {
   int frames = 460;
   int width = 512, height = 512;
   int lod_quads = 16;
+  CoarseMesh mesh = CoarseMesh::kUniform;  ///< SpriteOptions::mesh
+  long long mesh_triangles = 0;            ///< SpriteOptions::mesh_triangles
   double threshold_px = 1.0;
   ErrorMetric metric = ErrorMetric::kPaper;
   double max_fallback_fraction = 1.0;

@@ -13,13 +13,27 @@
 
 namespace terrasprite::cli {
 
+CoarseMesh parse_mesh(const std::string& text) {
+  if (text == "uniform") return CoarseMesh::kUniform;
+  if (text == "adaptive") return CoarseMesh::kAdaptive;
+  throw InputError(fmt::format("--mesh {}: must be 'uniform' or 'adaptive'", text));
+}
+
+void check_mesh_triangles(long long triangles) {
+  if (triangles != 0 && triangles < 2)
+    throw InputError(fmt::format(
+        "--mesh-triangles {}: must be 0 (the uniform grid's 2 x lod-quads^2) or at least 2",
+        triangles));
+}
+
 std::vector<std::string> render_modes() {
   return {"full", "lod", "sprite", "voxel"};
 }
 
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
                               int height, int lod_quads, bool lighting, double sprite_threshold_px,
-                              GlContext* context, bool async_keyframes) {
+                              GlContext* context, bool async_keyframes, CoarseMesh sprite_mesh,
+                              long long sprite_mesh_triangles) {
   RenderStack s;
   // GL modes: the caller's current context, else one of our own.
   auto use_gl = [&] {
@@ -49,6 +63,8 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
     o.lod_quads = lod_quads;
     o.threshold_px = sprite_threshold_px;
     o.lighting = lighting;
+    o.mesh = sprite_mesh;
+    o.mesh_triangles = sprite_mesh_triangles;
     use_gl();
     if (async_keyframes) o.async_context = context ? context : s.gl.get();
     s.scene = std::make_unique<Scene>(terrain);

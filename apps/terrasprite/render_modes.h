@@ -8,6 +8,7 @@
 #include "terrasprite/gl_context.h"
 #include "terrasprite/renderer.h"
 #include "terrasprite/scene.h"
+#include "terrasprite/sprite_renderer.h"
 #include "terrasprite/voxel_renderer.h"
 
 namespace terrasprite::cli {
@@ -31,7 +32,14 @@ struct RenderStack {
 RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, int width,
                               int height, int lod_quads, bool lighting = false,
                               double sprite_threshold_px = 1.0, GlContext* context = nullptr,
-                              bool async_keyframes = false);
+                              bool async_keyframes = false,
+                              CoarseMesh sprite_mesh = CoarseMesh::kUniform,
+                              long long sprite_mesh_triangles = 0);
+
+/// "uniform" | "adaptive" -> the sprite's coarse mesh; throws InputError naming --mesh.
+CoarseMesh parse_mesh(const std::string& text);
+/// --mesh-triangles: 0 (the uniform grid's) or at least 2; throws InputError naming it.
+void check_mesh_triangles(long long triangles);
 
 /// The modes make_render_stack accepts, for CLI11's check.
 std::vector<std::string> render_modes();

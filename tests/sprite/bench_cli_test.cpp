@@ -87,9 +87,25 @@ TEST(BenchLodsprite, BadOptionsExitWithStatus2) {
   EXPECT_EQ(run("bench lodsprite --cache-mb 0.5"), 2);  // under two 512x512 keyframes
   EXPECT_EQ(run("bench lodsprite --cache --cache-accept 0"), 2);
   EXPECT_EQ(run("bench lodsprite --metric fancy"), 2);
+  EXPECT_EQ(run("bench lodsprite --mesh fancy"), 2);
+  EXPECT_EQ(run("bench lodsprite --mesh adaptive --mesh-triangles 1"), 2);
   EXPECT_EQ(run("bench lodsprite --thresholds 1,abc"), 2);
   EXPECT_EQ(run("bench lodsprite --frame-counts 2.5"), 2);
   EXPECT_EQ(run("bench lodsprite --size 0x0"), 2);
+}
+
+TEST(BenchLodsprite, AdaptiveMeshIsRecorded) {
+  tstest::TempDir tmp;
+  const std::string json = (tmp.path / "a.json").string(), out = (tmp.path / "report").string();
+  ASSERT_EQ(
+      run("bench lodsprite --synthetic-size 65 --resample 65 --frames 6 --size 96x96 --lod-quads 4 "
+          "--mesh adaptive --thresholds 1 --frame-counts 6 --lod-sweep 4 --json " +
+          json + " --out " + out),
+      0);
+  std::ifstream f(json);
+  const nlohmann::json d = nlohmann::json::parse(f);
+  EXPECT_EQ(d["mesh"], "adaptive");
+  EXPECT_EQ(d["mesh_triangles"], 32);  // the uniform 4 x 4 grid's, what plain LOD draws
 }
 
 TEST(BenchLodsprite, AsyncReportsBothDisplays) {

@@ -53,6 +53,11 @@ struct CoarseGrid {
   std::vector<int> cell_first;               ///< cell q: triangles[cell_first[q], cell_first[q+1])
   std::vector<int> near_first, near_cells;   ///< adaptive: cells touching cell q (and q)
   std::vector<std::array<int, 4>> cell_rect; ///< adaptive: sample rectangle x0, y0, x1, y1
+  /// Adaptive: per cell, the weight of its sample in the metric's means: its
+  /// area in samples, so a mean over cells is, as on the uniform grid, a mean
+  /// over the terrain's area (not over cells, which are small near the
+  /// keyframe's camera). Empty: all 1 (the uniform grid, the paper's mean).
+  std::vector<double> weight;
   bool adaptive = false;
   /// Changes with every grid made (to tell grids apart without comparing them).
   std::uint64_t serial = 0;
@@ -125,7 +130,8 @@ enum class ErrorMetric {
 };
 
 /// A new view's error against a keyframe. Both variants are the root of the
-/// mean squared per-sample error, in pixels, so the paper's test
+/// mean squared per-sample error, in pixels (adaptive grids: each sample weighted
+/// by its cell's area, CoarseGrid::weight), so the paper's test
 /// "mean squared error > threshold^2" reads error > threshold.
 struct SpriteError {
   double paper_px =

@@ -239,6 +239,7 @@ CoarseGrid AdaptiveMesher::build(const Camera& camera, int width, int height,
   g.normal.resize(n);
   g.max_deviation.resize(n);
   g.cell_rect.resize(n);
+  g.weight.resize(n);
   std::unordered_map<Key, std::uint32_t> vertex_of;  // by sample index j * width + i
   std::vector<glm::ivec2> vertex_sample;
   auto vertex = [&](int i, int j) {
@@ -260,6 +261,7 @@ CoarseGrid AdaptiveMesher::build(const Camera& camera, int width, int height,
     const int l = level_of(k), i = i_of(k), j = j_of(k);
     const int x0 = m.xs[l][i], x1 = m.xs[l][i + 1], y0 = m.ys[l][j], y1 = m.ys[l][j + 1];
     g.cell_rect[q] = {x0, y0, x1, y1};
+    g.weight[q] = double(x1 - x0) * (y1 - y0);
     g.cell_first.push_back(int(g.triangles.size()));
     const std::uint32_t a = vertex(x0, y0), b = vertex(x1, y0), d = vertex(x0, y1),
                         e = vertex(x1, y1);

@@ -227,7 +227,7 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
   const double pixel = view.pixel_angle(k.height);
   const glm::dmat4 vp = view.view_projection();
   const glm::dvec3 forward = view.forward();
-  double sum_paper = 0, sum_exact = 0, sum_log_scale = 0, sum_log_aniso = 0;
+  double sum_paper = 0, sum_exact = 0, sum_log_scale = 0, sum_log_aniso = 0, sum_weight = 0;
   const glm::dmat4 key_vp = k.key.view_projection();
   const glm::dvec3 key_forward = k.key.forward();
   // Pixels covering a small patch at C: dA |cos(incidence)| / (d^2 cos^3(off-axis angle)), up to
@@ -248,26 +248,28 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
     ++e.in_view;
     if (!k.visible[q]) continue;
     ++e.samples;
+    const double w = g.weight.empty() ? 1.0 : g.weight[q];
+    sum_weight += w;
     const double b = g.edge_offset[q];
     const double d = glm::length(view.position - C);
     const double theta = std::atan2(std::abs(b) * sin_beta, d + b * cos_beta) / pixel;
-    sum_paper += theta * theta;
+    sum_paper += w * theta * theta;
     const double area_ratio = footprint(view.position, forward, C, g.normal[q]) /
                               footprint(k.key.position, key_forward, C, g.normal[q]);
-    sum_log_scale += std::abs(0.5 * std::log(area_ratio));
-    sum_log_aniso += std::log(anisotropic_stretch(key_vp, vp, k.width, k.height, C, g.normal[q],
+    sum_log_scale += w * std::abs(0.5 * std::log(area_ratio));
+    sum_log_aniso += w * std::log(anisotropic_stretch(key_vp, vp, k.width, k.height, C, g.normal[q],
                                                   glm::length(k.key.position - C)));
     glm::dvec2 pp;
     if (project(vp, k.width, k.height, k.c_prime[q], pp)) {
       const glm::dvec2 dp = pp - pc;
-      sum_exact += glm::dot(dp, dp);
+      sum_exact += w * glm::dot(dp, dp);
     }
   }
   if (e.samples > 0) {
-    e.paper_px = std::sqrt(sum_paper / e.samples);
-    e.exact_px = std::sqrt(sum_exact / e.samples);
-    e.resample_scale = std::exp(sum_log_scale / e.samples);
-    e.resample_aniso = std::exp(sum_log_aniso / e.samples);
+    e.paper_px = std::sqrt(sum_paper / sum_weight);
+    e.exact_px = std::sqrt(sum_exact / sum_weight);
+    e.resample_scale = std::exp(sum_log_scale / sum_weight);
+    e.resample_aniso = std::exp(sum_log_aniso / sum_weight);
   }
   return e;
 }

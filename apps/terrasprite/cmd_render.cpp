@@ -129,9 +129,8 @@ void run(const RenderOpts& o) {
   // field of view at the same pixel density) that the warp can read.
   const int mx = warp ? int(std::lround(o.warp_margin * w)) : 0;
   const int my = warp ? int(std::lround(o.warp_margin * h)) : 0;
-  RenderStack stack =
-      make_render_stack(o.mode, terrain, w + 2 * mx, h + 2 * my, o.lod_quads, o.lighting, 1.0,
-                        nullptr, false, mesh, o.mesh_triangles);
+  RenderStack stack = make_render_stack(o.mode, terrain, w + 2 * mx, h + 2 * my, o.lod_quads,
+                                        o.lighting, 1.0, nullptr, false, mesh, o.mesh_triangles);
   const std::unique_ptr<ObjectSet> objects =
       attach_objects(o.objects, terrain, stack.scene.get(), o.mode);
   std::unique_ptr<WarpScheduler> scheduler;

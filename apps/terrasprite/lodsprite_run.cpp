@@ -222,8 +222,8 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   res.path = cfg.path;
   res.lod_quads = cfg.lod_quads;
   res.mesh = to_string(cfg.mesh);
-  res.mesh_triangles = sprite.mesh_budget() > 0 ? sprite.mesh_budget()
-                                                : 2LL * cfg.lod_quads * cfg.lod_quads;
+  res.mesh_triangles =
+      sprite.mesh_budget() > 0 ? sprite.mesh_budget() : 2LL * cfg.lod_quads * cfg.lod_quads;
   res.threshold_px = cfg.threshold_px;
   res.metric = metric_name(cfg.metric);
   res.max_fallback_fraction = cfg.max_fallback_fraction;

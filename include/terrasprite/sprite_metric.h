@@ -48,11 +48,11 @@ struct CoarseGrid {
   /// quads_x = cells; `vertices`, xs and ys are empty, vertex() unusable).
   /// Uniform: mesh_vertices == vertices and the same triangles as
   /// build_grid_mesh (6 indices per quad).
-  std::vector<glm::dvec3> mesh_vertices;     ///< metres
-  std::vector<std::uint32_t> triangles;      ///< into mesh_vertices, grouped by cell
-  std::vector<int> cell_first;               ///< cell q: triangles[cell_first[q], cell_first[q+1])
-  std::vector<int> near_first, near_cells;   ///< adaptive: cells touching cell q (and q)
-  std::vector<std::array<int, 4>> cell_rect; ///< adaptive: sample rectangle x0, y0, x1, y1
+  std::vector<glm::dvec3> mesh_vertices;      ///< metres
+  std::vector<std::uint32_t> triangles;       ///< into mesh_vertices, grouped by cell
+  std::vector<int> cell_first;                ///< cell q: triangles[cell_first[q], cell_first[q+1])
+  std::vector<int> near_first, near_cells;    ///< adaptive: cells touching cell q (and q)
+  std::vector<std::array<int, 4>> cell_rect;  ///< adaptive: sample rectangle x0, y0, x1, y1
   /// Adaptive: per cell, the weight of its sample in the metric's means: its
   /// area in samples, so a mean over cells is, as on the uniform grid, a mean
   /// over the terrain's area (not over cells, which are small near the

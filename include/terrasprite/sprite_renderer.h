@@ -33,7 +33,7 @@ enum class CoarseMesh {
 const char* to_string(CoarseMesh mesh);
 
 struct SpriteOptions {
-  int lod_quads = 16;         ///< coarse grid quads per side (>= 1)
+  int lod_quads = 16;  ///< coarse grid quads per side (>= 1)
   CoarseMesh mesh = CoarseMesh::kUniform;
   /// Adaptive mesh: at most this many triangles; 0 = the uniform grid's
   /// 2 x lod_quads^2, so both meshes (and plain LOD of lod_quads) draw the

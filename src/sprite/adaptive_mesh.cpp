@@ -31,10 +31,18 @@ constexpr Key kMask = (Key(1) << kBits) - 1;
 Key node(int l, int i, int j) {
   return (Key(l) << (2 * kBits)) | (Key(j) << kBits) | Key(i);
 }
-int level_of(Key k) { return int(k >> (2 * kBits)); }
-int i_of(Key k) { return int(k & kMask); }
-int j_of(Key k) { return int((k >> kBits) & kMask); }
-Key parent(Key k) { return node(level_of(k) - 1, i_of(k) / 2, j_of(k) / 2); }
+int level_of(Key k) {
+  return int(k >> (2 * kBits));
+}
+int i_of(Key k) {
+  return int(k & kMask);
+}
+int j_of(Key k) {
+  return int((k >> kBits) & kMask);
+}
+Key parent(Key k) {
+  return node(level_of(k) - 1, i_of(k) / 2, j_of(k) / 2);
+}
 Key child(Key k, int c) {
   return node(level_of(k) + 1, 2 * i_of(k) + (c & 1), 2 * j_of(k) + (c >> 1));
 }
@@ -86,8 +94,9 @@ struct AdaptiveMesher::Impl {
           const std::size_t at = std::size_t(j) * n + i;
           if (l + 1 < levels)  // monotone: a node errs at least as much as its children
             for (int c = 0; c < 4; ++c)
-              dev = std::max(dev, double(error[l + 1][std::size_t(2 * j + (c >> 1)) * 2 * n +
-                                                      2 * i + (c & 1)]));
+              dev = std::max(
+                  dev,
+                  double(error[l + 1][std::size_t(2 * j + (c >> 1)) * 2 * n + 2 * i + (c & 1)]));
           error[l][at] = float(dev);
           zmin[l][at] = float(lo);
           zmax[l][at] = float(hi);
@@ -278,8 +287,9 @@ CoarseGrid AdaptiveMesher::build(const Camera& camera, int width, int height,
     // A fan around the centre over the boundary, counter-clockwise seen from
     // above: a, (west), d, (south), e, (east), b, (north).
     const int xm = m.xs[l + 1][2 * i + 1], ym = m.ys[l + 1][2 * j + 1];
-    auto has = [&](int dx, int dy) { return r.in_bounds(l, i + dx, j + dy) &&
-                                            r.split.count(node(l, i + dx, j + dy)) > 0; };
+    auto has = [&](int dx, int dy) {
+      return r.in_bounds(l, i + dx, j + dy) && r.split.count(node(l, i + dx, j + dy)) > 0;
+    };
     std::vector<std::uint32_t> ring{a};
     if (has(-1, 0)) ring.push_back(vertex(x0, ym));
     ring.push_back(d);
@@ -327,8 +337,10 @@ CoarseGrid AdaptiveMesher::build(const Camera& camera, int width, int height,
       const glm::ivec2 lo = glm::min(p0, glm::min(p1, p2)), hi = glm::max(p0, glm::max(p1, p2));
       for (int y = lo.y; y <= hi.y; ++y)
         for (int x = lo.x; x <= hi.x; ++x) {
-          const double u = (double(x - p0.x) * (p2.y - p0.y) - double(p2.x - p0.x) * (y - p0.y)) / det;
-          const double v = (double(p1.x - p0.x) * (y - p0.y) - double(x - p0.x) * (p1.y - p0.y)) / det;
+          const double u =
+              (double(x - p0.x) * (p2.y - p0.y) - double(p2.x - p0.x) * (y - p0.y)) / det;
+          const double v =
+              (double(p1.x - p0.x) * (y - p0.y) - double(x - p0.x) * (p1.y - p0.y)) / det;
           if (u < -1e-9 || v < -1e-9 || u + v > 1 + 1e-9) continue;
           dev = std::max(dev, std::abs(h.at(x, y) - (z0 + u * (z1 - z0) + v * (z2 - z0))));
         }

@@ -25,8 +25,8 @@ struct AsyncKeyframes::Slot {
   GLsync freed = nullptr;         // caller -> worker: the caller's last sampling is done
 };
 
-AsyncKeyframes::AsyncKeyframes(const GlContext& share, const Terrain& terrain,
-                               GridMaker make_grid, int width, int height, bool lighting)
+AsyncKeyframes::AsyncKeyframes(const GlContext& share, const Terrain& terrain, GridMaker make_grid,
+                               int width, int height, bool lighting)
     : make_grid_(std::move(make_grid)), width_(width), height_(height), lighting_(lighting) {
   std::unique_ptr<GlContext> context = share.create_shared();
   worker_ = std::thread(&AsyncKeyframes::run, this, std::move(context), std::cref(terrain));

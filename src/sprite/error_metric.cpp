@@ -61,8 +61,8 @@ glm::dvec3 grid_normal(const Heightfield& h, int i, int j) {
   const int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, h.width - 1);
   const int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, h.height - 1);
   const double dzdx = i1 > i0 ? (h.at(i1, j) - h.at(i0, j)) / ((i1 - i0) * h.spacing_x) : 0.0;
-  const double dzdy = j1 > j0 ? (h.at(i, j0) - h.at(i, j1)) / ((j1 - j0) * h.spacing_y)
-                              : 0.0;  // rows run south
+  const double dzdy =
+      j1 > j0 ? (h.at(i, j0) - h.at(i, j1)) / ((j1 - j0) * h.spacing_y) : 0.0;  // rows run south
   return glm::normalize(glm::dvec3(-dzdx, -dzdy, 1.0));
 }
 
@@ -258,7 +258,7 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
                               footprint(k.key.position, key_forward, C, g.normal[q]);
     sum_log_scale += w * std::abs(0.5 * std::log(area_ratio));
     sum_log_aniso += w * std::log(anisotropic_stretch(key_vp, vp, k.width, k.height, C, g.normal[q],
-                                                  glm::length(k.key.position - C)));
+                                                      glm::length(k.key.position - C)));
     glm::dvec2 pp;
     if (project(vp, k.width, k.height, k.c_prime[q], pp)) {
       const glm::dvec2 dp = pp - pc;

@@ -8,8 +8,8 @@ namespace terrasprite {
 
 Keyframe::Keyframe(int width, int height) : target(width, height) {}
 
-void Keyframe::capture(TerrainGpu& scene, std::shared_ptr<const CoarseGrid> coarse,
-                       const Camera& c, bool lighting, int pieces) {
+void Keyframe::capture(TerrainGpu& scene, std::shared_ptr<const CoarseGrid> coarse, const Camera& c,
+                       bool lighting, int pieces) {
   grid = std::move(coarse);
   camera = c;
   view_projection = glm::mat4(gl::view_projection_reversed_z(c));

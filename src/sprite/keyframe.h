@@ -16,10 +16,10 @@ struct Keyframe {
   gl::RenderTarget
       target;  // colour (transparent black on sky) + depth textures, sampled by sprite frames
   Camera camera;
-  glm::mat4 view_projection{1.f};      // reversed-Z GL matrix the keyframe was drawn with
+  glm::mat4 view_projection{1.f};          // reversed-Z GL matrix the keyframe was drawn with
   std::shared_ptr<const CoarseGrid> grid;  // the coarse mesh its sprite frames draw
-  KeyframeSamples samples;             // the error metric's per-quad C' and visibility
-  std::vector<std::uint8_t> fallback;  // per quad: 1 = takes the drape texture
+  KeyframeSamples samples;                 // the error metric's per-quad C' and visibility
+  std::vector<std::uint8_t> fallback;      // per quad: 1 = takes the drape texture
   bool valid = false;
   long long used = 0;  // when it last stopped being the current keyframe (cache policy)
 

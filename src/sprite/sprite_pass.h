@@ -42,8 +42,8 @@ class SpritePass {
   GLint u_vp_, u_key_vp_;
   // The coarse mesh's vertices with two index lists: keyframe quads, drape quads.
   GpuMesh key_mesh_, drape_mesh_;
-  GLuint source_ = 0;        // vertex buffer the split meshes point at
-  std::uint64_t grid_ = 0;   // serial of the grid they were split from
+  GLuint source_ = 0;       // vertex buffer the split meshes point at
+  std::uint64_t grid_ = 0;  // serial of the grid they were split from
   std::vector<std::uint8_t> last_drape_;
   int key_quads_ = 0;
 };

@@ -56,7 +56,7 @@ constexpr double kInitialLatencyFrames = 8;
 struct SpriteRenderer::State {
   Scene& scene;
   SpriteOptions options;
-  std::shared_ptr<const CoarseGrid> uniform;      // the uniform grid (always made)
+  std::shared_ptr<const CoarseGrid> uniform;     // the uniform grid (always made)
   std::unique_ptr<const AdaptiveMesher> mesher;  // with the adaptive mesh
   AdaptiveMeshOptions mesh_options;
   std::unique_ptr<GpuMesh> adaptive_gpu;  // the adaptive grid uploaded last
@@ -84,8 +84,8 @@ struct SpriteRenderer::State {
   State(Scene& s, int w, int h, const SpriteOptions& o)
       : scene(s),
         options(o),
-        uniform(std::make_shared<const CoarseGrid>(
-            make_coarse_grid(s.terrain().heights, o.lod_quads))),
+        uniform(
+            std::make_shared<const CoarseGrid>(make_coarse_grid(s.terrain().heights, o.lod_quads))),
         width(w),
         height(h),
         key(std::make_unique<Keyframe>(w, h)),
@@ -289,8 +289,8 @@ void SpriteRenderer::draw_sprite_pass(const Camera& camera) {
   }
   const GpuMesh& coarse = s.coarse_gpu(terrain);
   begin_output();
-  s.pass.draw(terrain, coarse, g, s.current(),
-              glm::mat4(gl::view_projection_reversed_z(camera)), s.flags, s.options.lighting);
+  s.pass.draw(terrain, coarse, g, s.current(), glm::mat4(gl::view_projection_reversed_z(camera)),
+              s.flags, s.options.lighting);
 }
 
 Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {

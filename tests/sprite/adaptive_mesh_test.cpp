@@ -53,9 +53,7 @@ void expect_watertight(const CoarseGrid& g, const Heightfield& h) {
   EXPECT_NEAR(area, h.extent_x() * h.extent_y(), 1e-6 * h.extent_x() * h.extent_y());
   const double x0 = h.world_x(0), x1 = h.world_x(h.width - 1), y0 = h.world_y(h.height - 1),
                y1 = h.world_y(0);
-  auto on_border = [&](glm::dvec3 p) {
-    return p.x == x0 || p.x == x1 || p.y == y0 || p.y == y1;
-  };
+  auto on_border = [&](glm::dvec3 p) { return p.x == x0 || p.x == x1 || p.y == y0 || p.y == y1; };
   int open = 0;
   for (const auto& [edge, n] : uses) {
     const glm::dvec3 a = g.mesh_vertices[edge.first], b = g.mesh_vertices[edge.second];
@@ -128,8 +126,8 @@ TEST(AdaptiveMesh, NoBudgetAndNoToleranceIsTheFullField) {
   t.heights = synthesize_terrain({.size = 33, .spacing_m = 30.0, .relief_m = 600.0});
   const Heightfield& h = t.heights;
   const AdaptiveMesher mesher(h);
-  const CoarseGrid g = mesher.build(low_south_view(h), 64, 64,
-                                    {.triangle_budget = 1LL << 40, .tolerance_px = 0});
+  const CoarseGrid g =
+      mesher.build(low_south_view(h), 64, 64, {.triangle_budget = 1LL << 40, .tolerance_px = 0});
   expect_watertight(g, h);
   // Every sample, interpolated on the triangle over it, is the field's height.
   double worst = 0;
@@ -138,7 +136,8 @@ TEST(AdaptiveMesh, NoBudgetAndNoToleranceIsTheFullField) {
       const glm::dvec3 p(h.world_x(i), h.world_y(j), 0);
       bool found = false;
       for (std::size_t k = 0; k < g.triangles.size() && !found; k += 3) {
-        const glm::dvec3 a = g.mesh_vertices[g.triangles[k]], b = g.mesh_vertices[g.triangles[k + 1]],
+        const glm::dvec3 a = g.mesh_vertices[g.triangles[k]],
+                         b = g.mesh_vertices[g.triangles[k + 1]],
                          d = g.mesh_vertices[g.triangles[k + 2]];
         const double area = cross2(a, b, d), u = cross2(a, p, d) / area, v = cross2(a, b, p) / area;
         if (u < -1e-9 || v < -1e-9 || u + v > 1 + 1e-9) continue;

@@ -54,7 +54,8 @@ TEST(AsyncKeyframes, LandedTexturesEqualAKeyframeDrawnHere) {
   const int w = 64, h = 64;
   const auto grid = std::make_shared<const CoarseGrid>(make_coarse_grid(t.heights, 16));
   const std::vector<Camera> path = paper_path(t.heights, 20, 1.0);
-  AsyncKeyframes worker(gl, t, [&](const Camera&) { return grid; }, w, h, false);
+  AsyncKeyframes worker(
+      gl, t, [&](const Camera&) { return grid; }, w, h, false);
   Keyframe here(w, h);
   for (int i : {0, 10, 19}) {
     worker.request(path[i]);

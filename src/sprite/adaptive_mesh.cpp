@@ -60,7 +60,9 @@ struct AdaptiveMesher::Impl {
   const Heightfield& h;
   int levels = 0;
   std::vector<std::vector<int>> xs, ys;               // per level: quad_indices(n, 2^level)
-  std::vector<std::vector<float>> error, zmin, zmax;  // levels below `levels`, row-major
+  // Levels below `levels`, row-major: geometric error (monotone), the node's
+  // own two-triangle error, height range.
+  std::vector<std::vector<float>> error, own, zmin, zmax;
 
   explicit Impl(const Heightfield& hf) : h(hf) {
     assert(h.width >= 2 && h.height >= 2);
@@ -70,11 +72,13 @@ struct AdaptiveMesher::Impl {
       ys.push_back(quad_indices(h.height, 1 << l));
     }
     error.resize(levels);
+    own.resize(levels);
     zmin.resize(levels);
     zmax.resize(levels);
     for (int l = levels - 1; l >= 0; --l) {
       const int n = 1 << l;
       error[l].resize(std::size_t(n) * n);
+      own[l].resize(std::size_t(n) * n);
       zmin[l].resize(std::size_t(n) * n);
       zmax[l].resize(std::size_t(n) * n);
       tbb::parallel_for(0, n, [&, l, n](int j) {
@@ -92,6 +96,7 @@ struct AdaptiveMesher::Impl {
               dev = std::max(dev, std::abs(z - s));
             }
           const std::size_t at = std::size_t(j) * n + i;
+          own[l][at] = float(dev);
           if (l + 1 < levels)  // monotone: a node errs at least as much as its children
             for (int c = 0; c < 4; ++c)
               dev = std::max(
@@ -325,8 +330,15 @@ CoarseGrid AdaptiveMesher::build(const Camera& camera, int width, int height,
   }
   g.cell_first.push_back(int(g.triangles.size()));
 
-  // Largest vertical distance between a sample and the triangles drawn over it.
+  // Largest vertical distance between a sample and the triangles drawn over
+  // it: a two-triangle leaf's own error, else measured on its fan.
   tbb::parallel_for(std::size_t(0), n, [&](std::size_t q) {
+    const Key k = leaves[q];
+    const int l = level_of(k);
+    if (l < m.levels && g.cell_first[q + 1] - g.cell_first[q] == 6) {
+      g.max_deviation[q] = m.own[l][std::size_t(j_of(k)) * (1 << l) + i_of(k)];
+      return;
+    }
     double dev = 0;
     for (int t = g.cell_first[q]; t < g.cell_first[q + 1]; t += 3) {
       const glm::ivec2 p0 = vertex_sample[g.triangles[t]], p1 = vertex_sample[g.triangles[t + 1]],

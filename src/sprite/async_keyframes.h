@@ -38,7 +38,7 @@ class AsyncKeyframes {
   /// DeviceError when the shared context cannot be made or used. `terrain` and
   /// `grid` must outlive this.
   AsyncKeyframes(const GlContext& share, const Terrain& terrain, const CoarseGrid& grid, int width,
-                 int height, bool lighting);
+                 int height, bool lighting, bool contrast, TerrainShading shading);
   /// Stops the worker: a keyframe being rendered is finished first (GL has no
   /// way to abandon a draw), then the worker frees its GL objects and context.
   ~AsyncKeyframes();
@@ -73,6 +73,9 @@ class AsyncKeyframes {
   const CoarseGrid& grid_;
   const int width_, height_;
   const bool lighting_;
+  const bool contrast_;
+  const TerrainShading shading_;  // the main scene's, for the worker's own scene  // keyframes also
+                                  // measure their contrast (ErrorMetric::kContrast)
   mutable std::mutex mutex_;
   std::condition_variable wake_;  // worker: a request or stop; caller: ready or landed
   std::vector<std::unique_ptr<Slot>> slots_;

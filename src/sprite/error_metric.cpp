@@ -198,7 +198,8 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
   const double pixel = view.pixel_angle(k.height);
   const glm::dmat4 vp = view.view_projection();
   const glm::dvec3 forward = view.forward();
-  double sum_paper = 0, sum_exact = 0, sum_log_scale = 0, sum_log_aniso = 0;
+  double sum_paper = 0, sum_exact = 0, sum_log_scale = 0, sum_log_aniso = 0, sum_contrast = 0;
+  const bool contrast = !k.gradient.empty();
   const glm::dmat4 key_vp = k.key.view_projection();
   const glm::dvec3 key_forward = k.key.forward();
   // Pixels covering a small patch at C: dA |cos(incidence)| / (d^2 cos^3(off-axis angle)), up to
@@ -232,11 +233,17 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
     if (project(vp, k.width, k.height, k.c_prime[q], pp)) {
       const glm::dvec2 dp = pp - pc;
       sum_exact += glm::dot(dp, dp);
+      if (contrast) {
+        const double level = std::min(double(k.gradient[q]) * glm::length(dp),
+                                      std::sqrt(2.0) * double(k.deviation[q]));
+        sum_contrast += level * level;
+      }
     }
   }
   if (e.samples > 0) {
     e.paper_px = std::sqrt(sum_paper / e.samples);
     e.exact_px = std::sqrt(sum_exact / e.samples);
+    e.contrast_levels = std::sqrt(sum_contrast / e.samples);
     e.resample_scale = std::exp(sum_log_scale / e.samples);
     e.resample_aniso = std::exp(sum_log_aniso / e.samples);
   }

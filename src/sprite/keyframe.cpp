@@ -4,9 +4,14 @@
 // from its depth buffer which coarse polygons the keyframe can texture.
 #include "sprite/keyframe.h"
 
+#include <utility>
+
+#include "sprite/keyframe_contrast.h"
+
 namespace terrasprite {
 
-Keyframe::Keyframe(int width, int height, const CoarseGrid& grid) : target(width, height) {
+Keyframe::Keyframe(int width, int height, const CoarseGrid& grid, bool measure_contrast)
+    : target(width, height), contrast(measure_contrast) {
   fallback.assign(static_cast<std::size_t>(grid.quad_count()), 1);
 }
 
@@ -45,6 +50,12 @@ void Keyframe::capture(TerrainGpu& scene, const CoarseGrid& grid, const Camera& 
       fallback[q] = (corners && (centre || !grid.has_centre[q])) ? 0 : 1;
     }
   samples = make_keyframe_samples(grid, c, target.width(), target.height(), centre_visible);
+  if (contrast) {
+    const Image color = target.read_color();
+    QuadContrast qc = quad_contrast(grid, c, target.width(), target.height(), color.rgba);
+    samples.gradient = std::move(qc.gradient);
+    samples.deviation = std::move(qc.deviation);
+  }
   valid = true;
 }
 

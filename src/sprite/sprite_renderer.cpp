@@ -78,7 +78,7 @@ struct SpriteRenderer::State {
         grid(make_coarse_grid(s.terrain().heights, o.lod_quads)),
         width(w),
         height(h),
-        key(std::make_unique<Keyframe>(w, h, grid)),
+        key(std::make_unique<Keyframe>(w, h, grid, o.metric == ErrorMetric::kContrast)),
         cache(cache_capacity(o, w, h), o.cache_policy) {}
 
   static std::size_t keyframe_bytes(int w, int h) { return std::size_t(w) * std::size_t(h) * 8; }
@@ -97,7 +97,9 @@ struct SpriteRenderer::State {
     ++serial;
     if (cache.capacity() == 0 || !key->valid) return;
     std::unique_ptr<Keyframe> spare = cache.put(std::move(key), tick, now);
-    key = spare ? std::move(spare) : std::make_unique<Keyframe>(width, height, grid);
+    key = spare ? std::move(spare)
+                : std::make_unique<Keyframe>(width, height, grid,
+                                             options.metric == ErrorMetric::kContrast);
     key->valid = false;
   }
 };
@@ -126,8 +128,9 @@ SpriteRenderer::SpriteRenderer(Scene& scene, int width, int height, SpriteOption
   scene.prepare(0);
   scene.prepare(options.lod_quads);
   if (options.async_context)
-    s_->async = std::make_unique<AsyncKeyframes>(*options.async_context, scene.terrain(), s_->grid,
-                                                 width, height, options.lighting);
+    s_->async = std::make_unique<AsyncKeyframes>(
+        *options.async_context, scene.terrain(), s_->grid, width, height, options.lighting,
+        options.metric == ErrorMetric::kContrast, scene.shading());
 }
 
 SpriteRenderer::~SpriteRenderer() = default;

@@ -54,7 +54,8 @@ TEST(AsyncKeyframes, LandedTexturesEqualAKeyframeDrawnHere) {
   const int w = 64, h = 64;
   const CoarseGrid grid = make_coarse_grid(t.heights, 16);
   const std::vector<Camera> path = paper_path(t.heights, 20, 1.0);
-  AsyncKeyframes worker(gl, t, grid, w, h, false);
+  AsyncKeyframes worker(gl, t, grid, w, h, /*lighting=*/false, /*contrast=*/false,
+                        TerrainShading::kPlain);
   Keyframe here(w, h, grid);
   for (int i : {0, 10, 19}) {
     worker.request(path[i]);

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <thread>
 #include <vector>
 
@@ -160,7 +161,7 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
   for (int c = 0; c < n; ++c) {
     std::int64_t a, b;
     if (layout.rows(c, w, h, a, b)) {
-      k0[c] = a;
+      k0[c] = std::max(a, layout.tier_start(c));
       k1[c] = b;
     }
     offset[c + 1] = offset[c] + std::size_t(std::max<std::int64_t>(0, k1[c] - k0[c] + 1));
@@ -218,16 +219,20 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
     cf = (b / a - layout.c0) * inv_dc - 0.5;  // one division per pixel
     kf = a * inv_dr;
   };
+  // Tiered polar layouts: between columns L and L + s, L a multiple of the
+  // pixel's stride s (cf / s is exact: s is a power of 2).
   auto resample = [&](int x, int y, double cf, double kf) {
-    const double cfl = double(floor_i64(cf)), kfl = double(floor_i64(kf));
-    const float fc = float(cf - cfl), fk = float(kf - kfl);
-    const long cbase = long(cfl);
+    const int s = layout.stride_at(kf);
+    const double cs = cf / s;
+    const double cfl = double(floor_i64(cs)), kfl = double(floor_i64(kf));
+    const float fc = float(cs - cfl), fk = float(kf - kfl);
+    const long cbase = long(cfl) * s;
     const std::int64_t kbase = std::int64_t(kfl);
     float acc[3] = {0, 0, 0}, wsum = 0, wbest = -1, dsum = 0, dmin = Frame::kSky, dmax = 0;
     float dbest = Frame::kSky;
     bool all_hit = true;
     for (int a = 0; a < 2; ++a) {
-      long c = cbase + a;
+      long c = cbase + a * s;
       if (c < 0 || c >= n) {
         if (!layout.wrap) continue;
         c = c < 0 ? c + n : c - n;
@@ -296,12 +301,15 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
   // task marches its chunk and at once resamples the pixels lying between
   // the chunk's columns, while they are in cache. Pixels between two chunks
   // (one seam per chunk) follow when all columns are done.
-  constexpr int kChunk = 24;
+  // Chunks hold whole tiers: a multiple of the coarsest stride.
+  const int kChunk = std::lcm(24, layout.smax);
   const int chunks = (n + kChunk - 1) / kChunk;
   const SlopeRowLocator slope_row{layout.vx, layout.vy, layout.ex, layout.ey,
                                   layout.c0, inv_dc,    inv_dr,    n - 1};
-  auto key_of = [&](double cf) { return std::clamp(long(floor_i64(cf)), -1L, long(n) - 1); };
-  // Pixels whose key lies in [lo, hi): per row, the wedge between the planes
+  // Pixels between columns lo and hi: either those whose both columns (L and
+  // L + s, the stride s being 1 but for tiered polar layouts) lie in [lo, hi]
+  // (lo < 0 and hi >= n: unbounded), or, for a seam (hi the first column of
+  // a chunk, lo = hi - smax), those whose columns straddle hi. Per row, the wedge between the planes
   // bounding those keys is an interval of x. Key k holds the parameters
   // [c0 + (k + 0.5) dc, c0 + (k + 1.5) dc); the wedge is widened by a quarter
   // column each side (many orders above locate's rounding), so the scan stays
@@ -309,7 +317,11 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
   // 1.3 times instead of 1.7-1.8 (1080p, -30 deg; the key filter still
   // decides; the polar side test below brings atan2 calls to ~1.0 a pixel). The first and last keys
   // also take the clamped pixels: widened by a column.
-  auto resample_keys = [&](long lo, long hi) {
+  auto owns = [&](long left, int s, long lo, long hi, bool seam) {
+    if (seam) return left < hi && left + s >= hi;
+    return (lo < 0 || left >= lo) && (hi >= n || left + s <= hi);
+  };
+  auto resample_keys = [&](long lo, long hi, bool seam) {
     const double slack_lo = lo < 0 ? 1.0 : 0.25, slack_hi = hi >= n ? 1.0 : 0.25;
     const double p_lo = layout.c0 + (double(lo) + 0.5 - slack_lo) * layout.dc;
     const double p_hi = layout.c0 + (double(hi) + 0.5 + slack_hi) * layout.dc;
@@ -355,7 +367,7 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
         keys.resize(count);
         locate_slope_row(slope_row, y, x0, count, cfs.data(), kfs.data(), keys.data());
         for (int i = 0; i < count; ++i)
-          if (keys[i] >= lo && keys[i] < hi) resample(x0 + i, y, cfs[i], kfs[i]);
+          if (owns(keys[i], 1, lo, hi, seam)) resample(x0 + i, y, cfs[i], kfs[i]);
         continue;
       }
       for (int x = x0; x <= x1; ++x) {
@@ -365,8 +377,9 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
         }
         double cf, kf;
         locate(x, y, cf, kf);
-        const long key = key_of(cf);
-        if (key >= lo && key < hi) resample(x, y, cf, kf);
+        const int s = layout.stride_at(kf);
+        const long left = std::clamp(long(floor_i64(cf / s)) * s, -long(s), long(n) - 1);
+        if (owns(left, s, lo, hi, seam)) resample(x, y, cf, kf);
       }
     }
   };
@@ -376,15 +389,15 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
         for (int j = range.begin(); j < range.end(); ++j) {
           const int ca = j * kChunk, cb = std::min(n, ca + kChunk);
           for (int c = ca; c < cb; ++c) march_column(c);
-          resample_keys(j == 0 ? -1 : ca, j == chunks - 1 ? n : cb - 1);
+          resample_keys(j == 0 ? -1 : ca, j == chunks - 1 ? n : cb - 1, false);
         }
       },
       tbb::simple_partitioner());
   tbb::parallel_for(tbb::blocked_range<int>(0, chunks - 1, 1),
                     [&](const tbb::blocked_range<int>& range) {
                       for (int j = range.begin(); j < range.end(); ++j) {
-                        const long seam = long(j + 1) * kChunk - 1;
-                        resample_keys(seam, seam + 1);
+                        const long seam = long(j + 1) * kChunk;
+                        resample_keys(seam - layout.smax, seam, true);
                       }
                     });
 }

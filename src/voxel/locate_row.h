@@ -20,4 +20,15 @@ struct SlopeRowLocator {
 void locate_slope_row(const SlopeRowLocator& L, int y, int x0, int count, double* cf, double* kf,
                       std::int32_t* key);
 
+/// The polar layout's constants (angle around V from the axis e).
+struct PolarRowLocator {
+  double vx, vy, ex, ey, c0, inv_dc, inv_dr;
+  bool wrap;  ///< angles in [0, 2 pi) instead of (-pi, pi]
+};
+
+/// Pixels x0 .. x0 + count - 1 of row y: cf = (angle - c0) * inv_dc - 0.5 and
+/// kf = radius * inv_dr, the angle from a vectorised atan2 (Cephes' rational
+/// atan, within 2e-16 rad of libm's, no call per pixel).
+void locate_polar_row(const PolarRowLocator& L, int y, int x0, int count, double* cf, double* kf);
+
 }  // namespace terrasprite

@@ -12,6 +12,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cstring>
 #include <chrono>
 #include <cmath>
 #include <numeric>
@@ -209,68 +210,111 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
                      hit ? float(hits[i].t * inv_hz[i]) : Frame::kSky};
     }
   };
-  // One pixel from the buffer: bilinear colour; depth bilinear on a surface,
-  // nearest across a silhouette.
+  // Resampling, a row segment at a time: first each pixel's two columns (L
+  // and L + s; s = 1 but in a tiered polar layout's inner tiers, where L is a
+  // multiple of s, so cf / s is exact) and sample rows kb, kb + 1, with a
+  // prefetch of the samples; then the blends: bilinear colour, depth bilinear
+  // on a surface and nearest across a silhouette. Splitting the two keeps many
+  // pixels' buffer reads in flight at once (the blend waited on them).
   const double inv_dc = 1.0 / layout.dc, inv_dr = 1.0 / layout.dr;
-  auto locate = [&](int x, int y, double& cf, double& kf) {
-    if (layout.polar) return layout.locate(x + 0.5, y + 0.5, cf, kf);
-    const double dx = x + 0.5 - layout.vx, dy = y + 0.5 - layout.vy;
-    const double a = dx * layout.ex + dy * layout.ey, b = dy * layout.ex - dx * layout.ey;
-    cf = (b / a - layout.c0) * inv_dc - 0.5;  // one division per pixel
-    kf = a * inv_dr;
+  struct Tap {
+    int x;
+    float fc, fk;
+    std::size_t at[2];  // buffer index of sample kb of column L, L + s (modular)
+    unsigned ok;        // bit 2a + b: column a holds sample kb + b
   };
-  // Tiered polar layouts: between columns L and L + s, L a multiple of the
-  // pixel's stride s (cf / s is exact: s is a power of 2).
-  auto resample = [&](int x, int y, double cf, double kf) {
-    const int s = layout.stride_at(kf);
-    const double cs = cf / s;
-    const double cfl = double(floor_i64(cs)), kfl = double(floor_i64(kf));
-    const float fc = float(cs - cfl), fk = float(kf - kfl);
-    const long cbase = long(cfl) * s;
-    const std::int64_t kbase = std::int64_t(kfl);
-    float acc[3] = {0, 0, 0}, wsum = 0, wbest = -1, dsum = 0, dmin = Frame::kSky, dmax = 0;
-    float dbest = Frame::kSky;
-    bool all_hit = true;
-    for (int a = 0; a < 2; ++a) {
-      long c = cbase + a * s;
-      if (c < 0 || c >= n) {
-        if (!layout.wrap) continue;
-        c = c < 0 ? c + n : c - n;
+  // Which pixels a task owns: mode 0 all; 1 those whose both columns lie in
+  // [lo, hi] (lo < 0, hi >= n: unbounded); 2 (a seam) those whose columns
+  // straddle hi.
+  auto owns = [&](long left, int s, long lo, long hi, int mode) {
+    if (mode == 2) return left < hi && left + s >= hi;
+    return mode == 0 || ((lo < 0 || left >= lo) && (hi >= n || left + s <= hi));
+  };
+  auto resample_span = [&](int y, int x0, int count, const double* cf, const double* kf, long lo,
+                           long hi, int mode) {
+    thread_local std::vector<Tap> taps;
+    taps.resize(std::size_t(count));
+    int m = 0;
+    for (int i = 0; i < count; ++i) {
+      const int s = layout.stride_at(kf[i]);
+      const double cs = cf[i] / s;
+      const double cfl = double(floor_i64(cs)), kfl = double(floor_i64(kf[i]));
+      const long cbase = long(cfl) * s;
+      if (!owns(std::clamp(cbase, -long(s), long(n) - 1), s, lo, hi, mode)) continue;
+      Tap& t = taps[std::size_t(m++)];
+      t.x = x0 + i;
+      t.fc = float(cs - cfl);
+      t.fk = float(kf[i] - kfl);
+      t.ok = 0;
+      const std::int64_t kb = std::int64_t(kfl);
+      for (int a = 0; a < 2; ++a) {
+        long c = cbase + a * s;
+        t.at[a] = 0;
+        if (c < 0 || c >= n) {
+          if (!layout.wrap) continue;
+          c = c < 0 ? c + n : c - n;
+        }
+        const std::int64_t c0k = k0[c], c1k = k1[c];
+        const bool b0 = kb >= c0k && kb <= c1k, b1 = kb + 1 >= c0k && kb + 1 <= c1k;
+        t.ok |= (unsigned(b0) | unsigned(b1) << 1) << (2 * a);
+        t.at[a] = offset[c] + std::size_t(kb - c0k);
+        if (b0 || b1) __builtin_prefetch(&samples[t.at[a] + (b0 ? 0 : 1)]);
       }
-      const float wc = a ? fc : 1 - fc;
-      const std::int64_t c0k = k0[c], c1k = k1[c];
-      const std::size_t base = offset[c];
-      for (int b = 0; b < 2; ++b) {
-        const std::int64_t k = kbase + b;
-        if (k < c0k || k > c1k) continue;
-        const float wgt = wc * (b ? fk : 1 - fk);
-        const Sample& smp = samples[base + std::size_t(k - c0k)];
-        const std::uint32_t p = smp.color;
-        acc[0] += wgt * float(p & 0xff);
-        acc[1] += wgt * float((p >> 8) & 0xff);
-        acc[2] += wgt * float((p >> 16) & 0xff);
-        wsum += wgt;
-        dsum += wgt * smp.depth;
-        all_hit = all_hit && smp.depth < Frame::kSky;
-        dmin = std::min(dmin, smp.depth);
-        dmax = std::max(dmax, smp.depth);
-        if (wgt > wbest) {
-          wbest = wgt;
-          dbest = smp.depth;
+    }
+    std::uint8_t* row = out.color.px(0, y);
+    float* depth = out.depth.data() + std::size_t(y) * w;
+    for (int j = 0; j < m; ++j) {
+      const Tap& t = taps[std::size_t(j)];
+      float acc[3] = {0, 0, 0}, wsum = 0, wbest = -1, dsum = 0, dmin = Frame::kSky, dmax = 0;
+      float dbest = Frame::kSky;
+      bool all_hit = true;
+      for (int a = 0; a < 2; ++a) {
+        const float wc = a ? t.fc : 1 - t.fc;
+        for (int b = 0; b < 2; ++b) {
+          if (!((t.ok >> (2 * a + b)) & 1u)) continue;
+          const float wgt = wc * (b ? t.fk : 1 - t.fk);
+          const Sample& smp = samples[t.at[a] + std::size_t(b)];
+          const std::uint32_t p = smp.color;
+          acc[0] += wgt * float(p & 0xff);
+          acc[1] += wgt * float((p >> 8) & 0xff);
+          acc[2] += wgt * float((p >> 16) & 0xff);
+          wsum += wgt;
+          dsum += wgt * smp.depth;
+          all_hit = all_hit && smp.depth < Frame::kSky;
+          dmin = std::min(dmin, smp.depth);
+          dmax = std::max(dmax, smp.depth);
+          if (wgt > wbest) {
+            wbest = wgt;
+            dbest = smp.depth;
+          }
         }
       }
+      std::uint32_t c = kSkyPacked;
+      if (wsum > 0) {
+        const float inv = 1.0f / wsum;
+        c = 0xff000000u;
+        for (int ch = 0; ch < 3; ++ch)
+          c |= std::uint32_t(std::uint8_t(std::min(acc[ch] * inv + 0.5f, 255.f))) << (8 * ch);
+      }
+      std::memcpy(row + std::size_t(t.x) * 4, &c, 4);
+      // Depth: interpolated on a surface, nearest across a silhouette.
+      const bool smooth = wsum > 0 && all_hit && dmax - dmin <= 0.3f * dmin;
+      depth[t.x] = smooth ? dsum / wsum : dbest;
     }
-    std::uint8_t* px = out.color.px(x, y);
-    if (wsum > 0) {
-      const float inv = 1.0f / wsum;
-      for (int ch = 0; ch < 3; ++ch) px[ch] = std::uint8_t(std::min(acc[ch] * inv + 0.5f, 255.f));
-    } else {
-      for (int ch = 0; ch < 3; ++ch) px[ch] = kSkyColor[ch];
-    }
-    px[3] = 255;
-    // Depth: interpolated on a surface, nearest across a silhouette.
-    const bool smooth = wsum > 0 && all_hit && dmax - dmin <= 0.3f * dmin;
-    out.depth[std::size_t(y) * w + x] = smooth ? dsum / wsum : dbest;
+  };
+  const SlopeRowLocator slope_row{layout.vx, layout.vy, layout.ex, layout.ey,
+                                  layout.c0, inv_dc,    inv_dr,    n - 1};
+  const PolarRowLocator polar_row{layout.vx, layout.vy, layout.ex,   layout.ey,
+                                  layout.c0, inv_dc,    inv_dr,      layout.wrap};
+  thread_local std::vector<double> cfs, kfs;
+  thread_local std::vector<std::int32_t> keys;
+  // Locates pixels x0 .. x0 + count - 1 of row y into cfs, kfs.
+  auto locate_span = [&](int y, int x0, int count) {
+    cfs.resize(std::size_t(count));
+    kfs.resize(std::size_t(count));
+    if (layout.polar) return locate_polar_row(polar_row, y, x0, count, cfs.data(), kfs.data());
+    keys.resize(std::size_t(count));
+    locate_slope_row(slope_row, y, x0, count, cfs.data(), kfs.data(), keys.data());
   };
 
   if (layout.wrap) {
@@ -282,17 +326,17 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
           for (int c = range.begin(); c < range.end(); ++c) march_column(c);
         },
         tbb::simple_partitioner());
-    constexpr int kStrip = 8;  // vertical strips read few buffer columns, sequentially
+    // Vertical strips of 64 pixels: whole cache lines of the output rows (8-pixel
+    // strips wrote each line in two halves, at different times).
+    constexpr int kStrip = 64;
     tbb::parallel_for(tbb::blocked_range<int>(0, (w + kStrip - 1) / kStrip, 1),
                       [&](const tbb::blocked_range<int>& range) {
                         const int x0 = range.begin() * kStrip,
                                   x1 = std::min(w, range.end() * kStrip);
-                        for (int y = 0; y < h; ++y)
-                          for (int x = x0; x < x1; ++x) {
-                            double cf, kf;
-                            locate(x, y, cf, kf);
-                            resample(x, y, cf, kf);
-                          }
+                        for (int y = 0; y < h; ++y) {
+                          locate_span(y, x0, x1 - x0);
+                          resample_span(y, x0, x1 - x0, cfs.data(), kfs.data(), 0, 0, 0);
+                        }
                       });
     return;
   }
@@ -304,23 +348,13 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
   // Chunks hold whole tiers: a multiple of the coarsest stride.
   const int kChunk = std::lcm(24, layout.smax);
   const int chunks = (n + kChunk - 1) / kChunk;
-  const SlopeRowLocator slope_row{layout.vx, layout.vy, layout.ex, layout.ey,
-                                  layout.c0, inv_dc,    inv_dr,    n - 1};
-  // Pixels between columns lo and hi: either those whose both columns (L and
-  // L + s, the stride s being 1 but for tiered polar layouts) lie in [lo, hi]
-  // (lo < 0 and hi >= n: unbounded), or, for a seam (hi the first column of
-  // a chunk, lo = hi - smax), those whose columns straddle hi. Per row, the wedge between the planes
-  // bounding those keys is an interval of x. Key k holds the parameters
-  // [c0 + (k + 0.5) dc, c0 + (k + 1.5) dc); the wedge is widened by a quarter
-  // column each side (many orders above locate's rounding), so the scan stays
-  // tight: with 24-column chunks and their seams, a pixel is located about
-  // 1.3 times instead of 1.7-1.8 (1080p, -30 deg; the key filter still
-  // decides; the polar side test below brings atan2 calls to ~1.0 a pixel). The first and last keys
-  // also take the clamped pixels: widened by a column.
-  auto owns = [&](long left, int s, long lo, long hi, bool seam) {
-    if (seam) return left < hi && left + s >= hi;
-    return (lo < 0 || left >= lo) && (hi >= n || left + s <= hi);
-  };
+  // Pixels between columns lo and hi (see owns; seam: those straddling hi,
+  // lo = hi - smax). Per row, the wedge between the planes bounding them is an
+  // interval of x. The wedge is widened by a quarter column each side (many
+  // orders above locate's rounding), so the scan stays tight: with 24-column
+  // chunks and their seams, a pixel is located about 1.3 times instead of
+  // 1.7-1.8 (1080p, -30 deg; owns decides). The first and last chunks also
+  // take the clamped pixels: widened by a column.
   auto resample_keys = [&](long lo, long hi, bool seam) {
     const double slack_lo = lo < 0 ? 1.0 : 0.25, slack_hi = hi >= n ? 1.0 : 0.25;
     const double p_lo = layout.c0 + (double(lo) + 0.5 - slack_lo) * layout.dc;
@@ -329,15 +363,6 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
     double lx, ly, hx, hy;
     layout.direction(p_lo, lx, ly);
     layout.direction(p_hi, hx, hy);
-    // Polar: pixels outside the keys' wedge widened by a thousandth of a column
-    // skip locate's atan2 (a side test on the planes; the margin is still far
-    // above the rounding of either computation).
-    const double t_lo = layout.c0 + (double(lo) + 0.5 - 1e-3) * layout.dc;
-    const double t_hi = layout.c0 + (double(hi) + 0.5 + 1e-3) * layout.dc;
-    const bool pretest = layout.polar && bounded && lo >= 0 && hi < n;
-    double tlx, tly, thx, thy;
-    layout.direction(t_lo, tlx, tly);
-    layout.direction(t_hi, thx, thy);
     for (int y = 0; y < h; ++y) {
       const double dy = y + 0.5 - layout.vy;
       // In the wedge: cross(w_lo, P - V) >= 0 and cross(P - V, w_hi) >= 0, with P = (x + 0.5, y +
@@ -357,30 +382,9 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
         bound(hy, hx * dy, false);  // hy (x+.5-vx) >= hx dy
       }
       const int x0 = int(std::max(xa, 0.0)), x1 = int(std::min(xb, double(w - 1)));
-      if (!layout.polar && x1 >= x0) {
-        // Locate the row's interval at once (vectorised), then resample its keys.
-        thread_local std::vector<double> cfs, kfs;
-        thread_local std::vector<std::int32_t> keys;
-        const int count = x1 - x0 + 1;
-        cfs.resize(count);
-        kfs.resize(count);
-        keys.resize(count);
-        locate_slope_row(slope_row, y, x0, count, cfs.data(), kfs.data(), keys.data());
-        for (int i = 0; i < count; ++i)
-          if (owns(keys[i], 1, lo, hi, seam)) resample(x0 + i, y, cfs[i], kfs[i]);
-        continue;
-      }
-      for (int x = x0; x <= x1; ++x) {
-        if (pretest) {
-          const double dx = x + 0.5 - layout.vx;
-          if (tlx * dy - tly * dx < 0 || dx * thy - dy * thx < 0) continue;
-        }
-        double cf, kf;
-        locate(x, y, cf, kf);
-        const int s = layout.stride_at(kf);
-        const long left = std::clamp(long(floor_i64(cf / s)) * s, -long(s), long(n) - 1);
-        if (owns(left, s, lo, hi, seam)) resample(x, y, cf, kf);
-      }
+      if (x1 < x0) continue;
+      locate_span(y, x0, x1 - x0 + 1);
+      resample_span(y, x0, x1 - x0 + 1, cfs.data(), kfs.data(), lo, hi, seam ? 2 : 1);
     }
   };
   tbb::parallel_for(

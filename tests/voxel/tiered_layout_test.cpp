@@ -7,11 +7,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <vector>
 #include <cstdint>
 
 #include "terrasprite/quality.h"
 #include "terrasprite/terrain.h"
 #include "terrasprite/voxel_renderer.h"
+#include "voxel/locate_row.h"
 #include "voxel/vertical_planes.h"
 #include "voxel/voxel_terrain_data.h"
 
@@ -75,6 +78,32 @@ TEST(TieredLayout, EveryPixelFindsBothColumnsSamples) {
       EXPECT_GE(L.smax, 8) << v.pitch;
       EXPECT_LT(double(samples), 2.2 * v.w * v.h) << "pitch " << v.pitch;
     }
+  }
+}
+
+// The resample's vectorised polar locate (rational atan) against the layout's
+// scalar one (libm atan2), over whole rows, V inside and outside the image.
+TEST(TieredLayout, RowLocateMatchesTheScalarLocate) {
+  for (double pitch : {-90.0, -70.0, -40.0}) {
+    const int W = 301, H = 170;
+    const PlaneLayout L = make_plane_layout(view_camera(pitch, 10, W, H), W, H, 1.0);
+    ASSERT_TRUE(L.polar);
+    const PolarRowLocator row{L.vx, L.vy, L.ex, L.ey, L.c0, 1.0 / L.dc, 1.0 / L.dr, L.wrap};
+    std::vector<double> cf(W), kf(W);
+    double worst_c = 0, worst_k = 0;
+    for (int y = 0; y < H; ++y) {
+      locate_polar_row(row, y, 0, W, cf.data(), kf.data());
+      for (int x = 0; x < W; ++x) {
+        double c, k;
+        L.locate(x + 0.5, y + 0.5, c, k);
+        // Angles next to 0 may land on either side of the wrap.
+        const double dc = std::abs(c - cf[x]);
+        worst_c = std::max(worst_c, L.wrap ? std::min(dc, std::abs(dc - L.columns)) : dc);
+        worst_k = std::max(worst_k, std::abs(k - kf[x]));
+      }
+    }
+    EXPECT_LT(worst_c, 1e-8) << "pitch " << pitch;
+    EXPECT_LT(worst_k, 1e-8) << "pitch " << pitch;
   }
 }
 

@@ -12,6 +12,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 #include <chrono>
 #include <cmath>
@@ -22,6 +23,7 @@
 #include "terrasprite/error.h"
 #include "voxel/column_march.h"
 #include "voxel/locate_row.h"
+#include "voxel/resample_blend.h"
 #include "voxel/vertical_planes.h"
 #include "voxel/voxel_terrain_data.h"
 
@@ -71,10 +73,8 @@ struct VoxelRenderer::State {
   // Intermediate buffer: per column its first sample index and offset.
   std::vector<std::int64_t> k0, k1;
   std::vector<std::size_t> offset;
-  struct Sample {
-    std::uint32_t color;
-    float depth;  // metres along the view axis, +inf = sky
-  };
+  using Sample = PlaneSample;
+
   std::vector<Sample> samples;
 
   State(const TerrainTiles& t, int w_, int h_, const VoxelOptions& o)
@@ -212,17 +212,13 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
   };
   // Resampling, a row segment at a time: first each pixel's two columns (L
   // and L + s; s = 1 but in a tiered polar layout's inner tiers, where L is a
-  // multiple of s, so cf / s is exact) and sample rows kb, kb + 1, with a
+  // multiple of s, so cf / s, a product by 2^-log2(s), is exact) and sample rows kb, kb + 1, with a
   // prefetch of the samples; then the blends: bilinear colour, depth bilinear
   // on a surface and nearest across a silhouette. Splitting the two keeps many
   // pixels' buffer reads in flight at once (the blend waited on them).
   const double inv_dc = 1.0 / layout.dc, inv_dr = 1.0 / layout.dr;
-  struct Tap {
-    int x;
-    float fc, fk;
-    std::size_t at[2];  // buffer index of sample kb of column L, L + s (modular)
-    unsigned ok;        // bit 2a + b: column a holds sample kb + b
-  };
+  using Tap = ResampleTap;
+
   // Which pixels a task owns: mode 0 all; 1 those whose both columns lie in
   // [lo, hi] (lo < 0, hi >= n: unbounded); 2 (a seam) those whose columns
   // straddle hi.
@@ -234,10 +230,22 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
                            long hi, int mode) {
     thread_local std::vector<Tap> taps;
     taps.resize(std::size_t(count));
+    // The output lines too, for writing: a chunk writes a few pixels of each
+    // row, and the blends stalled on those stores' misses.
+    std::uint8_t* row = out.color.px(0, y);
+    float* depth = out.depth.data() + std::size_t(y) * w;
+    for (int x = x0 & ~15; x < x0 + count; x += 16) {
+      __builtin_prefetch(row + std::size_t(x) * 4, 1);
+      __builtin_prefetch(depth + x, 1);
+    }
     int m = 0;
     for (int i = 0; i < count; ++i) {
-      const int s = layout.stride_at(kf[i]);
-      const double cs = cf[i] / s;
+      int s = 1;
+      double cs = cf[i];
+      if (layout.smax > 1) {
+        s = layout.stride_at(kf[i]);
+        cs *= std::bit_cast<double>(std::uint64_t(1023 - std::countr_zero(unsigned(s))) << 52);
+      }
       const double cfl = double(floor_i64(cs)), kfl = double(floor_i64(kf[i]));
       const long cbase = long(cfl) * s;
       if (!owns(std::clamp(cbase, -long(s), long(n) - 1), s, lo, hi, mode)) continue;
@@ -261,46 +269,7 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
         if (b0 || b1) __builtin_prefetch(&samples[t.at[a] + (b0 ? 0 : 1)]);
       }
     }
-    std::uint8_t* row = out.color.px(0, y);
-    float* depth = out.depth.data() + std::size_t(y) * w;
-    for (int j = 0; j < m; ++j) {
-      const Tap& t = taps[std::size_t(j)];
-      float acc[3] = {0, 0, 0}, wsum = 0, wbest = -1, dsum = 0, dmin = Frame::kSky, dmax = 0;
-      float dbest = Frame::kSky;
-      bool all_hit = true;
-      for (int a = 0; a < 2; ++a) {
-        const float wc = a ? t.fc : 1 - t.fc;
-        for (int b = 0; b < 2; ++b) {
-          if (!((t.ok >> (2 * a + b)) & 1u)) continue;
-          const float wgt = wc * (b ? t.fk : 1 - t.fk);
-          const Sample& smp = samples[t.at[a] + std::size_t(b)];
-          const std::uint32_t p = smp.color;
-          acc[0] += wgt * float(p & 0xff);
-          acc[1] += wgt * float((p >> 8) & 0xff);
-          acc[2] += wgt * float((p >> 16) & 0xff);
-          wsum += wgt;
-          dsum += wgt * smp.depth;
-          all_hit = all_hit && smp.depth < Frame::kSky;
-          dmin = std::min(dmin, smp.depth);
-          dmax = std::max(dmax, smp.depth);
-          if (wgt > wbest) {
-            wbest = wgt;
-            dbest = smp.depth;
-          }
-        }
-      }
-      std::uint32_t c = kSkyPacked;
-      if (wsum > 0) {
-        const float inv = 1.0f / wsum;
-        c = 0xff000000u;
-        for (int ch = 0; ch < 3; ++ch)
-          c |= std::uint32_t(std::uint8_t(std::min(acc[ch] * inv + 0.5f, 255.f))) << (8 * ch);
-      }
-      std::memcpy(row + std::size_t(t.x) * 4, &c, 4);
-      // Depth: interpolated on a surface, nearest across a silhouette.
-      const bool smooth = wsum > 0 && all_hit && dmax - dmin <= 0.3f * dmin;
-      depth[t.x] = smooth ? dsum / wsum : dbest;
-    }
+    blend_taps(taps.data(), m, samples.data(), kSkyPacked, row, depth);
   };
   const SlopeRowLocator slope_row{layout.vx, layout.vy, layout.ex, layout.ey,
                                   layout.c0, inv_dc,    inv_dr,    n - 1};

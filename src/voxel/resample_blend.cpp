@@ -8,10 +8,6 @@
 #include "common/simd.h"
 
 namespace terrasprite {
-namespace {
-typedef std::uint8_t v4u8 __attribute__((vector_size(4)));
-}  // namespace
-
 // The channels of a tap are one 4-lane vector (one conversion, multiply and
 // add instead of three of each); per lane the arithmetic and its order are the
 // scalar blend's (no FMA in either clone), so the bits are the same.
@@ -32,8 +28,9 @@ void blend_taps(const ResampleTap* taps, int count, const PlaneSample* samples, 
         if (!((t.ok >> (2 * a + b)) & 1u)) continue;
         const float wgt = wc * (b ? t.fk : 1 - t.fk);
         const PlaneSample& smp = samples[t.at[a] + std::size_t(b)];
-        v4u8 p;
-        std::memcpy(&p, &smp.color, 4);
+        // Channel ch in lane ch (one broadcast, shift and mask: a byte vector's
+        // conversion came out as four scalar conversions).
+        const v4i p = (v4i{} + std::int32_t(smp.color)) >> v4i{0, 8, 16, 24} & 0xff;
         acc += wgt * __builtin_convertvector(p, v4f);
         wsum += wgt;
         dsum += wgt * smp.depth;

@@ -22,6 +22,7 @@
 
 #include "terrasprite/error.h"
 #include "voxel/column_march.h"
+#include "voxel/column_rays.h"
 #include "voxel/locate_row.h"
 #include "voxel/resample_blend.h"
 #include "voxel/vertical_planes.h"
@@ -187,14 +188,10 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
     // Samples in order of rising elevation; the ray is affine in k.
     const glm::dvec3 d0 = rays.at(layout.vx, layout.vy);
     const glm::dvec3 dk = rays.at(layout.vx + layout.dr * wx, layout.vy + layout.dr * wy) - d0;
-    for (std::int64_t i = 0; i < count; ++i) {
-      const std::int64_t k = layout.rise_outward ? k0[c] + i : k1[c] - i;
-      const glm::dvec3 d = d0 + double(k) * dk;
-      const double hz = std::max(std::sqrt(d.x * d.x + d.y * d.y), 1e-12);
-      slopes[i] = d.z / hz;
-      if (i > 0) slopes[i] = std::max(slopes[i], slopes[i - 1]);
-      inv_hz[i] = 1.0 / hz;
-    }
+    const double d0v[3] = {d0.x, d0.y, d0.z}, dkv[3] = {dk.x, dk.y, dk.z};
+    column_rays(d0v, dkv, layout.rise_outward ? k0[c] : k1[c], layout.rise_outward ? 1 : -1,
+                count, slopes.data(), inv_hz.data());
+    for (std::int64_t i = 1; i < count; ++i) slopes[i] = std::max(slopes[i], slopes[i - 1]);
     // The plane's horizontal direction, from the sample farthest from V.
     const std::int64_t kf = k1[c];
     const glm::dvec3 df =

@@ -109,13 +109,15 @@ void locate_polar_row(const PolarRowLocator& L, int y, int x0, int count, double
   };
   for (; i + 4 <= count; i += 4) {
     const int x = x0 + i;
-    const auto [c, k] = four(__builtin_convertvector((v4i){x, x + 1, x + 2, x + 3}, v4d) + 0.5 - L.vx);
+    const auto [c, k] =
+        four(__builtin_convertvector((v4i){x, x + 1, x + 2, x + 3}, v4d) + 0.5 - L.vx);
     std::memcpy(cf + i, &c, sizeof c);
     std::memcpy(kf + i, &k, sizeof k);
   }
   if (i < count) {
     const int x = x0 + i;
-    const auto [c, k] = four(__builtin_convertvector((v4i){x, x + 1, x + 2, x + 3}, v4d) + 0.5 - L.vx);
+    const auto [c, k] =
+        four(__builtin_convertvector((v4i){x, x + 1, x + 2, x + 3}, v4d) + 0.5 - L.vx);
     for (int l = 0; i + l < count; ++l) {
       cf[i + l] = c[l];
       kf[i + l] = k[l];

@@ -17,9 +17,9 @@ struct PlaneSample {
 
 /// One pixel's taps: columns L and L + s, sample rows kb and kb + 1.
 struct ResampleTap {
-  int x;           ///< pixel column in the row
-  float fc, fk;    ///< weights of column L + s and of row kb + 1
-  unsigned ok;     ///< bit 2a + b: column a holds sample kb + b
+  int x;              ///< pixel column in the row
+  float fc, fk;       ///< weights of column L + s and of row kb + 1
+  unsigned ok;        ///< bit 2a + b: column a holds sample kb + b
   std::size_t at[2];  ///< buffer index of sample kb of each column (modular arithmetic)
 };
 

@@ -53,8 +53,7 @@ std::int64_t PlaneLayout::tier_start(int c) const {
   const int low = c & -c;  // largest power of 2 dividing c
   if (low >= smax) return 0;
   // Pixels read column c only at strides s <= low, i.e. where kf dc > kTierSpacing / (2 low).
-  return std::max<std::int64_t>(0,
-                                std::int64_t(std::floor(kTierSpacing / (2.0 * low * dc))) - 2);
+  return std::max<std::int64_t>(0, std::int64_t(std::floor(kTierSpacing / (2.0 * low * dc))) - 2);
 }
 
 bool PlaneLayout::rows(int c, int width, int height, std::int64_t& k0, std::int64_t& k1) const {

@@ -13,9 +13,9 @@
 
 #include <algorithm>
 #include <bit>
-#include <cstring>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <thread>
 #include <vector>
 
@@ -188,8 +188,8 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
     const glm::dvec3 d0 = rays.at(layout.vx, layout.vy);
     const glm::dvec3 dk = rays.at(layout.vx + layout.dr * wx, layout.vy + layout.dr * wy) - d0;
     const double d0v[3] = {d0.x, d0.y, d0.z}, dkv[3] = {dk.x, dk.y, dk.z};
-    column_rays(d0v, dkv, layout.rise_outward ? k0[c] : k1[c], layout.rise_outward ? 1 : -1,
-                count, slopes.data(), inv_hz.data());
+    column_rays(d0v, dkv, layout.rise_outward ? k0[c] : k1[c], layout.rise_outward ? 1 : -1, count,
+                slopes.data(), inv_hz.data());
     for (std::int64_t i = 1; i < count; ++i) slopes[i] = std::max(slopes[i], slopes[i - 1]);
     // The plane's horizontal direction, from the sample farthest from V.
     const std::int64_t kf = k1[c];
@@ -254,8 +254,8 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
   };
   const SlopeRowLocator slope_row{layout.vx, layout.vy, layout.ex, layout.ey,
                                   layout.c0, inv_dc,    inv_dr,    n - 1};
-  const PolarRowLocator polar_row{layout.vx, layout.vy, layout.ex,   layout.ey,
-                                  layout.c0, inv_dc,    inv_dr,      layout.wrap};
+  const PolarRowLocator polar_row{layout.vx, layout.vy, layout.ex, layout.ey,
+                                  layout.c0, inv_dc,    inv_dr,    layout.wrap};
   thread_local std::vector<double> cfs, kfs;
   thread_local std::vector<std::int32_t> keys;
   // Locates pixels x0 .. x0 + count - 1 of row y into cfs, kfs.

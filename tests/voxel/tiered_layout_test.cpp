@@ -8,8 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
 #include <cstdint>
+#include <vector>
 
 #include "terrasprite/quality.h"
 #include "terrasprite/terrain.h"

@@ -253,18 +253,16 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
     blend_taps(taps.data(), m, samples.data(), kSkyPacked, row, depth);
   };
   const SlopeRowLocator slope_row{layout.vx, layout.vy, layout.ex, layout.ey,
-                                  layout.c0, inv_dc,    inv_dr,    n - 1};
+                                  layout.c0, inv_dc,    inv_dr};
   const PolarRowLocator polar_row{layout.vx, layout.vy, layout.ex, layout.ey,
                                   layout.c0, inv_dc,    inv_dr,    layout.wrap};
   thread_local std::vector<double> cfs, kfs;
-  thread_local std::vector<std::int32_t> keys;
   // Locates pixels x0 .. x0 + count - 1 of row y into cfs, kfs.
   auto locate_span = [&](int y, int x0, int count) {
     cfs.resize(std::size_t(count));
     kfs.resize(std::size_t(count));
     if (layout.polar) return locate_polar_row(polar_row, y, x0, count, cfs.data(), kfs.data());
-    keys.resize(std::size_t(count));
-    locate_slope_row(slope_row, y, x0, count, cfs.data(), kfs.data(), keys.data());
+    locate_slope_row(slope_row, y, x0, count, cfs.data(), kfs.data());
   };
 
   // March every column, then resample the image in vertical strips of 64

@@ -12,7 +12,7 @@ TS_CLONES_AVX2
 void column_rays(const double d0[3], const double dk[3], std::int64_t k_first, int step,
                  std::int64_t count, double* slope, double* inv_hz) {
   using simd::v4d;
-  auto lanes = [&](v4d k, v4d& s, v4d& inv) {
+  auto lanes = [&](const v4d& k, v4d& s, v4d& inv) {
     const v4d x = d0[0] + k * dk[0], y = d0[1] + k * dk[1], z = d0[2] + k * dk[2];
     v4d h = x * x + y * y;
     for (int l = 0; l < 4; ++l) h[l] = std::sqrt(h[l]);

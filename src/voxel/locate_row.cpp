@@ -2,7 +2,6 @@
 #include "voxel/locate_row.h"
 
 #include <cstring>
-#include <utility>
 
 #include "common/simd.h"
 
@@ -34,12 +33,12 @@ void locate_slope_row(const SlopeRowLocator& L, int y, int x0, int count, double
   }
 }
 
-#pragma GCC diagnostic ignored "-Wpsabi"  // vectors stay inside always-inlined code
 namespace {
 // atan2(b, a) of four lanes: atan of min/max over [0, 1] (Cephes atan.c: the
 // argument above 0.66 reduced by pi/4, then x + x z P(z)/Q(z), z = x^2), then
 // the octant.
-[[gnu::always_inline]] inline simd::v4d atan2_v4(simd::v4d b, simd::v4d a) {
+[[gnu::always_inline]] inline void atan2_v4(const simd::v4d& b, const simd::v4d& a,
+                                            simd::v4d& out) {
   using simd::v4d;
   constexpr double kPi = 3.14159265358979323846, kMoreBits = 6.123233995736765886130e-17;
   const v4d zero{}, one = zero + 1.0;
@@ -65,7 +64,7 @@ namespace {
   r = big ? (kPi / 4) + (r + 0.5 * kMoreBits) : r;
   r = bb > ab ? kPi / 2 - r : r;
   r = a < 0 ? kPi - r : r;
-  return b < 0 ? -r : r;
+  out = b < 0 ? -r : r;
 }
 }  // namespace
 
@@ -76,27 +75,27 @@ void locate_polar_row(const PolarRowLocator& L, int y, int x0, int count, double
   constexpr double kTwoPi = 2 * 3.14159265358979323846;
   const double dy = y + 0.5 - L.vy;
   const double dy_e = dy * L.ey, dy_x = dy * L.ex;
-  int i = 0;
-  auto four = [&](v4d dx) {
+  // Pixels x .. x + 3 into c (columns) and k (samples).
+  auto four = [&](int x, v4d& c, v4d& k) {
+    const v4d dx = __builtin_convertvector((v4i){x, x + 1, x + 2, x + 3}, v4d) + 0.5 - L.vx;
     const v4d a = dx * L.ex + dy_e, b = dy_x - dx * L.ey;
-    v4d ang = atan2_v4(b, a);
+    v4d ang;
+    atan2_v4(b, a, ang);
     if (L.wrap) ang = ang < 0 ? ang + kTwoPi : ang;
-    const v4d c = (ang - L.c0) * L.inv_dc - 0.5;
-    v4d r2 = dx * dx + dy * dy, k;
+    c = (ang - L.c0) * L.inv_dc - 0.5;
+    const v4d r2 = dx * dx + dy * dy;
     for (int l = 0; l < 4; ++l) k[l] = __builtin_sqrt(r2[l]);
-    return std::pair<v4d, v4d>{c, k * L.inv_dr};
+    k *= L.inv_dr;
   };
+  int i = 0;
+  v4d c, k;
   for (; i + 4 <= count; i += 4) {
-    const int x = x0 + i;
-    const auto [c, k] =
-        four(__builtin_convertvector((v4i){x, x + 1, x + 2, x + 3}, v4d) + 0.5 - L.vx);
+    four(x0 + i, c, k);
     std::memcpy(cf + i, &c, sizeof c);
     std::memcpy(kf + i, &k, sizeof k);
   }
   if (i < count) {
-    const int x = x0 + i;
-    const auto [c, k] =
-        four(__builtin_convertvector((v4i){x, x + 1, x + 2, x + 3}, v4d) + 0.5 - L.vx);
+    four(x0 + i, c, k);
     for (int l = 0; i + l < count; ++l) {
       cf[i + l] = c[l];
       kf[i + l] = k[l];

@@ -36,8 +36,12 @@ struct StreamOptions {
   /// (so runs repeat); the environment variable TERRASPRITE_STREAM_FAULTS
   /// overrides it when set.
   double fault_rate = 0.0;
+  /// With fine levels (insets), their tiles get this share of cache_bytes
+  /// (a cache of their own, same loaders' count, same rules); the base the rest.
+  double fine_share = 0.5;
   /// Test hooks, called on a loader thread before each read: `before_read`
   /// may block (a stalled disk); `fail_read` returning true fails the read.
+  /// Levels and tiles are the renderer's (the combined grid with fine levels).
   std::function<void(int level, int tx, int ty)> before_read;
   std::function<bool(int level, int tx, int ty)> fail_read;
 };

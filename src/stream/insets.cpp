@@ -9,11 +9,12 @@
 #include <cmath>
 #include <limits>
 
+#include "stream/inset_warp.h"
 #include "terrain/gdal_util.h"
 #include "terrasprite/error.h"
 
 namespace terrasprite {
-namespace {
+namespace detail {
 
 // Distance (pixels, chamfer 1 / sqrt 2) from each pixel with data to the
 // nearest pixel without (outside the raster counts as without); 1 at the
@@ -49,12 +50,6 @@ std::vector<float> distance_to_void(const std::vector<float>& v, int w, int h) {
   return d;
 }
 
-struct Warped {
-  int w = 0, h = 0;
-  double gt[6] = {};
-  std::vector<float> v;
-};
-
 // The inset warped into `wkt` (bilinear, its own resolution), NaN where it has no data.
 Warped warp(const InsetSpec& s, const std::string& wkt) {
   detail::ensure_gdal();
@@ -88,7 +83,7 @@ Warped warp(const InsetSpec& s, const std::string& wkt) {
   return r;
 }
 
-}  // namespace
+}  // namespace detail
 
 InsetSpec parse_inset(const std::string& arg) {
   InsetSpec s;
@@ -136,12 +131,11 @@ GridGeo grid_geo(const Heightfield& hf, int source_w, int source_h) {
   return g;
 }
 
-std::vector<InsetResult> composite_insets(Heightfield& hf, const GridGeo& g,
-                                          const std::vector<InsetSpec>& insets) {
-  std::vector<InsetResult> results;
-  for (const InsetSpec& s : insets) {
-    const Warped r = warp(s, g.wkt);
-    const std::vector<float> dist = distance_to_void(r.v, r.w, r.h);
+namespace detail {
+
+InsetResult composite_warped(Heightfield& hf, const GridGeo& g, const InsetSpec& s,
+                             const Warped& r, std::vector<float>* weights) {
+  const std::vector<float> dist = distance_to_void(r.v, r.w, r.h);
     InsetResult res{s.path, s.blend, 0, 0, {r.gt[1], -r.gt[5]}};
     // Grid samples per inset pixel, so the distance counts grid samples.
     const double per_px = std::min(std::abs(r.gt[1]) / g.dx, std::abs(r.gt[5]) / g.dy);
@@ -180,10 +174,24 @@ std::vector<InsetResult> composite_insets(Heightfield& hf, const GridGeo& g,
         if (wgt <= 0.f) continue;
         float& hgt = hf.at(i, j);
         hgt += wgt * (lerp2(r.v) - hgt);
+        if (weights) {
+          float& m = (*weights)[std::size_t(j) * hf.width + i];
+          m = std::max(m, wgt);
+        }
         ++res.samples_replaced;
         res.samples_full += wgt >= 1.f;
       }
     }
+  return res;
+}
+
+}  // namespace detail
+
+std::vector<InsetResult> composite_insets(Heightfield& hf, const GridGeo& g,
+                                          const std::vector<InsetSpec>& insets) {
+  std::vector<InsetResult> results;
+  for (const InsetSpec& s : insets) {
+    const InsetResult res = detail::composite_warped(hf, g, s, detail::warp(s, g.wkt), nullptr);
     if (res.samples_replaced == 0)
       throw InputError(
           fmt::format("{}: covers no sample of the base terrain (after reprojection)", s.path));

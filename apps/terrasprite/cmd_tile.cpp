@@ -82,8 +82,7 @@ void add_tile(CLI::App& app) {
       throw InputError(fmt::format("--tile-size {}: must be 16, 32, ..., 512", o->tile_size));
     o->write.tile_log2 = lg;
     if (o->fine_levels != 0 && (o->insets.empty() || o->fine_levels < 1 || o->fine_levels > 8))
-      throw InputError(fmt::format("--fine-levels {}: must be 1..8, with --inset",
-                                   o->fine_levels));
+      throw InputError(fmt::format("--fine-levels {}: must be 1..8, with --inset", o->fine_levels));
     std::vector<InsetSpec> specs;
     for (const std::string& a : o->insets) specs.push_back(parse_inset(a));
     check_outputs(o->out, {});
@@ -99,8 +98,8 @@ void add_tile(CLI::App& app) {
       if (!specs.empty()) geo = add_insets(t.heights, o->terrain.dem, specs, o->write.insets, g);
       out = std::make_unique<OutputDir>(o->out, output_policy());
       if (o->fine_levels > 0)  // DIR/fine first: the base's bounds must cover it
-        o->write.fine = write_fine_insets(t, g, specs, o->fine_levels, o->write,
-                                          out->partial().string());
+        o->write.fine =
+            write_fine_insets(t, g, specs, o->fine_levels, o->write, out->partial().string());
       vt = std::make_unique<VoxelTerrain>(t);
     }
     OutputDir& out_dir = *out;
@@ -114,11 +113,11 @@ void add_tile(CLI::App& app) {
                info.bytes_on_disk / 1e6, s);
     if (info.fine_set) {
       const auto& p0 = info.fine->present[0];
-      fmt::print("{}/fine: {} fine levels ({:.4g} m), {} x {} samples, {} of {} finest tiles with "
-                 "inset data\n",
-                 o->out, info.fine->levels, info.fine_set->grid.spacing_x,
-                 info.fine_set->grid.width, info.fine_set->grid.height,
-                 std::count(p0.begin(), p0.end(), 1), p0.size());
+      fmt::print(
+          "{}/fine: {} fine levels ({:.4g} m), {} x {} samples, {} of {} finest tiles with "
+          "inset data\n",
+          o->out, info.fine->levels, info.fine_set->grid.spacing_x, info.fine_set->grid.width,
+          info.fine_set->grid.height, std::count(p0.begin(), p0.end(), 1), p0.size());
     }
   });
 }

@@ -18,12 +18,12 @@ namespace terrasprite {
 /// samples, and a colour texture (the base's, upsampled, shaded by the
 /// insets' detail).
 struct FineWindow {
-  int levels = 0;                  ///< K: spacing = the base's / 2^K
+  int levels = 0;  ///< K: spacing = the base's / 2^K
   /// Sample (0, 0) in the fine grid; it and the window's cells are multiples
   /// of T 2^(K-1) (whole tiles at every fine level), or it ends at the grid's edge.
   int origin_x = 0, origin_y = 0;
-  Terrain terrain;                 ///< the window's heights and texture
-  std::vector<float> weight;       ///< per sample, the highest inset weight (0: the base's)
+  Terrain terrain;            ///< the window's heights and texture
+  std::vector<float> weight;  ///< per sample, the highest inset weight (0: the base's)
   std::vector<InsetResult> results;
 };
 

@@ -8,8 +8,8 @@
 //   DIR/bound.tif   Float32 max-height bounds per cell, bound levels as overviews
 //   DIR/tiles.json  grid, levels, per-tile max-height bounds, georeferencing
 #pragma once
-#include <memory>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,7 +52,6 @@ struct TileWriteOptions {
 };
 
 struct CogInput;  // an existing COG read in place (see open_cog)
-
 
 /// What tiles.json says: the grid and the per-tile max-height bounds. For an
 /// existing COG (open_cog), `dir` is the COG's path and `cog` is set.

@@ -37,10 +37,12 @@ void base_color(const Terrain& t, double x, double y, float out[3]) {
   }
   const Heightfield& hf = t.heights;
   const auto& r = t.tex_rect;
-  const double s = hf.width > 1 ? x / (hf.width - 1) : 0.5, q = hf.height > 1 ? y / (hf.height - 1) : 0.5;
+  const double s = hf.width > 1 ? x / (hf.width - 1) : 0.5,
+               q = hf.height > 1 ? y / (hf.height - 1) : 0.5;
   const double cx = std::clamp((r[0] + s * r[2]) * tex.width - 0.5, 0.0, double(tex.width - 1));
   const double cy = std::clamp((r[1] + q * r[3]) * tex.height - 0.5, 0.0, double(tex.height - 1));
-  const int i = std::min(int(cx), std::max(tex.width - 2, 0)), j = std::min(int(cy), std::max(tex.height - 2, 0));
+  const int i = std::min(int(cx), std::max(tex.width - 2, 0)),
+            j = std::min(int(cy), std::max(tex.height - 2, 0));
   const int i1 = std::min(i + 1, tex.width - 1), j1 = std::min(j + 1, tex.height - 1);
   const float fx = float(cx - i), fy = float(cy - j);
   for (int c = 0; c < 3; ++c) {
@@ -89,9 +91,10 @@ FineWindow build_fine_window(const Terrain& base, const GridGeo& g,
                                  insets.empty() ? "--inset" : insets[0].path));
   const long long w = x1 - x0 + 1, h = y1 - y0 + 1;
   if (w * h > (1LL << 30))
-    throw InputError(fmt::format("--fine-levels {}: the insets' window would be {} x {} samples "
-                                 "(over 2^30); use fewer fine levels",
-                                 levels, w, h));
+    throw InputError(
+        fmt::format("--fine-levels {}: the insets' window would be {} x {} samples "
+                    "(over 2^30); use fewer fine levels",
+                    levels, w, h));
   win.origin_x = int(x0);
   win.origin_y = int(y0);
   // The base upsampled, then the insets over it.
@@ -104,8 +107,8 @@ FineWindow build_fine_window(const Terrain& base, const GridGeo& g,
   f.heights.resize(std::size_t(w * h));
   for (long long j = 0; j < h; ++j)
     for (long long i = 0; i < w; ++i)
-      f.heights[std::size_t(j * w + i)] = bilinear(hf.heights, hf.width, hf.height,
-                                                   double(x0 + i) / s, double(y0 + j) / s);
+      f.heights[std::size_t(j * w + i)] =
+          bilinear(hf.heights, hf.width, hf.height, double(x0 + i) / s, double(y0 + j) / s);
   const std::vector<float> up = f.heights;
   win.weight.assign(f.heights.size(), 0.f);
   GridGeo fg = g;
@@ -137,7 +140,8 @@ FineWindow build_fine_window(const Terrain& base, const GridGeo& g,
       const double gx = (d(i + 1, j) - d(i - 1, j)) / sx, gy = (d(i, j + 1) - d(i, j - 1)) / sy;
       const float shade = float(std::clamp(1.0 - 0.7 * (gx - gy), 0.5, 1.5));
       std::uint8_t* p = tex.px(int(i), int(j));
-      for (int ch = 0; ch < 3; ++ch) p[ch] = std::uint8_t(std::clamp(c[ch] * shade + 0.5f, 0.f, 255.f));
+      for (int ch = 0; ch < 3; ++ch)
+        p[ch] = std::uint8_t(std::clamp(c[ch] * shade + 0.5f, 0.f, 255.f));
       p[3] = 255;
     }
   // Window sample i on texel centre i.
@@ -196,9 +200,10 @@ FineLevelsInfo write_fine_insets(const Terrain& base, const GridGeo& grid,
   {
     FineWindow win = build_fine_window(base, grid, insets, levels, options.tile_log2);
     for (const InsetResult& r : win.results)
-      fmt::print("{}: {} fine samples from the inset ({} at full weight), {} x {} window at {:.4g} m\n",
-                 r.path, r.samples_replaced, r.samples_full, win.terrain.heights.width,
-                 win.terrain.heights.height, win.terrain.heights.spacing_x);
+      fmt::print(
+          "{}: {} fine samples from the inset ({} at full weight), {} x {} window at {:.4g} m\n",
+          r.path, r.samples_replaced, r.samples_full, win.terrain.heights.width,
+          win.terrain.heights.height, win.terrain.heights.spacing_x);
     fi = fine_levels_info(win, base.heights.width, base.heights.height, options.tile_log2);
     const double fdx = grid.dx / (1 << levels), fdy = grid.dy / (1 << levels);
     GeoTransform gt;

@@ -11,10 +11,10 @@ namespace terrasprite {
 
 struct ResidentTiles::Impl {
   TileSetInfo set;
-  TerrainGrid cgrid;                    // the renderer's grid (fine levels first)
-  int k = 0;                            // fine levels (insets), from `fine`
-  std::unique_ptr<ResidentTiles> fine;  // the fine window set, wholly in memory
-  std::vector<TileData> levels;                // one whole-level block each
+  TerrainGrid cgrid;                          // the renderer's grid (fine levels first)
+  int k = 0;                                  // fine levels (insets), from `fine`
+  std::unique_ptr<ResidentTiles> fine;        // the fine window set, wholly in memory
+  std::vector<TileData> levels;               // one whole-level block each
   std::vector<std::vector<TileBlock>> tiles;  // per level, row-major tiles viewing it
 };
 

@@ -3,6 +3,8 @@
 // resident tiles that only update() changes, loader threads that read queued
 // tiles through their own GDAL handles, and a byte budget held by evicting the
 // least recently wanted tiles, farthest first.
+#include "terrasprite/streaming_tiles.h"
+
 #include <fmt/format.h>
 #include <gdal.h>
 #include <sys/resource.h>
@@ -21,7 +23,6 @@
 #include "stream/footprint.h"
 #include "stream/tile_file.h"
 #include "terrasprite/error.h"
-#include "terrasprite/streaming_tiles.h"
 
 namespace terrasprite {
 namespace {
@@ -41,7 +42,8 @@ int shard_index() {
 
 // A repeatable "random" draw in [0, 1) per tile, for fault injection.
 double tile_hash01(int level, int tx, int ty) {
-  std::uint64_t h = std::uint64_t(level) * 0x9E3779B97F4A7C15ull ^ std::uint64_t(tx) * 0xC2B2AE3D27D4EB4Full ^
+  std::uint64_t h = std::uint64_t(level) * 0x9E3779B97F4A7C15ull ^
+                    std::uint64_t(tx) * 0xC2B2AE3D27D4EB4Full ^
                     std::uint64_t(ty) * 0x165667B19E3779F9ull;
   h ^= h >> 33;
   h *= 0xff51afd7ed558ccdull;
@@ -138,7 +140,8 @@ void StreamingTiles::Impl::load_pinned(std::vector<std::unique_ptr<TileFile>>& f
       workers.emplace_back([&, t] {
         for (std::size_t k = t; k < jobs.size() && errors[t].empty(); k += files.size()) {
           data[k] = std::make_unique<TileData>();
-          if (!files[t]->read(jobs[k].level, jobs[k].tx, jobs[k].ty, *data[k], errors[t])) data[k].reset();
+          if (!files[t]->read(jobs[k].level, jobs[k].tx, jobs[k].ty, *data[k], errors[t]))
+            data[k].reset();
         }
       });
   }
@@ -269,10 +272,12 @@ void StreamingTiles::Impl::plan(const Camera& cam, StreamFrameStats& st) {
       if (state[std::size_t(L)][i] == State::kResident && last_wanted[std::size_t(L)][i] < frame) {
         const int nx = set.tiles_x[std::size_t(L)];
         const double reach = level_reach(set, cam, fo, L);
-        const double d = tile_distance(set, L, int(i % nx), int(i / nx), cam.position.x, cam.position.y);
+        const double d =
+            tile_distance(set, L, int(i % nx), int(i / nx), cam.position.x, cam.position.y);
         victims.push_back({L, i, double(frame - last_wanted[std::size_t(L)][i]) + d / reach});
       }
-  std::sort(victims.begin(), victims.end(), [](const Victim& a, const Victim& b) { return a.score < b.score; });
+  std::sort(victims.begin(), victims.end(),
+            [](const Victim& a, const Victim& b) { return a.score < b.score; });
   for (const TileKey& k : want) {
     const std::size_t i = idx(k.level, k.tx, k.ty);
     if (state[std::size_t(k.level)][i] != State::kEmpty) continue;
@@ -301,7 +306,8 @@ StreamingTiles::StreamingTiles(const TileSetInfo& set, StreamOptions options)
   if (p.o.io_threads < 1 || p.o.io_threads > 64)
     throw InputError(fmt::format("io_threads {}: must be 1..64", p.o.io_threads));
   if (!(p.o.fault_rate >= 0 && p.o.fault_rate <= 1))
-    throw InputError(fmt::format("TERRASPRITE_STREAM_FAULTS {}: must be a share within 0..1", p.o.fault_rate));
+    throw InputError(
+        fmt::format("TERRASPRITE_STREAM_FAULTS {}: must be a share within 0..1", p.o.fault_rate));
   GDALSetCacheMax64(GIntBig(p.o.gdal_cache_bytes));
   p.total_budget = p.o.cache_bytes;
   p.cgrid = combined_grid(p.set);
@@ -330,9 +336,13 @@ StreamingTiles::StreamingTiles(const TileSetInfo& set, StreamOptions options)
       };
     const int k = p.k;  // the base's hooks see the renderer's levels
     if (p.o.before_read)
-      p.o.before_read = [hook = p.o.before_read, k](int level, int tx, int ty) { hook(level + k, tx, ty); };
+      p.o.before_read = [hook = p.o.before_read, k](int level, int tx, int ty) {
+        hook(level + k, tx, ty);
+      };
     if (p.o.fail_read)
-      p.o.fail_read = [hook = p.o.fail_read, k](int level, int tx, int ty) { return hook(level + k, tx, ty); };
+      p.o.fail_read = [hook = p.o.fail_read, k](int level, int tx, int ty) {
+        return hook(level + k, tx, ty);
+      };
     p.fine = std::make_unique<StreamingTiles>(f, std::move(fo));
   }
   const TerrainGrid& g = p.set.grid;
@@ -342,7 +352,8 @@ StreamingTiles::StreamingTiles(const TileSetInfo& set, StreamOptions options)
   p.last_wanted.resize(std::size_t(nl));
   std::vector<std::size_t> level_bytes(std::size_t(nl), 0);
   for (int L = 0; L < nl; ++L) {
-    const std::size_t n = std::size_t(p.set.tiles_x[std::size_t(L)]) * p.set.tiles_y[std::size_t(L)];
+    const std::size_t n =
+        std::size_t(p.set.tiles_x[std::size_t(L)]) * p.set.tiles_y[std::size_t(L)];
     p.table[std::size_t(L)].resize(n);
     p.state[std::size_t(L)].assign(n, State::kEmpty);
     p.last_wanted[std::size_t(L)].assign(n, -1);
@@ -356,8 +367,8 @@ StreamingTiles::StreamingTiles(const TileSetInfo& set, StreamOptions options)
   p.pin_from = g.coarsest_level;
   std::size_t pinned = 0;
   for (int L = nl - 1; L >= g.coarsest_level; --L) pinned += level_bytes[std::size_t(L)];
-  while (p.pin_from > 0 &&
-         pinned + level_bytes[std::size_t(p.pin_from - 1)] <= std::size_t(p.o.pinned_share * double(p.o.cache_bytes))) {
+  while (p.pin_from > 0 && pinned + level_bytes[std::size_t(p.pin_from - 1)] <=
+                               std::size_t(p.o.pinned_share * double(p.o.cache_bytes))) {
     --p.pin_from;
     pinned += level_bytes[std::size_t(p.pin_from)];
   }
@@ -390,7 +401,8 @@ const TileBlock* StreamingTiles::tile(int level, int tx, int ty) const {
   const Impl& p = *p_;
   if (p.k) {
     if (level < p.k)
-      return fine_window_tile(*p.set.fine_set, level, tx, ty) ? p.fine->tile(level, tx, ty) : nullptr;
+      return fine_window_tile(*p.set.fine_set, level, tx, ty) ? p.fine->tile(level, tx, ty)
+                                                              : nullptr;
     level -= p.k;
   }
   if (level < 0 || level >= int(p.table.size())) return nullptr;
@@ -404,7 +416,8 @@ const TileBlock* StreamingTiles::tile(int level, int tx, int ty) const {
     return &d->block;
   s.misses.fetch_add(1, std::memory_order_relaxed);
   auto& flag = p.demand[std::size_t(level)][i];
-  if (!flag.load(std::memory_order_relaxed)) flag.store(1, std::memory_order_relaxed);  // no line ping-pong
+  if (!flag.load(std::memory_order_relaxed))
+    flag.store(1, std::memory_order_relaxed);  // no line ping-pong
   return nullptr;
 }
 

@@ -199,8 +199,8 @@ TileSetInfo read_tile_set(const std::string& dir) {
     for (int l = 0; l < fi.levels; ++l)
       if (fi.present[std::size_t(l)].size() !=
           std::size_t(fs->tiles_x[std::size_t(l)]) * fs->tiles_y[std::size_t(l)])
-        throw InputError(fmt::format("{}: present tiles of fine level {} have the wrong length",
-                                     path, l));
+        throw InputError(
+            fmt::format("{}: present tiles of fine level {} have the wrong length", path, l));
     const int align = (1 << g.tile_log2) << (fi.levels - 1);
     const int fw = (g.width - 1) << fi.levels, fh = (g.height - 1) << fi.levels;
     if (((fs->grid.width - 1) % align != 0 && fi.origin_x + fs->grid.width - 1 != fw) ||

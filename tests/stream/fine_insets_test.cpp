@@ -31,7 +31,9 @@ constexpr int kI0 = 300, kIn = 257;    // the inset's first fine sample and its 
 constexpr double kX0 = 500000, kY0 = 4000000;
 constexpr int kW = 160, kH = 120;
 
-float base_h(double i, double j) { return float(100 + 2 * i + j + 20 * std::sin(i * 0.4)); }
+float base_h(double i, double j) {
+  return float(100 + 2 * i + j + 20 * std::sin(i * 0.4));
+}
 float detail(int x, int y) {
   return 5.f + 1.5f * std::sin(float(x) * 0.3f) * std::cos(float(y) * 0.21f);
 }
@@ -55,8 +57,8 @@ void write_tif(const std::string& path, int n, const double gt[6], const std::ve
   ASSERT_EQ(GDALRasterIO(GDALGetRasterBand(mem, 1), GF_Write, 0, 0, n, n,
                          const_cast<float*>(v.data()), n, n, GDT_Float32, 0, 0),
             CE_None);
-  GDALClose(GDALCreateCopy(GDALGetDriverByName("GTiff"), path.c_str(), mem, FALSE, nullptr,
-                           nullptr, nullptr));
+  GDALClose(GDALCreateCopy(GDALGetDriverByName("GTiff"), path.c_str(), mem, FALSE, nullptr, nullptr,
+                           nullptr));
   GDALClose(mem);
 }
 
@@ -88,7 +90,8 @@ struct Fixture {
     // blend=0 into the base grid: a base sample inside the inset is the inset's.
     auto r = tstest::run_cli("tile --dem " + (t / "base.tif") + " --inset " + (t / "inset.tif") +
                              ":blend=8 --fine-levels 5 --tile-size 16 --color-compress DEFLATE "
-                             "--out " + (t / "tiles"));
+                             "--out " +
+                             (t / "tiles"));
     EXPECT_EQ(r.status, 0) << r.output;
     set = read_tile_set(t / "tiles");
   }

@@ -32,7 +32,8 @@ std::string bounds_cache_dir(bool& explicit_dir) {
     explicit_dir = true;
     return d;
   }
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/terrasprite";
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x)
+    return std::string(x) + "/terrasprite";
   if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/terrasprite";
   return {};
 }

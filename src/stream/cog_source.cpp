@@ -9,8 +9,6 @@
 // every overview (in strips) computes them at open.
 #include "stream/cog_source.h"
 
-#include "stream/cog_bounds_cache.h"
-
 #include <fmt/format.h>
 #include <gdal.h>
 
@@ -22,6 +20,7 @@
 #include <limits>
 #include <thread>
 
+#include "stream/cog_bounds_cache.h"
 #include "terrain/gdal_util.h"
 #include "terrasprite/error.h"
 
@@ -116,9 +115,9 @@ void compute_bounds(TileSetInfo& set, CogInput& in, bool has_nodata, double noda
   bool explicit_dir = false;
   const std::string cache = bounds_cache_dir(explicit_dir);
   const bool use_cache = !cache.empty() && (explicit_dir || std::int64_t(W) * H >= kCacheSamples);
-  const std::string key = use_cache ? bounds_cache_key(in, W, H, Lb, set.grid.bound_levels,
-                                                       has_nodata, nodata)
-                                    : std::string();
+  const std::string key =
+      use_cache ? bounds_cache_key(in, W, H, Lb, set.grid.bound_levels, has_nodata, nodata)
+                : std::string();
   float cached_lo = 0, cached_hi = 0;
   if (use_cache &&
       load_cog_bounds(cache, key, W, H, Lb, set.grid.bound_levels, in, cached_lo, cached_hi)) {

@@ -276,8 +276,8 @@ TEST(CogSource, BoundsAreCachedForAnUnchangedFileOnly) {
   // The file rewritten (another size and time): computed again, then cached.
   std::filesystem::remove(cog);
   make_cog(t.path / "dem.tif", 129);
-  std::filesystem::last_write_time(
-      cog, std::filesystem::last_write_time(cog) + std::chrono::seconds(5));
+  std::filesystem::last_write_time(cog,
+                                   std::filesystem::last_write_time(cog) + std::chrono::seconds(5));
   EXPECT_FALSE(open_cog(cog, "", 4, 1 << 10).cog->bounds_cached);
   EXPECT_TRUE(open_cog(cog, "", 4, 1 << 10).cog->bounds_cached);
   // A damaged cache file is ignored, never an error.

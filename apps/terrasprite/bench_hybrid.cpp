@@ -41,6 +41,7 @@ struct HybridArgs {
   double table_angle_step = 45;
   std::string figure6 = "C";
   std::string calibration_sizes = "auto";
+  std::string quality_diagnosis, diagnosis_conditions = "scene,sky", diagnosis_images;
 };
 
 /// Keeps `count` instances (0: all), drawn at random (seeded) so the model mix stays.
@@ -313,6 +314,20 @@ void run_bench(const HybridArgs& a) {
   std::vector<QualityTable> tables;
   for (std::size_t i = 0; i < set.model_count(); ++i)
     tables.push_back(model_table(set, i, table_sampling, a.cache));
+  if (!a.quality_diagnosis.empty()) {
+    std::vector<std::string> conditions;
+    std::stringstream ss(a.diagnosis_conditions);
+    for (std::string c; std::getline(ss, c, ',');) {
+      if (c != "scene" && c != "sky" && c != "scene4")
+        throw InputError(fmt::format("--diagnosis-conditions: '{}' is not scene, sky or scene4", c));
+      conditions.push_back(c);
+    }
+    const nlohmann::json j = diagnose_hybrid_quality(
+        {set, tables, ground, path, checkpoints, w, h, a.terrain_quads, conditions,
+         a.diagnosis_images});
+    write_json(j, a.quality_diagnosis);
+    return;
+  }
   DrawCostModel cost = calibrated_cost(tables);
   {
     // The tables time 50-200 px in a small image; the walkthrough draws
@@ -510,6 +525,15 @@ void add_bench_hybrid(CLI::App& bench) {
                   "cost calibration: on-screen sizes, px (each representation timed alone); auto: "
                   "image height / 8, / 2 and x 2")
       ->capture_default_str();
+  cmd->add_option("--quality-diagnosis", a->quality_diagnosis,
+                  "instead of the walkthrough: per checkpoint, size bucket and representation, "
+                  "the tables' predicted SSIM against the measured one (JSON to this file)");
+  cmd->add_option("--diagnosis-conditions", a->diagnosis_conditions,
+                  "for --quality-diagnosis: scene, sky, scene4 (comma-separated)")
+      ->capture_default_str();
+  cmd->add_option("--diagnosis-images", a->diagnosis_images,
+                  "for --quality-diagnosis: write the images of every instance drawn (existing "
+                  "directory)");
   cmd->add_option("--figure6", a->figure6, "checkpoint shown in Figure 6")->capture_default_str();
   cmd->add_option("--cache", a->cache,
                   "quality-table and representation cache directory (default: "

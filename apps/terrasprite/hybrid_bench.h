@@ -8,6 +8,9 @@
 
 #include "terrasprite/experiment.h"
 #include "terrasprite/image.h"
+#include "terrasprite/object_set.h"
+#include "terrasprite/quality_table.h"
+#include "terrasprite/walkthrough_path.h"
 #include "terrasprite/output_dir.h"
 #include "terrasprite/stats.h"
 
@@ -61,5 +64,22 @@ nlohmann::json hybrid_json(const HybridBenchResult& r);
 void write_hybrid_report(const HybridBenchResult& r, OutputDir& out);
 /// Table 2 as Markdown (also printed by the command).
 std::string table2_markdown(const HybridBenchResult& r);
+
+/// What --quality-diagnosis needs from the bench's setup.
+struct QualityDiagnosisInput {
+  ObjectSet& set;
+  const std::vector<QualityTable>& tables;
+  Scene& ground;
+  const std::vector<Camera>& path;
+  const std::vector<PathCheckpoint>& checkpoints;
+  int width = 0, height = 0, terrain_quads = 64;
+  /// scene (over the terrain), sky (over the clear colour, as the tables),
+  /// scene4 (over the terrain at 4 x the image size).
+  std::vector<std::string> conditions;
+  std::string image_dir;  ///< when set: every image of the 'all' group, as PNG
+};
+/// Per checkpoint, on-screen size bucket and representation: the tables'
+/// predicted SSIM against the one measured (hybrid_quality_diagnosis.cpp).
+nlohmann::json diagnose_hybrid_quality(const QualityDiagnosisInput& in);
 
 }  // namespace terrasprite::cli

@@ -50,6 +50,8 @@ struct HybridBenchResult {
   bool target_auto = false;     ///< target_ms = full_ms_at_start / --full-over-target
   /// The cost calibration's measured / predicted table (calibration_report).
   std::string calibration;
+  /// The tables in context (calibrate_tables_in_context's report), or null.
+  nlohmann::json quality_context;
   long long full_triangles_max = 0;
   std::vector<HybridScenarioResult> scenarios;  ///< full first
   SelectionFigures selection;
@@ -77,9 +79,28 @@ struct QualityDiagnosisInput {
   /// scene4 (over the terrain at 4 x the image size).
   std::vector<std::string> conditions;
   std::string image_dir;  ///< when set: every image of the 'all' group, as PNG
+  /// The tables in context (calibrate_tables_in_context), when measured:
+  /// their prediction is reported next to the raw tables'.
+  const std::vector<QualityTable>* context_tables = nullptr;
 };
 /// Per checkpoint, on-screen size bucket and representation: the tables'
 /// predicted SSIM against the one measured (hybrid_quality_diagnosis.cpp).
 nlohmann::json diagnose_hybrid_quality(const QualityDiagnosisInput& in);
+
+/// What calibrate_tables_in_context needs.
+struct QualityContextInput {
+  ObjectSet& set;
+  Scene& ground;
+  std::vector<Camera> cameras;  ///< walkthrough views (not the checkpoints')
+  int width = 0, height = 0, terrain_quads = 64;
+  double max_impostor_size_px = 0;  ///< as HybridOptions: impostors not offered past it
+};
+/// The tables in context: at each camera, each model's visible instances are
+/// drawn over the terrain at full geometry and at each representation of
+/// its table, scored as the bench scores; each representation's SSIM
+/// samples are rescaled by the fitted error scale (quality_calibration.h).
+/// Returns per (model, representation): error_scale, predicted, measured.
+nlohmann::json calibrate_tables_in_context(const QualityContextInput& in,
+                                           std::vector<QualityTable>& tables);
 
 }  // namespace terrasprite::cli

@@ -122,7 +122,7 @@ nlohmann::json hybrid_json(const HybridBenchResult& r) {
                          {"checkpoints", cps}});
   }
   const SelectionFigures& f = r.selection;
-  return {{"gl_renderer", r.gl_renderer},
+  nlohmann::json j = {{"gl_renderer", r.gl_renderer},
           {"target_ms", r.target_ms},
           {"size", {r.width, r.height}},
           {"frames", r.frames},
@@ -142,6 +142,8 @@ nlohmann::json hybrid_json(const HybridBenchResult& r) {
             {"gain_mean", f.gain_mean},
             {"gain_max", f.gain_max},
             {"frames", f.frames}}}};
+  if (!r.quality_context.is_null()) j["quality_context"] = r.quality_context;
+  return j;
 }
 
 std::string table2_markdown(const HybridBenchResult& r) {

@@ -42,8 +42,16 @@ struct HybridArgs {
   std::string figure6 = "C";
   std::string calibration_sizes = "auto";
   int quality_context_frames = 6;
+  std::string budget_sweep, budget_fractions = "0.1,0.2,0.3,0.5,0.75,1";
   std::string quality_diagnosis, diagnosis_conditions = "scene,sky", diagnosis_images;
 };
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');) out.push_back(item);
+  return out;
+}
 
 /// Keeps `count` instances (0: all), drawn at random (seeded) so the model mix stays.
 void subsample(ObjectScene& scene, int count) {
@@ -348,8 +356,7 @@ void run_bench(const HybridArgs& a) {
   }
   if (!a.quality_diagnosis.empty()) {
     std::vector<std::string> conditions;
-    std::stringstream ss(a.diagnosis_conditions);
-    for (std::string c; std::getline(ss, c, ',');) {
+    for (const std::string& c : split_list(a.diagnosis_conditions)) {
       if (c != "scene" && c != "sky" && c != "scene4")
         throw InputError(fmt::format("--diagnosis-conditions: '{}' is not scene, sky or scene4", c));
       conditions.push_back(c);
@@ -404,6 +411,28 @@ void run_bench(const HybridArgs& a) {
       ms.push_back(terrain_only.draw(path[std::size_t(k * (path.size() - 1) / 5)]).ms);
     result.terrain_ms = summarize(ms).median;
     cost.set_frame_ms(result.terrain_ms);
+  }
+  if (!a.budget_sweep.empty()) {
+    std::vector<double> fractions;
+    for (const std::string& f : split_list(a.budget_fractions)) {
+      std::size_t used = 0;
+      double v = 0;
+      try {
+        v = std::stod(f, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != f.size() || !(v > 0 && v <= 4))
+        throw InputError(fmt::format("--budget-fractions: '{}' is not a number in (0, 4]", f));
+      fractions.push_back(v);
+    }
+    std::vector<HybridScenario> swept;
+    for (const HybridScenario& sc : scenarios())
+      if (sc.name == "pm" || sc.name == "mixed-optimal") swept.push_back(sc);
+    write_json(quality_budget_sweep({set, tables, cost, ground, path, checkpoints, w, h,
+                                     a.terrain_quads, ho, swept, fractions}),
+               a.budget_sweep);
+    return;
   }
   {
     // Full geometry on the same six path frames: the issue's "full at least
@@ -558,6 +587,12 @@ void add_bench_hybrid(CLI::App& bench) {
                   "tables as measured)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1000));
+  cmd->add_option("--budget-sweep", a->budget_sweep,
+                  "instead of the walkthrough: at each checkpoint, pm and mixed-optimal under "
+                  "fixed budgets (--budget-fractions of full geometry's predicted frame), scored "
+                  "and timed (JSON to this file)");
+  cmd->add_option("--budget-fractions", a->budget_fractions, "for --budget-sweep")
+      ->capture_default_str();
   cmd->add_option("--quality-diagnosis", a->quality_diagnosis,
                   "instead of the walkthrough: per checkpoint, size bucket and representation, "
                   "the tables' predicted SSIM against the measured one (JSON to this file)");

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "terrasprite/experiment.h"
+#include "terrasprite/hybrid_objects.h"
 #include "terrasprite/image.h"
 #include "terrasprite/object_set.h"
 #include "terrasprite/quality_table.h"
@@ -102,5 +103,24 @@ struct QualityContextInput {
 /// Returns per (model, representation): error_scale, predicted, measured.
 nlohmann::json calibrate_tables_in_context(const QualityContextInput& in,
                                            std::vector<QualityTable>& tables);
+
+/// What quality_budget_sweep needs.
+struct BudgetSweepInput {
+  ObjectSet& set;
+  const std::vector<QualityTable>& tables;
+  const DrawCostModel& cost;
+  Scene& ground;
+  const std::vector<Camera>& path;
+  const std::vector<PathCheckpoint>& checkpoints;
+  int width = 0, height = 0, terrain_quads = 64;
+  HybridOptions options;
+  std::vector<HybridScenario> scenarios;  ///< drawn at each budget (control set to kFixed)
+  std::vector<double> fractions;          ///< budgets: these fractions of full's predicted frame
+};
+/// Quality against budget, without the controller: at each checkpoint each
+/// scenario selects once under a fixed budget (a fraction of full
+/// geometry's predicted frame time) and is scored against full geometry
+/// (object-masked and whole-frame SSIM) and timed (median of 3).
+nlohmann::json quality_budget_sweep(const BudgetSweepInput& in);
 
 }  // namespace terrasprite::cli

@@ -371,4 +371,58 @@ nlohmann::json calibrate_tables_in_context(const QualityContextInput& in,
   return report;
 }
 
+nlohmann::json quality_budget_sweep(const BudgetSweepInput& in) {
+  nlohmann::json out = nlohmann::json::array();
+  Shooter shooter(in.ground, in.width, in.height, in.terrain_quads, false);
+  HybridScenario full_scenario{"full", {ObjectKind::kMesh}, SelectionPolicy::kStatic, true};
+  HybridOptions o = in.options;
+  o.use_hysteresis = false;
+  for (const PathCheckpoint& cp : in.checkpoints) {
+    const Camera& cam = in.path[std::size_t(cp.frame)];
+    const std::vector<Item> none;
+    AssignedObjects empty(in.set, none, [](std::size_t) { return Representation{}; });
+    const Shot bare = shooter.shoot(empty, cam, 3);
+    HybridObjects full(in.set, in.tables, in.cost, full_scenario, o);
+    const Shot ref = shooter.shoot(full, cam, 3);
+    const double full_predicted = full.last().predicted_ms;
+    for (double f : in.fractions)
+      for (HybridScenario sc : in.scenarios) {
+        sc.control = HybridScenario::Control::kFixed;
+        o.target_ms = f * full_predicted;
+        HybridObjects objects(in.set, in.tables, in.cost, sc, o);
+        objects.prepare();
+        const Shot test = shooter.shoot(objects, cam, 3);
+        const auto [measured, covered] = masked_ssim(ref, test, bare);
+        quality::SsimOptions so;
+        so.channels = false;
+        const double whole = ref.color.rgba == test.color.rgba
+                                 ? 1.0
+                                 : quality::ssim(ref.color.view(), test.color.view(), so).ssim;
+        const HybridFrameStats& st = objects.last();
+        out.push_back({{"checkpoint", cp.name},
+                       {"scenario", sc.name},
+                       {"fraction", f},
+                       {"budget_ms", o.target_ms},
+                       {"predicted_ms", st.predicted_ms},
+                       {"ms", test.ms},
+                       {"full_ms", ref.ms},
+                       {"full_predicted_ms", full_predicted},
+                       {"terrain_ms", bare.ms},
+                       {"expected_ssim", st.expected_ssim},
+                       {"ssim_objects", measured},
+                       {"ssim", whole},
+                       {"triangles", st.triangles},
+                       {"by_kind", st.instances_by_kind}});
+        fmt::print(stderr,
+                   "{} {:14} budget {:.2f} x full ({:6.1f} ms): predicted {:6.1f} ms, measured "
+                   "{:6.1f} ms (full {:6.1f}, terrain {:5.1f}); expected SSIM {:.3f}, objects "
+                   "{:.3f}, whole {:.4f}; mesh/relief/octahedral {}/{}/{}\n",
+                   cp.name, sc.name, f, o.target_ms, st.predicted_ms, test.ms, ref.ms, bare.ms,
+                   st.expected_ssim, measured, whole, st.instances_by_kind[0],
+                   st.instances_by_kind[1], st.instances_by_kind[2]);
+      }
+  }
+  return out;
+}
+
 }  // namespace terrasprite::cli

@@ -30,6 +30,7 @@ struct HybridScenario {
     kNone,         ///< unbudgeted (full, ibr) or a fixed budget
     kQualityStep,  ///< the paper's: target quality up/down with the frame time (and the PI budget)
     kBudgetPi,     ///< cost-model prediction corrected by measured time (PI)
+    kFixed,        ///< HybridOptions::target_ms as the budget, in predicted ms (no feedback)
   } control = Control::kNone;
 };
 

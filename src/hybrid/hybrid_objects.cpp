@@ -169,6 +169,9 @@ long long HybridObjects::draw(const Camera& camera) {
     case HybridScenario::Control::kBudgetPi:
       budget = s.controller.budget_ms();
       break;
+    case HybridScenario::Control::kFixed:
+      budget = o.target_ms;
+      break;
   }
   st.budget_ms = budget;
   st.target_quality = po.target_ssim;

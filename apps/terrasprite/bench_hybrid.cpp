@@ -42,7 +42,7 @@ struct HybridArgs {
   std::string figure6 = "C";
   std::string calibration_sizes = "auto";
   int quality_context_frames = 6;
-  std::string budget_sweep, budget_fractions = "0.1,0.2,0.3,0.5,0.75,1";
+  std::string budget_sweep, budget_fractions = "0.05,0.1,0.15,0.2,0.3,0.5";
   std::string quality_diagnosis, diagnosis_conditions = "scene,sky", diagnosis_images;
 };
 
@@ -430,7 +430,8 @@ void run_bench(const HybridArgs& a) {
     for (const HybridScenario& sc : scenarios())
       if (sc.name == "pm" || sc.name == "mixed-optimal") swept.push_back(sc);
     write_json(quality_budget_sweep({set, tables, cost, ground, path, checkpoints, w, h,
-                                     a.terrain_quads, ho, swept, fractions}),
+                                     a.terrain_quads, ho, swept, fractions,
+                                     a.quality_context_frames > 0 ? &tables_as_measured : nullptr}),
                a.budget_sweep);
     return;
   }

@@ -116,6 +116,9 @@ struct BudgetSweepInput {
   HybridOptions options;
   std::vector<HybridScenario> scenarios;  ///< drawn at each budget (control set to kFixed)
   std::vector<double> fractions;          ///< budgets: these fractions of full's predicted frame
+  /// When set (the tables as measured, `tables` being in context): every
+  /// scenario also selects from these, named "<name> (tables as measured)".
+  const std::vector<QualityTable>* raw_tables = nullptr;
 };
 /// Quality against budget, without the controller: at each checkpoint each
 /// scenario selects once under a fixed budget (a fraction of full

@@ -385,11 +385,19 @@ nlohmann::json quality_budget_sweep(const BudgetSweepInput& in) {
     HybridObjects full(in.set, in.tables, in.cost, full_scenario, o);
     const Shot ref = shooter.shoot(full, cam, 3);
     const double full_predicted = full.last().predicted_ms;
+    std::vector<std::pair<HybridScenario, const std::vector<QualityTable>*>> runs;
+    for (HybridScenario sc : in.scenarios) {
+      sc.control = HybridScenario::Control::kFixed;
+      runs.push_back({sc, &in.tables});
+      if (in.raw_tables) {
+        sc.name += " (tables as measured)";
+        runs.push_back({sc, in.raw_tables});
+      }
+    }
     for (double f : in.fractions)
-      for (HybridScenario sc : in.scenarios) {
-        sc.control = HybridScenario::Control::kFixed;
+      for (const auto& [sc, tables] : runs) {
         o.target_ms = f * full_predicted;
-        HybridObjects objects(in.set, in.tables, in.cost, sc, o);
+        HybridObjects objects(in.set, *tables, in.cost, sc, o);
         objects.prepare();
         const Shot test = shooter.shoot(objects, cam, 3);
         const auto [measured, covered] = masked_ssim(ref, test, bare);
@@ -414,7 +422,7 @@ nlohmann::json quality_budget_sweep(const BudgetSweepInput& in) {
                        {"triangles", st.triangles},
                        {"by_kind", st.instances_by_kind}});
         fmt::print(stderr,
-                   "{} {:14} budget {:.2f} x full ({:6.1f} ms): predicted {:6.1f} ms, measured "
+                   "{} {:34} budget {:.2f} x full ({:6.1f} ms): predicted {:6.1f} ms, measured "
                    "{:6.1f} ms (full {:6.1f}, terrain {:5.1f}); expected SSIM {:.3f}, objects "
                    "{:.3f}, whole {:.4f}; mesh/relief/octahedral {}/{}/{}\n",
                    cp.name, sc.name, f, o.target_ms, st.predicted_ms, test.ms, ref.ms, bare.ms,

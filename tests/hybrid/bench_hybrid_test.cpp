@@ -62,6 +62,14 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
   for (const char* k : {"policy", "ms_per_frame", "objective_greedy", "objective_optimal"})
     EXPECT_TRUE(sel.contains(k)) << k;
   EXPECT_GE(sel["objective_optimal"].get<double>(), sel["objective_greedy"].get<double>());
+  // The tables in context: an error scale per (model, representation) drawn.
+  ASSERT_TRUE(j.contains("quality_context"));
+  EXPECT_FALSE(j["quality_context"].empty());
+  for (const auto& q : j["quality_context"]) {
+    EXPECT_GE(q["error_scale"].get<double>(), 0.25);
+    EXPECT_LE(q["error_scale"].get<double>(), 8.0);
+    EXPECT_GT(q["pixels"].get<double>(), 0.0);
+  }
   EXPECT_TRUE(std::filesystem::exists(dir / "h/index.html"));
   EXPECT_TRUE(std::filesystem::exists(dir / "h/table2.md"));
   EXPECT_TRUE(std::filesystem::exists(dir / "h/fig6_mixed-optimal.png"));

@@ -27,11 +27,15 @@ struct ErrorScaleOptions {
   /// Observations whose predicted error is under this say nothing about the
   /// scale (both images nearly identical): skipped.
   double min_predicted_error = 1e-3;
+  /// Shrinks k towards 1 for groups of few pixels (a 5 px beetle says little):
+  /// as if this many pixels with a predicted error of 0.1 had scored exactly
+  /// as predicted.
+  double prior_weight = 200;
 };
 
 /// k minimising sum w ((1 - measured) - k (1 - predicted))^2 (least squares
-/// through the origin), clamped to [min_scale, max_scale]; 1 without usable
-/// observations.
+/// through the origin) plus the prior's prior_weight 0.1^2 (k - 1)^2, clamped
+/// to [min_scale, max_scale]; 1 without usable observations.
 double fit_error_scale(std::span<const QualityObservation> obs, const ErrorScaleOptions& o = {});
 
 /// 1 - k (1 - ssim), clamped to [0, 1].

@@ -13,6 +13,9 @@ double fit_error_scale(std::span<const QualityObservation> obs, const ErrorScale
     num += q.weight * ep * em;
     den += q.weight * ep * ep;
   }
+  const double prior = o.prior_weight * 0.01;
+  num += prior;
+  den += prior;
   if (!(den > 0)) return 1.0;
   return std::clamp(num / den, o.min_scale, o.max_scale);
 }

@@ -349,16 +349,16 @@ void run_bench(const HybridArgs& a) {
       by_kind[row["kind"].get<std::string>()].push_back(row["error_scale"].get<double>());
     std::string line;
     for (auto& [kind, v] : by_kind) line += fmt::format(" {} {:.2f},", kind, summarize(v).median);
-    fmt::print(stderr,
-               "quality tables in context ({} views, {:.1f} s): median error scale per kind:{}\n",
-               n, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
-               line);
+    fmt::print(
+        stderr, "quality tables in context ({} views, {:.1f} s): median error scale per kind:{}\n",
+        n, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), line);
   }
   if (!a.quality_diagnosis.empty()) {
     std::vector<std::string> conditions;
     for (const std::string& c : split_list(a.diagnosis_conditions)) {
       if (c != "scene" && c != "sky" && c != "scene4")
-        throw InputError(fmt::format("--diagnosis-conditions: '{}' is not scene, sky or scene4", c));
+        throw InputError(
+            fmt::format("--diagnosis-conditions: '{}' is not scene, sky or scene4", c));
       conditions.push_back(c);
     }
     const nlohmann::json j = diagnose_hybrid_quality(
@@ -492,6 +492,9 @@ void run_bench(const HybridArgs& a) {
                   .score = true,
                   .read = ReadBack::kDepth};
     p.annotate = [o = objects[k].get()](const Frame&, FrameResult& r) { annotate(*o, r); };
+    // The warm-up draw is untimed and cold: it must not set the first
+    // timed frame's budget (checkpoint A is frame 0).
+    p.after_warmup = [o = objects[k].get()] { o->forget_feedback(); };
     experiment.add(p);
   }
   Progress progress("bench hybrid");

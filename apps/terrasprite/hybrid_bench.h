@@ -10,10 +10,10 @@
 #include "terrasprite/hybrid_objects.h"
 #include "terrasprite/image.h"
 #include "terrasprite/object_set.h"
-#include "terrasprite/quality_table.h"
-#include "terrasprite/walkthrough_path.h"
 #include "terrasprite/output_dir.h"
+#include "terrasprite/quality_table.h"
 #include "terrasprite/stats.h"
+#include "terrasprite/walkthrough_path.h"
 
 namespace terrasprite::cli {
 

@@ -10,9 +10,12 @@
 // tables' prediction (expected SSIM weighted by the instances' pixels).
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+#include <functional>
 #include <map>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "gl/render_target.h"
 #include "hybrid_bench.h"
@@ -290,9 +293,9 @@ nlohmann::json diagnose_hybrid_quality(const QualityDiagnosisInput& in) {
                      "{:7} {} {:>10} n={:3} px={:6} {:14} predicted {:.3f}{} measured {:.3f} "
                      "{:.1f} ms (full {:.1f})\n",
                      condition, cp.name, bucket, items.size(), covered, u.label(), predicted,
-                     in.context_tables
-                         ? fmt::format(" (in context {:.3f})", row["predicted_context"].get<double>())
-                         : "",
+                     in.context_tables ? fmt::format(" (in context {:.3f})",
+                                                     row["predicted_context"].get<double>())
+                                       : "",
                      measured, test.ms, ref.ms);
         }
       }
@@ -323,8 +326,8 @@ nlohmann::json calibrate_tables_in_context(const QualityContextInput& in,
         if (it.model != m) continue;
         items[0].push_back(it);
         const double r = radius * set.instances(m)[it.instance].scale;
-        if (!(in.max_impostor_size_px > 0 && (it.view.size_px > in.max_impostor_size_px ||
-                                              it.view.distance_m < 2 * r)))
+        if (!(in.max_impostor_size_px > 0 &&
+              (it.view.size_px > in.max_impostor_size_px || it.view.distance_m < 2 * r)))
           items[1].push_back(it);
       }
       std::array<std::optional<Shot>, 2> ref;
@@ -342,7 +345,8 @@ nlohmann::json calibrate_tables_in_context(const QualityContextInput& in,
         const Shot test = shooter.shoot(test_objects, cam);
         const auto [measured, covered] = masked_ssim(*ref[g], test, bare);
         if (covered)
-          obs[m][k].push_back({predicted_ssim(items[g], rep_of, interp), measured, double(covered)});
+          obs[m][k].push_back(
+              {predicted_ssim(items[g], rep_of, interp), measured, double(covered)});
       }
     }
   }

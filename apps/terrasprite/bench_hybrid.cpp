@@ -278,7 +278,27 @@ std::vector<PathCheckpoint> snapped(std::vector<PathCheckpoint> cps, int score_e
 
 void run_bench(const HybridArgs& a) {
   auto [w, h] = parse_size(a.size, "--size");
-  check_outputs(a.out, {a.json});
+  check_outputs(a.out, {a.json, a.quality_diagnosis, a.budget_sweep});
+  // Checked before any work (the tables take minutes when not cached).
+  std::vector<std::string> conditions;
+  for (const std::string& c : split_list(a.diagnosis_conditions)) {
+    if (c != "scene" && c != "sky" && c != "scene4")
+      throw InputError(fmt::format("--diagnosis-conditions: '{}' is not scene, sky or scene4", c));
+    conditions.push_back(c);
+  }
+  std::vector<double> fractions;
+  for (const std::string& f : split_list(a.budget_fractions)) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(f, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != f.size() || !(v > 0 && v <= 4))
+      throw InputError(fmt::format("--budget-fractions: '{}' is not a number in (0, 4]", f));
+    fractions.push_back(v);
+  }
   double target_ms = 0;  // 0: auto, decided once full geometry has been timed
   if (a.target != "auto") {
     std::size_t used = 0;
@@ -354,13 +374,6 @@ void run_bench(const HybridArgs& a) {
         n, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), line);
   }
   if (!a.quality_diagnosis.empty()) {
-    std::vector<std::string> conditions;
-    for (const std::string& c : split_list(a.diagnosis_conditions)) {
-      if (c != "scene" && c != "sky" && c != "scene4")
-        throw InputError(
-            fmt::format("--diagnosis-conditions: '{}' is not scene, sky or scene4", c));
-      conditions.push_back(c);
-    }
     const nlohmann::json j = diagnose_hybrid_quality(
         {set, tables_as_measured, ground, path, checkpoints, w, h, a.terrain_quads, conditions,
          a.diagnosis_images, a.quality_context_frames > 0 ? &tables : nullptr});
@@ -413,19 +426,6 @@ void run_bench(const HybridArgs& a) {
     cost.set_frame_ms(result.terrain_ms);
   }
   if (!a.budget_sweep.empty()) {
-    std::vector<double> fractions;
-    for (const std::string& f : split_list(a.budget_fractions)) {
-      std::size_t used = 0;
-      double v = 0;
-      try {
-        v = std::stod(f, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != f.size() || !(v > 0 && v <= 4))
-        throw InputError(fmt::format("--budget-fractions: '{}' is not a number in (0, 4]", f));
-      fractions.push_back(v);
-    }
     std::vector<HybridScenario> swept;
     for (const HybridScenario& sc : scenarios())
       if (sc.name == "pm" || sc.name == "mixed-optimal") swept.push_back(sc);

@@ -33,7 +33,7 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
       "bench hybrid --scene " + (dir / "scene.json") +
       " --size 160x90 --frames 10 --score-every 2 --target-ms 40 --table-sizes 64"
       " --table-angle-step 120 --relief-resolutions 16,32 --octahedral-resolutions 16"
-      " --terrain-quads 16 --cache " +
+      " --terrain-quads 16 --quality-context-frames 2 --cache " +
       (dir / "cache");
   const tstest::CliResult r =
       tstest::run_cli(args + " --json " + (dir / "h.json") + " --out " + (dir / "h"));

@@ -39,9 +39,20 @@ struct HybridArgs {
   std::string table_sizes = "200,50,16", relief_resolutions = "32,64,128,256",
               octahedral_resolutions = "32,64,128";
   double table_angle_step = 45;
+  bool table_full_sphere = true;
   std::string figure6 = "C";
   std::string calibration_sizes = "auto";
+  int quality_context_frames = 0;
+  std::string budget_sweep, budget_fractions = "0.05,0.1,0.15,0.2,0.3,0.5";
+  std::string quality_diagnosis, diagnosis_conditions = "scene,sky", diagnosis_images;
 };
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');) out.push_back(item);
+  return out;
+}
 
 /// Keeps `count` instances (0: all), drawn at random (seeded) so the model mix stays.
 void subsample(ObjectScene& scene, int count) {
@@ -69,6 +80,7 @@ std::vector<TableOptions> table_options(const HybridArgs& a) {
     o.resolutions = int_list(res, option);
     o.sizes_px = int_list(a.table_sizes, "--table-sizes");
     o.angle_step_deg = a.table_angle_step;
+    o.full_sphere = a.table_full_sphere;
     for (int r : o.resolutions)
       if (r < 16 || r > 512) throw InputError(fmt::format("{}: {} is outside 16..512", option, r));
     for (int px : o.sizes_px)
@@ -268,7 +280,27 @@ std::vector<PathCheckpoint> snapped(std::vector<PathCheckpoint> cps, int score_e
 
 void run_bench(const HybridArgs& a) {
   auto [w, h] = parse_size(a.size, "--size");
-  check_outputs(a.out, {a.json});
+  check_outputs(a.out, {a.json, a.quality_diagnosis, a.budget_sweep});
+  // Checked before any work (the tables take minutes when not cached).
+  std::vector<std::string> conditions;
+  for (const std::string& c : split_list(a.diagnosis_conditions)) {
+    if (c != "scene" && c != "sky" && c != "scene4")
+      throw InputError(fmt::format("--diagnosis-conditions: '{}' is not scene, sky or scene4", c));
+    conditions.push_back(c);
+  }
+  std::vector<double> fractions;
+  for (const std::string& f : split_list(a.budget_fractions)) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(f, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != f.size() || !(v > 0 && v <= 4))
+      throw InputError(fmt::format("--budget-fractions: '{}' is not a number in (0, 4]", f));
+    fractions.push_back(v);
+  }
   double target_ms = 0;  // 0: auto, decided once full geometry has been timed
   if (a.target != "auto") {
     std::size_t used = 0;
@@ -313,6 +345,43 @@ void run_bench(const HybridArgs& a) {
   std::vector<QualityTable> tables;
   for (std::size_t i = 0; i < set.model_count(); ++i)
     tables.push_back(model_table(set, i, table_sampling, a.cache));
+  HybridOptions ho;
+  ho.width = w;
+  ho.height = h;
+  for (const TableOptions& o : table_sampling)
+    for (int px : o.sizes_px) ho.max_impostor_size_px = std::max(ho.max_impostor_size_px, 2.0 * px);
+  const std::vector<QualityTable> tables_as_measured = tables;
+  if (a.quality_context_frames > 0) {
+    // The tables in context: walkthrough frames other than the checkpoints'.
+    QualityContextInput qi{set, ground, {}, w, h, a.terrain_quads, ho.max_impostor_size_px};
+    const int n = a.quality_context_frames, frames = int(path.size());
+    for (int k = 0; k < n; ++k) {
+      int f = int(std::lround((k + 0.5) * (frames - 1) / n));
+      auto near_checkpoint = [&](int f) {
+        return std::any_of(checkpoints.begin(), checkpoints.end(),
+                           [&](const PathCheckpoint& c) { return std::abs(c.frame - f) <= 1; });
+      };
+      for (int step = 0; step < frames && near_checkpoint(f); ++step) f = (f + 1) % frames;
+      qi.cameras.push_back(path[std::size_t(f)]);
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    result.quality_context = calibrate_tables_in_context(qi, tables);
+    std::map<std::string, std::vector<double>> by_kind;
+    for (const auto& row : result.quality_context)
+      by_kind[row["kind"].get<std::string>()].push_back(row["error_scale"].get<double>());
+    std::string line;
+    for (auto& [kind, v] : by_kind) line += fmt::format(" {} {:.2f},", kind, summarize(v).median);
+    fmt::print(
+        stderr, "quality tables in context ({} views, {:.1f} s): median error scale per kind:{}\n",
+        n, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), line);
+  }
+  if (!a.quality_diagnosis.empty()) {
+    const nlohmann::json j = diagnose_hybrid_quality(
+        {set, tables_as_measured, ground, path, checkpoints, w, h, a.terrain_quads, conditions,
+         a.diagnosis_images, a.quality_context_frames > 0 ? &tables : nullptr});
+    write_json(j, a.quality_diagnosis);
+    return;
+  }
   DrawCostModel cost = calibrated_cost(tables);
   {
     // The tables time 50-200 px in a small image; the walkthrough draws
@@ -358,11 +427,16 @@ void run_bench(const HybridArgs& a) {
     result.terrain_ms = summarize(ms).median;
     cost.set_frame_ms(result.terrain_ms);
   }
-  HybridOptions ho;
-  ho.width = w;
-  ho.height = h;
-  for (const TableOptions& o : table_sampling)
-    for (int px : o.sizes_px) ho.max_impostor_size_px = std::max(ho.max_impostor_size_px, 2.0 * px);
+  if (!a.budget_sweep.empty()) {
+    std::vector<HybridScenario> swept;
+    for (const HybridScenario& sc : scenarios())
+      if (sc.name == "pm" || sc.name == "mixed-optimal") swept.push_back(sc);
+    write_json(quality_budget_sweep({set, tables, cost, ground, path, checkpoints, w, h,
+                                     a.terrain_quads, ho, swept, fractions,
+                                     a.quality_context_frames > 0 ? &tables_as_measured : nullptr}),
+               a.budget_sweep);
+    return;
+  }
   {
     // Full geometry on the same six path frames: the issue's "full at least
     // 5 times over the target" made the default (auto) target.
@@ -420,6 +494,9 @@ void run_bench(const HybridArgs& a) {
                   .score = true,
                   .read = ReadBack::kDepth};
     p.annotate = [o = objects[k].get()](const Frame&, FrameResult& r) { annotate(*o, r); };
+    // The warm-up draw is untimed and cold: it must not set the first
+    // timed frame's budget (checkpoint A is frame 0).
+    p.after_warmup = [o = objects[k].get()] { o->forget_feedback(); };
     experiment.add(p);
   }
   Progress progress("bench hybrid");
@@ -501,6 +578,11 @@ void add_bench_hybrid(CLI::App& bench) {
                   "quality tables: degrees between views")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 180.0));
+  cmd->add_option("--table-full-sphere", a->table_full_sphere,
+                  "quality tables: views from below too (theta to 180): the walkthrough sees "
+                  "most instances from 18-28 degrees below their centre, and hemisphere tables "
+                  "clamped there mispredicted every kind")
+      ->capture_default_str();
   cmd->add_option("--relief-resolutions", a->relief_resolutions, "relief impostor resolutions")
       ->capture_default_str();
   cmd->add_option("--octahedral-resolutions", a->octahedral_resolutions,
@@ -510,6 +592,27 @@ void add_bench_hybrid(CLI::App& bench) {
                   "cost calibration: on-screen sizes, px (each representation timed alone); auto: "
                   "image height / 8, / 2 and x 2")
       ->capture_default_str();
+  cmd->add_option("--quality-context-frames", a->quality_context_frames,
+                  "the quality tables in context: rescale each representation's expected SSIM "
+                  "to what it scores over the terrain in this many walkthrough views (0: the "
+                  "tables as measured; with full-sphere tables it gains little: see the note)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
+  cmd->add_option("--budget-sweep", a->budget_sweep,
+                  "instead of the walkthrough: at each checkpoint, pm and mixed-optimal under "
+                  "fixed budgets (--budget-fractions of full geometry's predicted frame), scored "
+                  "and timed (JSON to this file)");
+  cmd->add_option("--budget-fractions", a->budget_fractions, "for --budget-sweep")
+      ->capture_default_str();
+  cmd->add_option("--quality-diagnosis", a->quality_diagnosis,
+                  "instead of the walkthrough: per checkpoint, size bucket and representation, "
+                  "the tables' predicted SSIM against the measured one (JSON to this file)");
+  cmd->add_option("--diagnosis-conditions", a->diagnosis_conditions,
+                  "for --quality-diagnosis: scene, sky, scene4 (comma-separated)")
+      ->capture_default_str();
+  cmd->add_option("--diagnosis-images", a->diagnosis_images,
+                  "for --quality-diagnosis: write the images of every instance drawn (existing "
+                  "directory)");
   cmd->add_option("--figure6", a->figure6, "checkpoint shown in Figure 6")->capture_default_str();
   cmd->add_option("--cache", a->cache,
                   "quality-table and representation cache directory (default: "

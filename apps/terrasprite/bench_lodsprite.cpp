@@ -45,6 +45,7 @@ void add_bench_lodsprite(CLI::App& bench) {
     double cache_mb = 0;
     std::string cache_policy = "lru";
     std::string mesh = "uniform";
+    std::string shading = "plain";
   };
   auto o = std::make_shared<Opts>();
   o->terrain.resample = 513;  // the paper's 512 x 512 quads
@@ -61,8 +62,10 @@ void add_bench_lodsprite(CLI::App& bench) {
   cmd->add_option("--size", o->size, "image size WxH (default 512x512)");
   cmd->add_option("--threshold", o->config.threshold_px,
                   "keyframe threshold, pixels (default 1.0)");
-  cmd->add_option("--metric", o->metric,
-                  "error metric that triggers keyframes: paper (default) | exact");
+  cmd->add_option(
+      "--metric", o->metric,
+      "error metric that triggers keyframes: paper (default) | exact | contrast (predicted "
+      "image error: --threshold in grey levels)");
   cmd->add_option("--fallback-trigger", o->config.max_fallback_fraction,
                   "also keyframe when this fraction of in-view quads fall back to the drape "
                   "texture (default 1 = off)");
@@ -99,6 +102,13 @@ void add_bench_lodsprite(CLI::App& bench) {
   cmd->add_option("--async-lead", o->config.async_lead,
                   "--async: also request a keyframe when the error predicted where it would land "
                   "exceeds this fraction of the threshold (default 0.6; 1 = at the threshold)");
+  cmd->add_option("--shading", o->shading,
+                  "terrain shading of every renderer: plain (default) | rich (soft shadows, "
+                  "ambient occlusion and haze per fragment: full resolution pays it every frame, "
+                  "LOD-sprite on keyframes)");
+  cmd->add_flag("--compare-trigger", o->config.compare_trigger,
+                "also compare the keyframe trigger with the other kind (geometric vs contrast, "
+                "the predicted image error) at the same keyframe count");
   cmd->add_option("--thresholds", o->thresholds, "threshold sweep (default 0.25,0.5,1,2,4,8)");
   cmd->add_option("--frame-counts", o->frame_counts,
                   "frame-count sweep (default 115,230,460,920,1840)");
@@ -114,6 +124,9 @@ void add_bench_lodsprite(CLI::App& bench) {
     c.metric = parse_metric(o->metric);
     c.mesh = parse_mesh(o->mesh);
     check_mesh_triangles(c.mesh_triangles);
+    if (o->shading != "plain" && o->shading != "rich")
+      throw InputError(fmt::format("--shading {}: must be 'plain' or 'rich'", o->shading));
+    c.shading = o->shading == "rich" ? TerrainShading::kRich : TerrainShading::kPlain;
     if (!(o->cache_mb >= 0 && o->cache_mb <= 1 << 20))
       throw InputError(fmt::format("--cache-mb {}: must be between 0 and 1048576", o->cache_mb));
     c.cache_bytes = std::size_t(o->cache_mb * (1 << 20));

@@ -432,6 +432,7 @@ nlohmann::json summary_json(const BenchStreamOpts& o, const TileSetInfo& set, co
                                         {"texture", o.texture.empty() ? nlohmann::json(nullptr)
                                                                       : nlohmann::json(o.texture)},
                                         {"bounds_ms", set.cog->bounds_ms},
+                                        {"bounds_cached", set.cog->bounds_cached},
                                         {"bound_levels_held_from", set.cog->bound_from}})
                       : nlohmann::json(nullptr)},
       {"cache_mb", o.cache_mb},

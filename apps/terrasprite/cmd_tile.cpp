@@ -3,12 +3,14 @@
 // own pyramid (load -> pyramid -> COGs + tiles.json), for streaming.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 
 #include "cli_common.h"
 #include "commands.h"
 #include "terrasprite/error.h"
+#include "terrasprite/fine_insets.h"
 #include "terrasprite/insets.h"
 #include "terrasprite/output_dir.h"
 #include "terrasprite/tiled_terrain.h"
@@ -22,13 +24,11 @@ namespace {
 // returns the grid's georeferencing (kept through --resample: the grid's
 // corner samples are the source's corner pixel centres).
 std::optional<GeoTransform> add_insets(Heightfield& hf, const std::string& dem,
-                                       const std::vector<std::string>& args,
-                                       std::vector<InsetResult>& results) {
-  std::vector<InsetSpec> specs;
-  for (const std::string& a : args) specs.push_back(parse_inset(a));
+                                       const std::vector<InsetSpec>& specs,
+                                       std::vector<InsetResult>& results, GridGeo& g) {
   const auto [sw, sh] =
       hf.resampled_to && !dem.empty() ? raster_size(dem) : std::pair{hf.width, hf.height};
-  const GridGeo g = grid_geo(hf, sw, sh);
+  g = grid_geo(hf, sw, sh);
   results = composite_insets(hf, g, specs);
   for (const InsetResult& r : results)
     fmt::print("{}: {} samples from the inset ({} at full weight)\n", r.path, r.samples_replaced,
@@ -51,6 +51,7 @@ void add_tile(CLI::App& app) {
     int tile_size = 128;
     std::string out;
     std::vector<std::string> insets;
+    int fine_levels = 0;
   };
   auto o = std::make_shared<Opts>();
   add_terrain_options(*cmd, o->terrain);
@@ -68,6 +69,10 @@ void add_tile(CLI::App& app) {
                   "the terrain's where it has data, faded in over N grid samples (default 4); "
                   "repeatable, later over earlier; needs --dem with a CRS")
       ->take_all();
+  cmd->add_option("--fine-levels", o->fine_levels,
+                  "K: also keep the insets at their own resolution, as sparse levels 2^K times "
+                  "finer than the terrain's (1..8; 0, the default: composited only), streamed "
+                  "with it");
   cmd->add_option("--height-compress", o->write.height_compress, "DEFLATE (default) or ZSTD")
       ->transform(CLI::IsMember({"DEFLATE", "ZSTD"}, CLI::ignore_case));
   cmd->callback([o] {
@@ -76,26 +81,44 @@ void add_tile(CLI::App& app) {
     if ((1 << lg) != o->tile_size || lg < 4 || lg > 9)
       throw InputError(fmt::format("--tile-size {}: must be 16, 32, ..., 512", o->tile_size));
     o->write.tile_log2 = lg;
+    if (o->fine_levels != 0 && (o->insets.empty() || o->fine_levels < 1 || o->fine_levels > 8))
+      throw InputError(fmt::format("--fine-levels {}: must be 1..8, with --inset", o->fine_levels));
+    std::vector<InsetSpec> specs;
+    for (const std::string& a : o->insets) specs.push_back(parse_inset(a));
     check_outputs(o->out, {});
     const auto t0 = std::chrono::steady_clock::now();
     std::unique_ptr<VoxelTerrain> vt;
     std::optional<GeoTransform> geo;
+    std::unique_ptr<OutputDir> out;
     {  // the terrain is freed once the pyramid holds what the files need
       Terrain t = load_terrain_verbose(o->terrain);
       geo = t.heights.geo;
       if (t.heights.resampled_to) geo.reset();  // the source's transform no longer fits the grid
-      if (!o->insets.empty())
-        geo = add_insets(t.heights, o->terrain.dem, o->insets, o->write.insets);
+      GridGeo g;
+      if (!specs.empty()) geo = add_insets(t.heights, o->terrain.dem, specs, o->write.insets, g);
+      out = std::make_unique<OutputDir>(o->out, output_policy());
+      if (o->fine_levels > 0)  // DIR/fine first: the base's bounds must cover it
+        o->write.fine =
+            write_fine_insets(t, g, specs, o->fine_levels, o->write, out->partial().string());
       vt = std::make_unique<VoxelTerrain>(t);
     }
-    OutputDir out(o->out, output_policy());
-    write_tiled_terrain(*vt, geo, out.partial().string(), o->write);
-    out.commit();
+    OutputDir& out_dir = *out;
+    write_tiled_terrain(*vt, geo, out_dir.partial().string(), o->write);
+    o->write.fine.reset();  // the cell maxima are written; free them
+    out_dir.commit();
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const TileSetInfo info = read_tile_set(o->out);
     fmt::print("{}: {} x {} samples, {} levels, {}-cell tiles, {:.1f} MB on disk, {:.1f} s\n",
                o->out, info.grid.width, info.grid.height, info.grid.coarsest_level + 1, 1 << lg,
                info.bytes_on_disk / 1e6, s);
+    if (info.fine_set) {
+      const auto& p0 = info.fine->present[0];
+      fmt::print(
+          "{}/fine: {} fine levels ({:.4g} m), {} x {} samples, {} of {} finest tiles with "
+          "inset data\n",
+          o->out, info.fine->levels, info.fine_set->grid.spacing_x, info.fine_set->grid.width,
+          info.fine_set->grid.height, std::count(p0.begin(), p0.end(), 1), p0.size());
+    }
   });
 }
 

@@ -7,9 +7,13 @@
 #include <vector>
 
 #include "terrasprite/experiment.h"
+#include "terrasprite/hybrid_objects.h"
 #include "terrasprite/image.h"
+#include "terrasprite/object_set.h"
 #include "terrasprite/output_dir.h"
+#include "terrasprite/quality_table.h"
 #include "terrasprite/stats.h"
+#include "terrasprite/walkthrough_path.h"
 
 namespace terrasprite::cli {
 
@@ -47,6 +51,8 @@ struct HybridBenchResult {
   bool target_auto = false;     ///< target_ms = full_ms_at_start / --full-over-target
   /// The cost calibration's measured / predicted table (calibration_report).
   std::string calibration;
+  /// The tables in context (calibrate_tables_in_context's report), or null.
+  nlohmann::json quality_context;
   long long full_triangles_max = 0;
   std::vector<HybridScenarioResult> scenarios;  ///< full first
   SelectionFigures selection;
@@ -61,5 +67,63 @@ nlohmann::json hybrid_json(const HybridBenchResult& r);
 void write_hybrid_report(const HybridBenchResult& r, OutputDir& out);
 /// Table 2 as Markdown (also printed by the command).
 std::string table2_markdown(const HybridBenchResult& r);
+
+/// What --quality-diagnosis needs from the bench's setup.
+struct QualityDiagnosisInput {
+  ObjectSet& set;
+  const std::vector<QualityTable>& tables;
+  Scene& ground;
+  const std::vector<Camera>& path;
+  const std::vector<PathCheckpoint>& checkpoints;
+  int width = 0, height = 0, terrain_quads = 64;
+  /// scene (over the terrain), sky (over the clear colour, as the tables),
+  /// scene4 (over the terrain at 4 x the image size).
+  std::vector<std::string> conditions;
+  std::string image_dir;  ///< when set: every image of the 'all' group, as PNG
+  /// The tables in context (calibrate_tables_in_context), when measured:
+  /// their prediction is reported next to the raw tables'.
+  const std::vector<QualityTable>* context_tables = nullptr;
+};
+/// Per checkpoint, on-screen size bucket and representation: the tables'
+/// predicted SSIM against the one measured (hybrid_quality_diagnosis.cpp).
+nlohmann::json diagnose_hybrid_quality(const QualityDiagnosisInput& in);
+
+/// What calibrate_tables_in_context needs.
+struct QualityContextInput {
+  ObjectSet& set;
+  Scene& ground;
+  std::vector<Camera> cameras;  ///< walkthrough views (not the checkpoints')
+  int width = 0, height = 0, terrain_quads = 64;
+  double max_impostor_size_px = 0;  ///< as HybridOptions: impostors not offered past it
+};
+/// The tables in context: at each camera, each model's visible instances are
+/// drawn over the terrain at full geometry and at each representation of
+/// its table, scored as the bench scores; each representation's SSIM
+/// samples are rescaled by the fitted error scale (quality_calibration.h).
+/// Returns per (model, representation): error_scale, predicted, measured.
+nlohmann::json calibrate_tables_in_context(const QualityContextInput& in,
+                                           std::vector<QualityTable>& tables);
+
+/// What quality_budget_sweep needs.
+struct BudgetSweepInput {
+  ObjectSet& set;
+  const std::vector<QualityTable>& tables;
+  const DrawCostModel& cost;
+  Scene& ground;
+  const std::vector<Camera>& path;
+  const std::vector<PathCheckpoint>& checkpoints;
+  int width = 0, height = 0, terrain_quads = 64;
+  HybridOptions options;
+  std::vector<HybridScenario> scenarios;  ///< drawn at each budget (control set to kFixed)
+  std::vector<double> fractions;          ///< budgets: these fractions of full's predicted frame
+  /// When set (the tables as measured, `tables` being in context): every
+  /// scenario also selects from these, named "<name> (tables as measured)".
+  const std::vector<QualityTable>* raw_tables = nullptr;
+};
+/// Quality against budget, without the controller: at each checkpoint each
+/// scenario selects once under a fixed budget (a fraction of full
+/// geometry's predicted frame time) and is scored against full geometry
+/// (object-masked and whole-frame SSIM) and timed (median of 3).
+nlohmann::json quality_budget_sweep(const BudgetSweepInput& in);
 
 }  // namespace terrasprite::cli

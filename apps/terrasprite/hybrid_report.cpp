@@ -122,26 +122,28 @@ nlohmann::json hybrid_json(const HybridBenchResult& r) {
                          {"checkpoints", cps}});
   }
   const SelectionFigures& f = r.selection;
-  return {{"gl_renderer", r.gl_renderer},
-          {"target_ms", r.target_ms},
-          {"size", {r.width, r.height}},
-          {"frames", r.frames},
-          {"score_every", r.score_every},
-          {"instances", r.instances},
-          {"terrain_ms", r.terrain_ms},
-          {"full_ms_at_start", r.full_ms_at_start},
-          {"target_auto", r.target_auto},
-          {"full_triangles_max", r.full_triangles_max},
-          {"scenarios", scenarios},
-          {"selection",
-           {{"policy", f.policy},
-            {"ms_per_frame", f.ms_per_frame},
-            {"ms_p95", f.ms_p95},
-            {"objective_greedy", f.objective_greedy},
-            {"objective_optimal", f.objective_optimal},
-            {"gain_mean", f.gain_mean},
-            {"gain_max", f.gain_max},
-            {"frames", f.frames}}}};
+  nlohmann::json j = {{"gl_renderer", r.gl_renderer},
+                      {"target_ms", r.target_ms},
+                      {"size", {r.width, r.height}},
+                      {"frames", r.frames},
+                      {"score_every", r.score_every},
+                      {"instances", r.instances},
+                      {"terrain_ms", r.terrain_ms},
+                      {"full_ms_at_start", r.full_ms_at_start},
+                      {"target_auto", r.target_auto},
+                      {"full_triangles_max", r.full_triangles_max},
+                      {"scenarios", scenarios},
+                      {"selection",
+                       {{"policy", f.policy},
+                        {"ms_per_frame", f.ms_per_frame},
+                        {"ms_p95", f.ms_p95},
+                        {"objective_greedy", f.objective_greedy},
+                        {"objective_optimal", f.objective_optimal},
+                        {"gain_mean", f.gain_mean},
+                        {"gain_max", f.gain_max},
+                        {"frames", f.frames}}}};
+  if (!r.quality_context.is_null()) j["quality_context"] = r.quality_context;
+  return j;
 }
 
 std::string table2_markdown(const HybridBenchResult& r) {

@@ -165,12 +165,14 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
   h << fmt::format(
       "<p>Terrain <b>{}</b> ({} x {} samples, texture {}), {} frames at {} x {} along the paper "
       "path, "
-      "coarse mesh {} x {} quads, threshold {} px ({} metric). GL: <code>{}</code>. "
+      "coarse mesh {} x {} quads, threshold {} {} ({} metric), {} terrain shading. GL: "
+      "<code>{}</code>. "
       "Full resolution, plain LOD and LOD-sprite rendered interleaved frame by frame in one "
       "process; "
       "quality scored after each frame's timed spans.</p>\n",
       j.terrain.name, j.terrain.samples_x, j.terrain.samples_y, j.terrain.texture, j.frames,
-      j.width, j.height, j.lod_quads, j.lod_quads, j.threshold_px, j.metric, j.gl_renderer);
+      j.width, j.height, j.lod_quads, j.lod_quads, j.threshold_px,
+      j.metric == "contrast" ? "grey levels" : "px", j.metric, j.shading, j.gl_renderer);
   if (!j.video.empty())
     h << fmt::format(
         "<h2>The flight</h2><p><video src='{0}' controls loop muted width='{1}'></video><br>"
@@ -236,6 +238,22 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
     h << row("sprite total with / without the cache",
              fmt::format("{:.0f} / {:.0f} ms", c.total_ms, c.total_ms_without_cache));
     h << "</table>\n";
+  }
+  if (j.trigger_comparison) {
+    const TriggerComparison& t = *j.trigger_comparison;
+    h << "<h2>Keyframe trigger: geometric error vs predicted image error, same keyframe "
+         "count</h2><table>\n<tr><th>metric</th><th>threshold</th><th>keyframes</th><th>mean "
+         "SSIM</th><th>min SSIM</th><th>mean PSNR</th></tr>\n";
+    for (const TriggerSide* s : {&t.main, &t.other})
+      h << fmt::format(
+          "<tr><td>{}</td><td>{:.3g} {}</td><td>{}</td><td>{:.4f}</td><td>{:.4f}</td><td>{:.2f} "
+          "dB</td></tr>\n",
+          s->metric, s->threshold, s->unit, s->keyframes, s->mean_ssim, s->min_ssim, s->mean_psnr);
+    h << fmt::format(
+        "</table><p>The error triggers alone (scale and fallback triggers off on both sides), "
+        "each a separate timed pass scored on the same frames; the second "
+        "trigger's threshold was found by {} keyframe-only simulations.</p>\n",
+        t.simulations);
   }
   if (j.async) {
     const AsyncComparison& a = *j.async;

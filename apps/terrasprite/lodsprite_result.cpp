@@ -91,6 +91,7 @@ nlohmann::json to_json(const LodspriteResult& r) {
       {"metric", r.metric},
       {"max_fallback_fraction", r.max_fallback_fraction},
       {"sharp_px", r.sharp_px},
+      {"shading", r.shading},
       {"max_resample_scale", std::isfinite(r.max_resample_scale)
                                  ? nlohmann::json(r.max_resample_scale)
                                  : nlohmann::json(nullptr)},
@@ -176,6 +177,23 @@ nlohmann::json to_json(const LodspriteResult& r) {
                   {"method",
                    "keyframes_without_cache and mean_ssim_without_cache: a separate timed pass "
                    "with the cache off on the same path, scored on the same frames as mean_ssim"}};
+  }
+  if (r.trigger_comparison) {
+    const TriggerComparison& t = *r.trigger_comparison;
+    auto side = [](const TriggerSide& s) {
+      return nlohmann::json{{"metric", s.metric},       {"threshold", s.threshold},
+                            {"unit", s.unit},           {"keyframes", s.keyframes},
+                            {"mean_ssim", s.mean_ssim}, {"mean_psnr", s.mean_psnr},
+                            {"min_ssim", s.min_ssim}};
+    };
+    j["trigger_comparison"] = {
+        {"main", side(t.main)},
+        {"other", side(t.other)},
+        {"simulations", t.simulations},
+        {"method",
+         "the error triggers alone (scale and fallback triggers off on both sides); each side a "
+         "separate timed pass scored on the same frames; other.threshold found by bisection "
+         "(keyframe-only simulations) to give main's keyframe count"}};
   }
   return j;
 }

@@ -70,6 +70,23 @@ struct CacheSummary {
   double total_ms = 0, total_ms_without_cache = 0;
 };
 
+/// One keyframe trigger's separate scored pass (TriggerComparison).
+struct TriggerSide {
+  std::string metric;  ///< "paper" | "exact" | "contrast"
+  double threshold = 0;
+  std::string unit;  ///< "px" | "grey levels"
+  int keyframes = 0;
+  double mean_ssim = 0, mean_psnr = 0, min_ssim = 0;
+};
+
+/// The run's keyframe trigger against the other kind (geometric against the
+/// predicted image error, or back) at the same keyframe count: the other's
+/// threshold found by bisection over keyframe-only simulations.
+struct TriggerComparison {
+  TriggerSide main, other;
+  int simulations = 0;  ///< keyframe-only simulations the bisection ran
+};
+
 /// The paper's Figs. 13-14: one frame full / LOD / sprite (PNGs in `out`).
 struct FigureCompare {
   std::string name;  ///< "fig13" (checker texture) | "fig14" (the terrain's own)
@@ -127,6 +144,7 @@ struct LodspriteResult {
   double threshold_px = 0;
   std::string metric;  ///< "paper" | "exact"
   double max_fallback_fraction = 0, sharp_px = 0;
+  std::string shading = "plain";   ///< terrain shading: "plain" | "rich"
   double max_resample_scale = 0;   ///< may be +inf (the trigger off): JSON null
   bool anisotropic_scale = false;  ///< the scale trigger reads the worst axis
   bool there_and_back = false;
@@ -143,7 +161,8 @@ struct LodspriteResult {
   std::vector<FrameCountPoint> frame_count_sweep;
   std::vector<LodQuadsPoint> lod_sweep;
   std::optional<CacheSummary> cache;
-  std::optional<AsyncComparison> async;  ///< the simulated displays (--async)
+  std::optional<TriggerComparison> trigger_comparison;  ///< --compare-trigger
+  std::optional<AsyncComparison> async;                 ///< the simulated displays (--async)
   std::vector<FigureCompare> figures;
   std::vector<LodspriteFrame> per_frame;
 

@@ -14,6 +14,8 @@
 #include <numeric>
 
 #include "cli_common.h"
+#include "lodsprite_passes.h"
+#include "lodsprite_trigger.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/error.h"
 #include "terrasprite/experiment.h"
@@ -26,54 +28,8 @@
 namespace terrasprite::cli {
 namespace {
 
-double ssim_only(const Image& reference, const Image& test) {
-  if (reference.rgba == test.rgba) return 1.0;
-  quality::SsimOptions so;
-  so.channels = false;
-  return quality::ssim(reference.view(), test.view(), so).ssim;
-}
-
 double sum(const std::vector<double>& v) {
   return std::accumulate(v.begin(), v.end(), 0.0);
-}
-
-struct PassResult {
-  int keyframes = 0;
-  double total_ms = 0;
-  double key_median_ms = 0, sprite_median_ms = 0;
-  double mean_ssim = 0;
-  int cache_hits = 0;
-};
-
-// One timed LOD-sprite pass over `path` through the experiment driver; the
-// kept frames are SSIM-scored against the references after the whole pass,
-// so scoring threads never overlap a timed frame.
-PassResult sprite_pass(Scene& scene, std::span<const Camera> path, int w, int h, SpriteOptions o,
-                       const std::vector<Image>& refs, int every) {
-  SpriteRenderer r(scene, w, h, o);
-  PassResult p;
-  std::vector<Image> kept;
-  Experiment pass;
-  pass.add({.renderer = &r,
-            .name = "sprite",
-            .warmup_draws = 2,  // a keyframe, then a sprite frame; then start afresh
-            .read = ReadBack::kColor,
-            .after_warmup = [&] { r.reset(); },
-            .annotate = [&](const Frame&, FrameResult&) { p.cache_hits += r.last_cache_hit(); }});
-  ExperimentOptions eo;
-  eo.on_frame = [&](int i, const std::string&, const Frame& f) {
-    if (i % every == 0) kept.push_back(f.color);
-  };
-  PathSource cameras(std::vector<Camera>(path.begin(), path.end()));
-  const RendererRun run = pass.run(cameras, eo).run("sprite");
-  p.total_ms = run.ms().total;
-  p.keyframes = run.count("key");
-  p.key_median_ms = run.ms("key").median;
-  p.sprite_median_ms = run.ms("sprite").median;
-  std::vector<double> ssims;
-  for (std::size_t k = 0; k < kept.size(); ++k) ssims.push_back(ssim_only(refs[k], kept[k]));
-  p.mean_ssim = mean(ssims);
-  return p;
 }
 
 // Speed-up from per-class medians, robust to the machine's stalls:
@@ -82,20 +38,6 @@ double median_speedup(int n, int keys, double full_median, double key_median,
                       double sprite_median) {
   const double cost = keys * key_median + (n - keys) * sprite_median;
   return cost > 0 ? n * full_median / cost : 0.0;
-}
-
-// Keyframe count only: the metric decides, keyframes are rendered (their depth
-// buffer feeds the visibility), sprite frames are not drawn.
-int simulate_keyframes(Scene& scene, std::span<const Camera> path, int w, int h, SpriteOptions o) {
-  SpriteRenderer r(scene, w, h, o);
-  int keys = 0;
-  for (const Camera& c : path) {
-    if (!r.has_keyframe() || r.keyframe_due(r.error(c))) {
-      r.make_keyframe(c);
-      ++keys;
-    }
-  }
-  return keys;
 }
 
 void validate(const LodspriteConfig& c) {
@@ -126,6 +68,8 @@ void validate(const LodspriteConfig& c) {
     throw InputError(fmt::format("--async-lead {}: must be in (0, 1]", c.async_lead));
   if (c.async && c.cache_bytes > 0)
     throw InputError("--async with --cache: the keyframe cache is not used with async keyframes");
+  if (c.compare_trigger && c.cache_bytes > 0)
+    throw InputError("--compare-trigger with --cache: cache reuses are not keyframe decisions");
   if (c.sweep_score_every < 1)
     throw InputError(
         fmt::format("--sweep-score-every {}: must be at least 1", c.sweep_score_every));
@@ -136,11 +80,12 @@ void validate(const LodspriteConfig& c) {
 ErrorMetric parse_metric(const std::string& text) {
   if (text == "paper") return ErrorMetric::kPaper;
   if (text == "exact") return ErrorMetric::kExact;
-  throw InputError(fmt::format("--metric {}: must be 'paper' or 'exact'", text));
+  if (text == "contrast") return ErrorMetric::kContrast;
+  throw InputError(fmt::format("--metric {}: must be 'paper', 'exact' or 'contrast'", text));
 }
 
 const char* metric_name(ErrorMetric m) {
-  return m == ErrorMetric::kPaper ? "paper" : "exact";
+  return m == ErrorMetric::kPaper ? "paper" : m == ErrorMetric::kExact ? "exact" : "contrast";
 }
 
 CachePolicy parse_cache_policy(const std::string& text) {
@@ -160,6 +105,7 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
 
   GlContext gl;
   Scene scene(terrain);
+  scene.set_shading(cfg.shading);
   MeshRenderer full(scene, w, h, 0), lod(scene, w, h, cfg.lod_quads);
   SpriteOptions so;
   so.lod_quads = cfg.lod_quads;
@@ -228,6 +174,7 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   res.metric = metric_name(cfg.metric);
   res.max_fallback_fraction = cfg.max_fallback_fraction;
   res.sharp_px = cfg.sharp_px;
+  res.shading = cfg.shading == TerrainShading::kRich ? "rich" : "plain";
   res.max_resample_scale = cfg.max_resample_scale;
   res.anisotropic_scale = cfg.anisotropic_scale;
   res.there_and_back = cfg.there_and_back;
@@ -409,6 +356,10 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
         .total_ms = sprite_total,
         .total_ms_without_cache = without.total_ms};
   }
+
+  // ---- the keyframe trigger against the other kind at the same keyframe count ----
+  if (cfg.compare_trigger)
+    res.trigger_comparison = compare_triggers(scene, path, w, h, so, refs, every);
 
   // ---- the paper's Figs. 13 and 14: one frame full / LOD / sprite, checker and real texture ----
   int fig_frame = 0;

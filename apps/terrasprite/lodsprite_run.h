@@ -11,6 +11,7 @@
 #include "lodsprite_result.h"
 #include "terrasprite/frame.h"
 #include "terrasprite/output_dir.h"
+#include "terrasprite/scene.h"
 #include "terrasprite/sprite_metric.h"
 #include "terrasprite/sprite_renderer.h"
 #include "terrasprite/terrain.h"
@@ -49,7 +50,12 @@ struct LodspriteConfig {
   double display_hz = 60;
   double async_lead = 0.6;    ///< SpriteOptions::async_lead
   int sweep_score_every = 1;  ///< sweeps score SSIM on every n-th frame
-  bool flip = true;           ///< FLIP per frame in the main run
+  /// Also compare the keyframe trigger with the other kind at the same
+  /// keyframe count (compare_triggers(); JSON `trigger_comparison`); not with the cache.
+  bool compare_trigger = false;
+  /// Terrain shading of every renderer (full, LOD, keyframes and drape quads).
+  TerrainShading shading = TerrainShading::kPlain;
+  bool flip = true;  ///< FLIP per frame in the main run
   /// Called with (frame, sprite frame) after scoring, e.g. to save it.
   std::function<void(int, const Frame&)> on_sprite_frame;
   /// A video of the sprite frames beside the report (file name inside `out`),

@@ -30,6 +30,7 @@ struct HybridScenario {
     kNone,         ///< unbudgeted (full, ibr) or a fixed budget
     kQualityStep,  ///< the paper's: target quality up/down with the frame time (and the PI budget)
     kBudgetPi,     ///< cost-model prediction corrected by measured time (PI)
+    kFixed,        ///< HybridOptions::target_ms as the budget, in predicted ms (no feedback)
   } control = Control::kNone;
 };
 
@@ -77,6 +78,11 @@ class HybridObjects : public SceneObjects {
   long long draw(const Camera& camera) override;
   /// The measured time of the whole frame just drawn (terrain included).
   void feedback(double measured_ms);
+  /// Back to the state before the first frame: the calibrated cost model,
+  /// fresh controllers and hysteresis. For after untimed warm-up draws (a
+  /// cold first draw ran 2x its prediction and set the first timed frame's
+  /// budget at half the target).
+  void forget_feedback();
   const HybridFrameStats& last() const { return last_; }
   const HybridScenario& scenario() const { return scenario_; }
   /// Builds every impostor the scenario may draw (before timing anything).

@@ -20,6 +20,17 @@ class SceneObjects {
   virtual long long draw(const Camera& camera) = 0;
 };
 
+/// How the terrain shader lights the drape (Scene::set_shading).
+enum class TerrainShading {
+  kPlain,  ///< the drape, with the renderer's optional sun lighting (Lambert)
+  /// Soft sun shadows marched through the height field, horizon-based
+  /// ambient occlusion and aerial-perspective haze, on every fragment: the
+  /// expensive shading a full-resolution renderer pays every frame and
+  /// LOD-sprite only on keyframes and drape-textured quads (always lit: the
+  /// renderers' `lighting` flag is ignored). About 56 height fetches per fragment.
+  kRich,
+};
+
 class TerrainGpu;  // the library's GPU side of the terrain (src/scene/terrain_gpu.h)
 
 /// A scene on the GPU. Holds the terrain's drape texture (mipmapped,
@@ -51,6 +62,11 @@ class Scene {
 
   /// The GPU resources, for the library's renderers; the type is internal.
   TerrainGpu& terrain_gpu() { return *terrain_gpu_; }
+  /// Terrain shading of every later draw by every renderer of this scene
+  /// (default kPlain). kRich uploads the heights as a texture on first use and
+  /// throws InputError when they exceed GL_MAX_TEXTURE_SIZE per side.
+  void set_shading(TerrainShading shading);
+  TerrainShading shading() const;
 
  private:
   const Terrain& terrain_;

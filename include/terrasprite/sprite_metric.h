@@ -117,6 +117,10 @@ struct KeyframeSamples {
   std::vector<std::uint8_t> visible;  ///< per quad: C unoccluded and inside the key view
   glm::dvec3 beta_reference{
       0.0};  ///< the visible C nearest the key's view axis (where beta is measured)
+  /// Per quad, for ErrorMetric::kContrast only (empty otherwise): the
+  /// keyframe's RMS luminance gradient (grey levels per pixel) and luminance
+  /// standard deviation (grey levels) over the quad's footprint in it.
+  std::vector<float> gradient, deviation;
 };
 
 /// Builds the samples. `visible` holds one flag per quad (C visible in the
@@ -127,6 +131,12 @@ KeyframeSamples make_keyframe_samples(const CoarseGrid& grid, const Camera& key,
 enum class ErrorMetric {
   kPaper,  ///< the paper's approximation: common angle beta, b from C's distance to the coarse edge
   kExact,  ///< exact reprojection: pixel distance between C and C' projected into the new view
+  /// Predicted image error: per sample, the exact displacement d (pixels)
+  /// times the keyframe's luminance gradient there, capped at sqrt(2) times
+  /// its luminance deviation (a shift past the texture's features errs by at
+  /// most the difference of unrelated samples); the RMS in grey levels
+  /// (0-255). Needs KeyframeSamples::gradient and ::deviation; without them it is 0.
+  kContrast,
 };
 
 /// A new view's error against a keyframe. Both variants are the root of the
@@ -160,7 +170,14 @@ struct SpriteError {
   /// tilts so the keyframe is stretched one way and shrunk the other (equal
   /// area, yet blurred along one axis).
   double resample_aniso = 1.0;
-  double value(ErrorMetric m) const { return m == ErrorMetric::kPaper ? paper_px : exact_px; }
+  /// ErrorMetric::kContrast: RMS predicted intensity error, grey levels (0-255).
+  double contrast_levels = 0;
+  /// The metric's figure: pixels for kPaper and kExact, grey levels for kContrast.
+  double value(ErrorMetric m) const {
+    return m == ErrorMetric::kPaper   ? paper_px
+           : m == ErrorMetric::kExact ? exact_px
+                                      : contrast_levels;
+  }
 };
 
 /// Error of `view` (a width x height image, the keyframe's size) against the keyframe.

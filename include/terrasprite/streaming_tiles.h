@@ -26,7 +26,7 @@ struct StreamOptions {
   /// share of the budget; the coarsest sample level and every bound-only
   /// level are pinned whatever it says.
   double pinned_share = 0.125;
-  double margin = 1.5;          ///< footprint radius and wedge grown by this factor
+  double margin = 1.5;           ///< footprint radius and wedge grown by this factor
   double lookahead_frames = 30;  ///< the footprint is also taken this many frames ahead
   /// The renderer's level rule (VoxelOptions::pixel_voxel_ratio) and image
   /// height in pixels, so the footprint asks each level where it is read.
@@ -36,8 +36,12 @@ struct StreamOptions {
   /// (so runs repeat); the environment variable TERRASPRITE_STREAM_FAULTS
   /// overrides it when set.
   double fault_rate = 0.0;
+  /// With fine levels (insets), their tiles get this share of cache_bytes
+  /// (a cache of their own, same loaders' count, same rules); the base the rest.
+  double fine_share = 0.5;
   /// Test hooks, called on a loader thread before each read: `before_read`
   /// may block (a stalled disk); `fail_read` returning true fails the read.
+  /// Levels and tiles are the renderer's (the combined grid with fine levels).
   std::function<void(int level, int tx, int ty)> before_read;
   std::function<bool(int level, int tx, int ty)> fail_read;
 };
@@ -86,7 +90,7 @@ class StreamingTiles final : public TerrainTiles {
 
   std::size_t budget_bytes() const;
   std::size_t pinned_bytes() const;
-  int failed_tiles() const;    ///< reads that failed so far
+  int failed_tiles() const;     ///< reads that failed so far
   int injected_faults() const;  ///< of those, failed by fault_rate or fail_read
 
  private:

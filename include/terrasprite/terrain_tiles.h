@@ -31,6 +31,13 @@ struct TerrainGrid {
   /// hold one more sample per side than cells, so bilinear interpolation
   /// inside any cell reads one tile.
   int tile_log2 = 7;
+  /// High-resolution insets: levels 0..sparse_levels-1 exist only inside the
+  /// box [sparse_x0, sparse_x1] x [sparse_y0, sparse_y1] (level-0 samples),
+  /// and there only on tiles that hold inset data; elsewhere the terrain is
+  /// level `sparse_levels` (the base's own level 0, 2^sparse_levels times
+  /// coarser) and a march reads that level. 0: every level is dense.
+  int sparse_levels = 0;
+  int sparse_x0 = 0, sparse_y0 = 0, sparse_x1 = -1, sparse_y1 = -1;
 
   bool has_area() const { return width >= 2 && height >= 2; }
   /// Samples of `level` along a side of n0 level-0 samples (n0 >= 1).

@@ -8,6 +8,7 @@
 //   DIR/bound.tif   Float32 max-height bounds per cell, bound levels as overviews
 //   DIR/tiles.json  grid, levels, per-tile max-height bounds, georeferencing
 #pragma once
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -20,6 +21,26 @@
 
 namespace terrasprite {
 
+struct TileSetInfo;
+
+/// High-resolution insets stored as sparse levels finer than a base's level 0
+/// (`tile --inset FILE --fine-levels K`): a tile set of its own (DIR/fine)
+/// over a window of the fine grid (spacing base / 2^K), whose tiles are
+/// handed out as levels 0..K-1 of the combined grid; the base's levels
+/// become K.. (see combined_grid).
+struct FineLevelsInfo {
+  int levels = 0;                  ///< K
+  int origin_x = 0, origin_y = 0;  ///< the window's sample (0, 0) in the fine grid
+  /// Per fine level, per tile of the window set: 1 where the tile holds inset
+  /// data (blend weight > 0 within its filter's reach); absent tiles are not
+  /// read, the base serves them. Row-major, the window set's tile tables.
+  std::vector<std::vector<std::uint8_t>> present;
+  /// Writing only: per base level-0 cell (row-major, (W-1) x (H-1)), the
+  /// highest fine sample in it (-inf where none): raises the base's bounds
+  /// so empty-space skipping never steps over inset detail.
+  std::vector<float> base_cell_max;
+};
+
 /// How `write_tiled_terrain` encodes the files.
 struct TileWriteOptions {
   int tile_log2 = 7;                        ///< tiles of 2^tile_log2 cells (4..9: 16..512)
@@ -27,6 +48,7 @@ struct TileWriteOptions {
   int color_quality = 90;                   ///< JPEG / WEBP quality, 1..100
   std::string height_compress = "DEFLATE";  ///< DEFLATE or ZSTD, with PREDICTOR=3
   std::vector<InsetResult> insets;          ///< composited into the terrain: recorded in tiles.json
+  std::optional<FineLevelsInfo> fine;       ///< sparse finer levels already written to DIR/fine
 };
 
 struct CogInput;  // an existing COG read in place (see open_cog)
@@ -42,7 +64,21 @@ struct TileSetInfo {
   std::vector<int> tiles_x, tiles_y;
   std::vector<std::vector<float>> tile_max;
   std::optional<GeoTransform> geo;
-  long long bytes_on_disk = 0;  ///< the three .tif files (a COG: it and its texture)
+  long long bytes_on_disk = 0;  ///< the three .tif files (a COG: it and its texture; + fine)
+  /// Sparse finer levels (insets) and their tile set, when tiles.json has them.
+  std::optional<FineLevelsInfo> fine;
+  std::shared_ptr<const TileSetInfo> fine_set;
+  /// A fine window set's own: its level-0 sample (0, 0) is sample (origin_x,
+  /// origin_y) of the enclosing fine grid, and the tiles it hands out (via
+  /// TileFile::read, ResidentTiles) use the enclosing grid's indices.
+  int origin_x = 0, origin_y = 0;
+  /// Per level, 1 where a tile holds data (empty: every tile; a fine set's).
+  std::vector<std::vector<std::uint8_t>> present;
+  bool tile_present(int level, int tx, int ty) const {
+    return std::size_t(level) >= present.size() ||
+           present[std::size_t(level)][std::size_t(ty) * std::size_t(tiles_x[std::size_t(level)]) +
+                                       std::size_t(tx)] != 0;
+  }
 
   std::string height_file() const { return dir + "/height.tif"; }
   std::string color_file() const { return dir + "/color.tif"; }
@@ -53,6 +89,14 @@ struct TileSetInfo {
   int tiles_cells_w(int level) const;  ///< cells of `level` along x (bound grid)
   int tiles_cells_h(int level) const;
 };
+
+/// The grid a renderer sees: `set.grid` itself, or with fine levels K the
+/// combined grid: 2^K times denser, levels 0..K-1 sparse inside the fine
+/// window (TerrainGrid::sparse_levels), the base's levels as K...
+TerrainGrid combined_grid(const TileSetInfo& set);
+/// The world offset (metres) of a fine window set's own frame: world =
+/// its own world position + (x, y).
+void fine_world_shift(const TileSetInfo& set, double& x, double& y);
 
 /// Writes `terrain`'s pyramids into the partial output directory `dir` (it
 /// must exist): height.tif, color.tif, bound.tif as COGs, then tiles.json.

@@ -35,6 +35,7 @@ using GroupKey = std::tuple<std::size_t, int, int, int>;  // model, kind, level,
 struct HybridObjects::Impl {
   ObjectSet& set;
   DrawCostModel cost;
+  DrawCostModel calibrated_cost;  ///< before any online refit (forget_feedback)
   HybridOptions options;
   std::vector<std::vector<Offer>> offers;  ///< per model
   SelectionHysteresis hysteresis;
@@ -45,6 +46,7 @@ struct HybridObjects::Impl {
   Impl(ObjectSet& s, const DrawCostModel& c, const HybridOptions& o)
       : set(s),
         cost(c),
+        calibrated_cost(c),
         options(o),
         hysteresis(o.hysteresis),
         controller(o.controller),
@@ -169,6 +171,9 @@ long long HybridObjects::draw(const Camera& camera) {
     case HybridScenario::Control::kBudgetPi:
       budget = s.controller.budget_ms();
       break;
+    case HybridScenario::Control::kFixed:
+      budget = o.target_ms;
+      break;
   }
   st.budget_ms = budget;
   st.target_quality = po.target_ssim;
@@ -205,6 +210,15 @@ long long HybridObjects::draw(const Camera& camera) {
   for (auto& [key, g] : groups) s.set.model(std::get<0>(key)).draw(g.first, g.second, camera);
   last_ = st;
   return st.triangles;
+}
+
+void HybridObjects::forget_feedback() {
+  Impl& s = *impl_;
+  s.cost = s.calibrated_cost;
+  s.hysteresis = SelectionHysteresis(s.options.hysteresis);
+  s.controller = BudgetController(s.options.controller);
+  s.quality_step = QualityStepController(s.options.quality_step);
+  s.load = {};
 }
 
 void HybridObjects::feedback(double measured_ms) {

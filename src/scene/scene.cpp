@@ -14,6 +14,14 @@ const Terrain& Scene::terrain() const {
   return terrain_;
 }
 
+void Scene::set_shading(TerrainShading shading) {
+  terrain_gpu_->set_shading(shading);
+}
+
+TerrainShading Scene::shading() const {
+  return terrain_gpu_->shading();
+}
+
 long long Scene::prepare(int quads) {
   return terrain_gpu_->mesh(quads).triangles;
 }

@@ -48,6 +48,56 @@ void main() {
 }
 )";
 
+// Rich shading (TerrainShading::kRich): what a full-resolution renderer
+// pays on every pixel of every frame, and LOD-sprite only on keyframes (and
+// on quads drawn from the drape). Soft sun shadows marched through the
+// height field, horizon-based ambient occlusion in 8 directions, and
+// aerial-perspective haze; 57 height fetches per fragment.
+const char* kRichGlsl = R"(
+uniform sampler2D u_height;  // R32F, texel (i, j) = sample (i, j), row j = 0 north
+uniform vec4 u_hm;           // sample index (i, j) = world xy * u_hm.xy + u_hm.zw
+uniform vec2 u_hm_size;      // samples per side
+uniform float u_spacing;     // metres between samples
+uniform vec3 u_eye;          // camera position, metres
+uniform float u_haze_m;      // haze e-folding distance, metres
+const vec3 kSun = normalize(vec3(-0.5, 0.5, 0.7071));
+float height_at(vec2 xy) {
+  return textureLod(u_height, (xy * u_hm.xy + u_hm.zw + 0.5) / u_hm_size, 0.0).r;
+}
+float soft_shadow(vec3 p) {
+  float s = 1.0, t = 2.0 * u_spacing;
+  for (int i = 0; i < 24; ++i) {
+    vec3 q = p + kSun * t;
+    s = min(s, 6.0 * (q.z - height_at(q.xy)) / t);
+    t *= 1.3;
+  }
+  return clamp(s, 0.0, 1.0);
+}
+float ambient_occlusion(vec3 p) {
+  float occlusion = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    float a = 0.78539816 * (float(k) + 0.5);
+    vec2 dir = vec2(cos(a), sin(a));
+    float horizon = 0.0, r = u_spacing;
+    for (int i = 0; i < 4; ++i) {
+      horizon = max(horizon, (height_at(p.xy + dir * r) - p.z) / r);
+      r *= 2.5;
+    }
+    occlusion += horizon * inversesqrt(1.0 + horizon * horizon);  // sine of the horizon angle
+  }
+  return 1.0 - occlusion / 8.0;
+}
+vec3 rich_shading(vec3 albedo, vec3 fragment, vec3 n) {
+  // Shade the true surface under the fragment: a coarse mesh's fragment may
+  // lie below it, and would shadow itself.
+  vec3 p = vec3(fragment.xy, height_at(fragment.xy));
+  vec3 c = albedo * (0.35 * ambient_occlusion(p) + 0.85 * max(dot(n, kSun), 0.0) * soft_shadow(p));
+  vec3 view = normalize(fragment - u_eye);
+  vec3 haze = mix(vec3(0.59, 0.73, 0.88), vec3(1.0, 0.95, 0.85), pow(max(dot(view, kSun), 0.0), 8.0));
+  return mix(c, haze, 1.0 - exp(-length(fragment - u_eye) / u_haze_m));
+}
+)";
+
 const char* kFragment = R"(
 in vec3 v_world;
 in vec3 v_normal;
@@ -63,10 +113,14 @@ void main() {
 #else
   vec4 c = texture(u_drape, uv);
 #endif
+#if RICH
+  c.rgb = rich_shading(c.rgb, v_world, normalize(v_normal));
+#else
   if (u_lighting != 0) {
     const vec3 sun = normalize(vec3(-0.5, 0.5, 0.7071));
     c.rgb *= 0.45 + 0.75 * max(dot(normalize(v_normal), sun), 0.0);
   }
+#endif
   o_color = vec4(c.rgb, 1.0);
 }
 )";
@@ -121,10 +175,12 @@ TerrainGpu::TerrainGpu(const Terrain& terrain) : terrain_(terrain) {
     glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY_EXT, &max_aniso);
     glTextureParameterf(t, GL_TEXTURE_MAX_ANISOTROPY_EXT, std::min(16.f, max_aniso));
   }
-  for (int hand : {0, 1})
-    (hand ? program_hand_ : program_) = gl::link_program(
-        kVertex, std::string("#version 450 core\n#define HAND_FILTER ") + std::to_string(hand) +
-                     "\n" + kDrapeUvGlsl + kHandFilterGlsl + kFragment);
+  for (int rich : {0, 1})
+    for (int hand : {0, 1})
+      programs_[rich][hand] = gl::link_program(
+          kVertex,
+          fmt::format("#version 450 core\n#define HAND_FILTER {}\n#define RICH {}\n", hand, rich) +
+              kDrapeUvGlsl + kHandFilterGlsl + (rich ? kRichGlsl : "") + kFragment);
   glCreateSamplers(1, &trilinear_);
   glSamplerParameteri(trilinear_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glSamplerParameteri(trilinear_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -184,9 +240,46 @@ const GpuMesh& TerrainGpu::mesh(int quads) {
   return g;
 }
 
+void TerrainGpu::set_shading(TerrainShading shading) {
+  if (shading == TerrainShading::kRich && !heights_) {
+    const Heightfield& h = terrain_.heights;
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    if (h.width > max_size || h.height > max_size)
+      throw InputError(
+          fmt::format("{}: rich shading needs the heights as one texture, and {}x{} "
+                      "exceeds the GL limit of {} per side",
+                      h.name, h.width, h.height, max_size));
+    const GLuint t = heights_.emplace(GL_TEXTURE_2D).id();
+    glTextureStorage2D(t, 1, GL_R32F, h.width, h.height);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureSubImage2D(t, 0, 0, 0, h.width, h.height, GL_RED, GL_FLOAT, h.heights.data());
+    for (GLenum k : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER})
+      glTextureParameteri(t, k, GL_LINEAR);
+    for (GLenum k : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T})
+      glTextureParameteri(t, k, GL_CLAMP_TO_EDGE);
+  }
+  shading_ = shading;
+}
+
 void TerrainGpu::use_program(const glm::mat4& vp, bool lighting, bool hand_filter) {
-  const GLuint p = hand_filter ? program_hand_.id() : program_.id();
+  const bool rich = shading_ == TerrainShading::kRich;
+  const GLuint p = programs_[rich][hand_filter].id();
   glUseProgram(p);
+  if (rich) {
+    const Heightfield& h = terrain_.heights;
+    // Reversed-Z perspective: the eye is the point whose clip position is (0, 0, c, 0).
+    const glm::dvec4 e = glm::inverse(glm::dmat4(vp)) * glm::dvec4(0, 0, 1, 0);
+    glUniform3f(glGetUniformLocation(p, "u_eye"), float(e.x / e.w), float(e.y / e.w),
+                float(e.z / e.w));
+    glUniform4f(glGetUniformLocation(p, "u_hm"), float(1 / h.spacing_x), float(-1 / h.spacing_y),
+                float(0.5 * (h.width - 1)), float(0.5 * (h.height - 1)));
+    glUniform2f(glGetUniformLocation(p, "u_hm_size"), float(h.width), float(h.height));
+    glUniform1f(glGetUniformLocation(p, "u_spacing"), float(std::min(h.spacing_x, h.spacing_y)));
+    glUniform1f(glGetUniformLocation(p, "u_haze_m"), float(3.0 * h.extent()));
+    glUniform1i(glGetUniformLocation(p, "u_height"), 1);
+    glBindTextureUnit(1, heights_->id());
+  }
   glUniformMatrix4fv(glGetUniformLocation(p, "u_vp"), 1, GL_FALSE, glm::value_ptr(vp));
   glUniform4fv(glGetUniformLocation(p, "u_uv"), 1, glm::value_ptr(uv_transform()));
   glUniform1i(glGetUniformLocation(p, "u_lighting"), lighting ? 1 : 0);

@@ -5,9 +5,11 @@
 #include <functional>
 #include <glm/glm.hpp>
 #include <map>
+#include <optional>
 #include <vector>
 
 #include "gl/gl_objects.h"
+#include "terrasprite/scene.h"
 #include "terrasprite/terrain.h"
 #include "terrasprite/terrain_mesh.h"
 
@@ -59,14 +61,21 @@ class TerrainGpu {
   GLuint drape() const { return drape_.id(); }
   /// A trilinear-only sampler for the drape (hand-filtered paths bind it).
   GLuint trilinear_sampler() const { return trilinear_; }
+  /// Shading of every later draw (every renderer on this scene). kRich
+  /// uploads the heights as a texture on first use; throws InputError when
+  /// they exceed GL_MAX_TEXTURE_SIZE.
+  void set_shading(TerrainShading shading);
+  TerrainShading shading() const { return shading_; }
 
  private:
   void use_program(const glm::mat4& view_projection, bool lighting, bool hand_filter);
 
   const Terrain& terrain_;
   gl::Texture drape_{GL_TEXTURE_2D};
-  gl::Program program_;            // the plain textured terrain shader, hardware filtering
-  gl::Program program_hand_;       // the same, drape filtered by hand
+  // [rich][hand]: plain or rich shading; drape by hardware or by hand.
+  gl::Program programs_[2][2];
+  std::optional<gl::Texture> heights_;  // R32F heights for kRich, made on first need
+  TerrainShading shading_ = TerrainShading::kPlain;
   GLuint trilinear_ = 0;           // sampler object: trilinear, no hardware anisotropy
   std::map<int, GpuMesh> meshes_;  // by quads per side; 0 = full resolution
 };

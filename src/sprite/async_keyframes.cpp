@@ -26,8 +26,14 @@ struct AsyncKeyframes::Slot {
 };
 
 AsyncKeyframes::AsyncKeyframes(const GlContext& share, const Terrain& terrain, GridMaker make_grid,
-                               int width, int height, bool lighting)
-    : make_grid_(std::move(make_grid)), width_(width), height_(height), lighting_(lighting) {
+                               int width, int height, bool lighting, bool contrast,
+                               TerrainShading shading)
+    : make_grid_(std::move(make_grid)),
+      width_(width),
+      height_(height),
+      lighting_(lighting),
+      contrast_(contrast),
+      shading_(shading) {
   std::unique_ptr<GlContext> context = share.create_shared();
   worker_ = std::thread(&AsyncKeyframes::run, this, std::move(context), std::cref(terrain));
   std::unique_lock lock(mutex_);
@@ -53,6 +59,7 @@ void AsyncKeyframes::run(std::unique_ptr<GlContext> context, const Terrain& terr
   try {
     context->make_current();
     scene = std::make_unique<Scene>(terrain);
+    scene->set_shading(shading_);
     scene->prepare(0);
   } catch (...) {
     scene.reset();
@@ -78,7 +85,7 @@ void AsyncKeyframes::run(std::unique_ptr<GlContext> context, const Terrain& terr
     if (!slot) {
       slots_.push_back(std::make_unique<Slot>());
       slot = slots_.back().get();
-      slot->key = std::make_unique<Keyframe>(width_, height_);
+      slot->key = std::make_unique<Keyframe>(width_, height_, contrast_);
     }
     slot->state = Slot::State::kRendering;
     const GLsync freed = std::exchange(slot->freed, nullptr);

@@ -227,7 +227,9 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
   const double pixel = view.pixel_angle(k.height);
   const glm::dmat4 vp = view.view_projection();
   const glm::dvec3 forward = view.forward();
-  double sum_paper = 0, sum_exact = 0, sum_log_scale = 0, sum_log_aniso = 0, sum_weight = 0;
+  double sum_paper = 0, sum_exact = 0, sum_log_scale = 0, sum_log_aniso = 0, sum_contrast = 0,
+         sum_weight = 0;
+  const bool contrast = !k.gradient.empty();
   const glm::dmat4 key_vp = k.key.view_projection();
   const glm::dvec3 key_forward = k.key.forward();
   // Pixels covering a small patch at C: dA |cos(incidence)| / (d^2 cos^3(off-axis angle)), up to
@@ -263,11 +265,17 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
     if (project(vp, k.width, k.height, k.c_prime[q], pp)) {
       const glm::dvec2 dp = pp - pc;
       sum_exact += w * glm::dot(dp, dp);
+      if (contrast) {
+        const double level = std::min(double(k.gradient[q]) * glm::length(dp),
+                                      std::sqrt(2.0) * double(k.deviation[q]));
+        sum_contrast += w * level * level;
+      }
     }
   }
   if (e.samples > 0) {
     e.paper_px = std::sqrt(sum_paper / sum_weight);
     e.exact_px = std::sqrt(sum_exact / sum_weight);
+    e.contrast_levels = std::sqrt(sum_contrast / sum_weight);
     e.resample_scale = std::exp(sum_log_scale / sum_weight);
     e.resample_aniso = std::exp(sum_log_aniso / sum_weight);
   }

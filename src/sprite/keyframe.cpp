@@ -4,9 +4,14 @@
 // from its depth buffer which coarse polygons the keyframe can texture.
 #include "sprite/keyframe.h"
 
+#include <utility>
+
+#include "sprite/keyframe_contrast.h"
+
 namespace terrasprite {
 
-Keyframe::Keyframe(int width, int height) : target(width, height) {}
+Keyframe::Keyframe(int width, int height, bool measure_contrast)
+    : target(width, height), contrast(measure_contrast) {}
 
 void Keyframe::capture(TerrainGpu& scene, std::shared_ptr<const CoarseGrid> coarse, const Camera& c,
                        bool lighting, int pieces) {
@@ -44,6 +49,12 @@ void Keyframe::capture(TerrainGpu& scene, std::shared_ptr<const CoarseGrid> coar
     fallback[q] = (corners && (centre || !g.has_centre[q])) ? 0 : 1;
   }
   samples = make_keyframe_samples(g, c, target.width(), target.height(), centre_visible);
+  if (contrast) {  // uniform grids only (SpriteOptions)
+    const Image color = target.read_color();
+    QuadContrast qc = quad_contrast(g, c, target.width(), target.height(), color.rgba);
+    samples.gradient = std::move(qc.gradient);
+    samples.deviation = std::move(qc.deviation);
+  }
   valid = true;
 }
 

@@ -21,12 +21,15 @@ struct Keyframe {
   KeyframeSamples samples;                 // the error metric's per-quad C' and visibility
   std::vector<std::uint8_t> fallback;      // per quad: 1 = takes the drape texture
   bool valid = false;
-  long long used = 0;  // when it last stopped being the current keyframe (cache policy)
+  long long used = 0;     // when it last stopped being the current keyframe (cache policy)
+  bool contrast = false;  // also read the colour back for the contrast metric
 
-  Keyframe(int width, int height);
+  /// `contrast`: capture() also reads the colour back and fills
+  /// samples.gradient / samples.deviation (ErrorMetric::kContrast).
+  Keyframe(int width, int height, bool contrast = false);
   /// Renders `camera` from the full-resolution mesh into the textures, reads
-  /// the depth back, and classifies the coarse vertices and quad centres
-  /// (visible, hidden, outside the view). Drains the pipeline (depth read-back).
+  /// the depth back (and the colour, for the contrast metric), and classifies the coarse vertices
+  /// and quad centres (visible, hidden, outside the view). Drains the pipeline (depth read-back).
   /// `pieces` > 1 draws the mesh in that many batches, each drained before
   /// the next (TerrainGpu::draw_in_pieces): for a keyframe drawn beside
   /// another context's frames on a shared software rasterizer.

@@ -20,6 +20,7 @@
 #include <limits>
 #include <thread>
 
+#include "stream/cog_bounds_cache.h"
 #include "terrain/gdal_util.h"
 #include "terrasprite/error.h"
 
@@ -28,6 +29,9 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr int kStripRows = 256;
+// Rasters from this many samples (2049²) cache their bounds by default (the
+// pass takes seconds there); smaller ones only with TERRASPRITE_CACHE_DIR set.
+constexpr std::int64_t kCacheSamples = std::int64_t(1) << 22;
 
 struct Dataset {
   GDALDatasetH h = nullptr;
@@ -107,6 +111,23 @@ void compute_bounds(TileSetInfo& set, CogInput& in, bool has_nodata, double noda
   while (std::int64_t(cells_of(W, Lb)) * cells_of(H, Lb) > held_cells) ++Lb;
   Lb = std::min(Lb, set.grid.bound_levels - 1);
   const int cwb = cells_of(W, Lb), chb = cells_of(H, Lb);
+  // A second open of the same unchanged file reads the pass's result back.
+  bool explicit_dir = false;
+  const std::string cache = bounds_cache_dir(explicit_dir);
+  const bool use_cache = !cache.empty() && (explicit_dir || std::int64_t(W) * H >= kCacheSamples);
+  const std::string key =
+      use_cache ? bounds_cache_key(in, W, H, Lb, set.grid.bound_levels, has_nodata, nodata)
+                : std::string();
+  float cached_lo = 0, cached_hi = 0;
+  if (use_cache &&
+      load_cog_bounds(cache, key, W, H, Lb, set.grid.bound_levels, in, cached_lo, cached_hi)) {
+    set.grid.min_height = cached_lo;
+    set.grid.max_height = cached_hi;
+    in.bounds_cached = true;
+    in.bounds_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return;
+  }
   auto cell_x = [&](long long x) { return int(std::clamp<long long>(x, 0, cw0 - 1) >> Lb); };
   auto cell_y = [&](long long y) { return int(std::clamp<long long>(y, 0, ch0 - 1) >> Lb); };
   // Strips of every raster, shared out to threads with a handle and a cell
@@ -214,6 +235,7 @@ void compute_bounds(TileSetInfo& set, CogInput& in, bool has_nodata, double noda
     }
     in.bound.push_back(dilate(cells, cw, ch));
   }
+  if (use_cache) save_cog_bounds(cache, key, in, lo, hi);
   in.bounds_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }

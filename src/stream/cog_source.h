@@ -25,7 +25,9 @@ struct CogInput {
   /// a bound).
   int bound_from = 0;
   std::vector<std::vector<float>> bound;
-  double bounds_ms = 0;  ///< the one pass that computed them
+  double bounds_ms = 0;  ///< the one pass that computed them (or the cache read)
+  /// Read back from the bounds cache (stream/cog_bounds_cache.h), not computed.
+  bool bounds_cached = false;
 };
 
 /// The raster (0: full, k: overview k - 1) level `level` reads: the coarsest

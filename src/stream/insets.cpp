@@ -9,11 +9,12 @@
 #include <cmath>
 #include <limits>
 
+#include "stream/inset_warp.h"
 #include "terrain/gdal_util.h"
 #include "terrasprite/error.h"
 
 namespace terrasprite {
-namespace {
+namespace detail {
 
 // Distance (pixels, chamfer 1 / sqrt 2) from each pixel with data to the
 // nearest pixel without (outside the raster counts as without); 1 at the
@@ -49,12 +50,6 @@ std::vector<float> distance_to_void(const std::vector<float>& v, int w, int h) {
   return d;
 }
 
-struct Warped {
-  int w = 0, h = 0;
-  double gt[6] = {};
-  std::vector<float> v;
-};
-
 // The inset warped into `wkt` (bilinear, its own resolution), NaN where it has no data.
 Warped warp(const InsetSpec& s, const std::string& wkt) {
   detail::ensure_gdal();
@@ -88,7 +83,7 @@ Warped warp(const InsetSpec& s, const std::string& wkt) {
   return r;
 }
 
-}  // namespace
+}  // namespace detail
 
 InsetSpec parse_inset(const std::string& arg) {
   InsetSpec s;
@@ -136,54 +131,67 @@ GridGeo grid_geo(const Heightfield& hf, int source_w, int source_h) {
   return g;
 }
 
+namespace detail {
+
+InsetResult composite_warped(Heightfield& hf, const GridGeo& g, const InsetSpec& s, const Warped& r,
+                             std::vector<float>* weights) {
+  const std::vector<float> dist = distance_to_void(r.v, r.w, r.h);
+  InsetResult res{s.path, s.blend, 0, 0, {r.gt[1], -r.gt[5]}};
+  // Grid samples per inset pixel, so the distance counts grid samples.
+  const double per_px = std::min(std::abs(r.gt[1]) / g.dx, std::abs(r.gt[5]) / g.dy);
+  // The grid rows and columns the warped inset spans.
+  auto u_of = [&](int i) { return (g.x0 + i * g.dx - r.gt[0]) / r.gt[1] - 0.5; };
+  auto v_of = [&](int j) { return (g.y0 - j * g.dy - r.gt[3]) / r.gt[5] - 0.5; };
+  const int i0 = std::max(0, int(std::ceil((r.gt[0] + 0.5 * r.gt[1] - g.x0) / g.dx)));
+  const int i1 =
+      std::min(hf.width - 1, int(std::floor((r.gt[0] + (r.w - 0.5) * r.gt[1] - g.x0) / g.dx)));
+  const int j0 = std::max(0, int(std::ceil((g.y0 - (r.gt[3] + 0.5 * r.gt[5])) / g.dy)));
+  const int j1 =
+      std::min(hf.height - 1, int(std::floor((g.y0 - (r.gt[3] + (r.h - 0.5) * r.gt[5])) / g.dy)));
+  for (int j = j0; j <= j1; ++j) {
+    const double v = v_of(j);
+    if (v < 0 || v > r.h - 1) continue;
+    const int b = std::min(int(v), std::max(r.h - 2, 0)), b1 = std::min(b + 1, r.h - 1);
+    const float fy = float(v - b);
+    for (int i = i0; i <= i1; ++i) {
+      const double u = u_of(i);
+      if (u < 0 || u > r.w - 1) continue;
+      const int a = std::min(int(u), std::max(r.w - 2, 0)), a1 = std::min(a + 1, r.w - 1);
+      const float fx = float(u - a);
+      auto at = [&](const std::vector<float>& p, int x, int y) {
+        return p[std::size_t(y) * r.w + x];
+      };
+      const float q[4] = {at(r.v, a, b), at(r.v, a1, b), at(r.v, a, b1), at(r.v, a1, b1)};
+      if (std::isnan(q[0]) || std::isnan(q[1]) || std::isnan(q[2]) || std::isnan(q[3])) continue;
+      auto lerp2 = [&](const std::vector<float>& p) {
+        const float top = at(p, a, b) + (at(p, a1, b) - at(p, a, b)) * fx;
+        const float bot = at(p, a, b1) + (at(p, a1, b1) - at(p, a, b1)) * fx;
+        return top + (bot - top) * fy;
+      };
+      // 0 at the outermost pixel centres with data, in grid samples.
+      const double d = std::max(0.0, double(lerp2(dist)) - 1.0) * per_px;
+      const float wgt = s.blend == 0 ? 1.f : float(std::min(1.0, d / s.blend));
+      if (wgt <= 0.f) continue;
+      float& hgt = hf.at(i, j);
+      hgt += wgt * (lerp2(r.v) - hgt);
+      if (weights) {
+        float& m = (*weights)[std::size_t(j) * hf.width + i];
+        m = std::max(m, wgt);
+      }
+      ++res.samples_replaced;
+      res.samples_full += wgt >= 1.f;
+    }
+  }
+  return res;
+}
+
+}  // namespace detail
+
 std::vector<InsetResult> composite_insets(Heightfield& hf, const GridGeo& g,
                                           const std::vector<InsetSpec>& insets) {
   std::vector<InsetResult> results;
   for (const InsetSpec& s : insets) {
-    const Warped r = warp(s, g.wkt);
-    const std::vector<float> dist = distance_to_void(r.v, r.w, r.h);
-    InsetResult res{s.path, s.blend, 0, 0, {r.gt[1], -r.gt[5]}};
-    // Grid samples per inset pixel, so the distance counts grid samples.
-    const double per_px = std::min(std::abs(r.gt[1]) / g.dx, std::abs(r.gt[5]) / g.dy);
-    // The grid rows and columns the warped inset spans.
-    auto u_of = [&](int i) { return (g.x0 + i * g.dx - r.gt[0]) / r.gt[1] - 0.5; };
-    auto v_of = [&](int j) { return (g.y0 - j * g.dy - r.gt[3]) / r.gt[5] - 0.5; };
-    const int i0 = std::max(0, int(std::ceil((r.gt[0] + 0.5 * r.gt[1] - g.x0) / g.dx)));
-    const int i1 =
-        std::min(hf.width - 1, int(std::floor((r.gt[0] + (r.w - 0.5) * r.gt[1] - g.x0) / g.dx)));
-    const int j0 = std::max(0, int(std::ceil((g.y0 - (r.gt[3] + 0.5 * r.gt[5])) / g.dy)));
-    const int j1 =
-        std::min(hf.height - 1, int(std::floor((g.y0 - (r.gt[3] + (r.h - 0.5) * r.gt[5])) / g.dy)));
-    for (int j = j0; j <= j1; ++j) {
-      const double v = v_of(j);
-      if (v < 0 || v > r.h - 1) continue;
-      const int b = std::min(int(v), std::max(r.h - 2, 0)), b1 = std::min(b + 1, r.h - 1);
-      const float fy = float(v - b);
-      for (int i = i0; i <= i1; ++i) {
-        const double u = u_of(i);
-        if (u < 0 || u > r.w - 1) continue;
-        const int a = std::min(int(u), std::max(r.w - 2, 0)), a1 = std::min(a + 1, r.w - 1);
-        const float fx = float(u - a);
-        auto at = [&](const std::vector<float>& p, int x, int y) {
-          return p[std::size_t(y) * r.w + x];
-        };
-        const float q[4] = {at(r.v, a, b), at(r.v, a1, b), at(r.v, a, b1), at(r.v, a1, b1)};
-        if (std::isnan(q[0]) || std::isnan(q[1]) || std::isnan(q[2]) || std::isnan(q[3])) continue;
-        auto lerp2 = [&](const std::vector<float>& p) {
-          const float top = at(p, a, b) + (at(p, a1, b) - at(p, a, b)) * fx;
-          const float bot = at(p, a, b1) + (at(p, a1, b1) - at(p, a, b1)) * fx;
-          return top + (bot - top) * fy;
-        };
-        // 0 at the outermost pixel centres with data, in grid samples.
-        const double d = std::max(0.0, double(lerp2(dist)) - 1.0) * per_px;
-        const float wgt = s.blend == 0 ? 1.f : float(std::min(1.0, d / s.blend));
-        if (wgt <= 0.f) continue;
-        float& hgt = hf.at(i, j);
-        hgt += wgt * (lerp2(r.v) - hgt);
-        ++res.samples_replaced;
-        res.samples_full += wgt >= 1.f;
-      }
-    }
+    const InsetResult res = detail::composite_warped(hf, g, s, detail::warp(s, g.wkt), nullptr);
     if (res.samples_replaced == 0)
       throw InputError(
           fmt::format("{}: covers no sample of the base terrain (after reprojection)", s.path));

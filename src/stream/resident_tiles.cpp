@@ -11,12 +11,20 @@ namespace terrasprite {
 
 struct ResidentTiles::Impl {
   TileSetInfo set;
-  std::vector<TileData> levels;                // one whole-level block each
+  TerrainGrid cgrid;                          // the renderer's grid (fine levels first)
+  int k = 0;                                  // fine levels (insets), from `fine`
+  std::unique_ptr<ResidentTiles> fine;        // the fine window set, wholly in memory
+  std::vector<TileData> levels;               // one whole-level block each
   std::vector<std::vector<TileBlock>> tiles;  // per level, row-major tiles viewing it
 };
 
 ResidentTiles::ResidentTiles(const TileSetInfo& set) : p_(std::make_unique<Impl>()) {
   p_->set = set;
+  p_->cgrid = combined_grid(set);
+  if (set.fine && set.fine_set) {
+    p_->k = set.fine->levels;
+    p_->fine = std::make_unique<ResidentTiles>(*set.fine_set);
+  }
   TileFile file(p_->set);
   const TerrainGrid& g = p_->set.grid;
   p_->levels.resize(std::size_t(g.bound_levels));
@@ -34,6 +42,8 @@ ResidentTiles::ResidentTiles(const TileSetInfo& set) : p_(std::make_unique<Impl>
         if (b.height) b.height += at;
         if (b.color) b.color += at;
         b.bound += std::size_t(b.y0) * d.block.bound_stride + b.x0;
+        b.x0 += set.origin_x >> L;  // a fine window set: the enclosing grid's indices
+        b.y0 += set.origin_y >> L;
         b.max_height = p_->set.tile_max[std::size_t(L)][std::size_t(ty) * nx + tx];
         tl.push_back(b);
       }
@@ -43,10 +53,16 @@ ResidentTiles::ResidentTiles(const TileSetInfo& set) : p_(std::make_unique<Impl>
 ResidentTiles::~ResidentTiles() = default;
 
 const TerrainGrid& ResidentTiles::grid() const {
-  return p_->set.grid;
+  return p_->cgrid;
 }
 
 const TileBlock* ResidentTiles::tile(int level, int tx, int ty) const {
+  if (p_->k) {
+    if (level < p_->k)
+      return fine_window_tile(*p_->set.fine_set, level, tx, ty) ? p_->fine->tile(level, tx, ty)
+                                                                : nullptr;
+    level -= p_->k;
+  }
   if (level < 0 || level >= int(p_->tiles.size())) return nullptr;
   const int nx = p_->set.tiles_x[std::size_t(level)], ny = p_->set.tiles_y[std::size_t(level)];
   if (tx < 0 || ty < 0 || tx >= nx || ty >= ny) return nullptr;
@@ -54,6 +70,7 @@ const TileBlock* ResidentTiles::tile(int level, int tx, int ty) const {
 }
 
 const TileBlock* ResidentTiles::level_block(int level) const {
+  if (p_->k) return nullptr;  // sparse fine levels: read tile by tile
   if (level < 0 || level >= int(p_->levels.size())) return nullptr;
   return &p_->levels[std::size_t(level)].block;
 }

@@ -3,6 +3,8 @@
 // resident tiles that only update() changes, loader threads that read queued
 // tiles through their own GDAL handles, and a byte budget held by evicting the
 // least recently wanted tiles, farthest first.
+#include "terrasprite/streaming_tiles.h"
+
 #include <fmt/format.h>
 #include <gdal.h>
 #include <sys/resource.h>
@@ -21,7 +23,6 @@
 #include "stream/footprint.h"
 #include "stream/tile_file.h"
 #include "terrasprite/error.h"
-#include "terrasprite/streaming_tiles.h"
 
 namespace terrasprite {
 namespace {
@@ -41,7 +42,8 @@ int shard_index() {
 
 // A repeatable "random" draw in [0, 1) per tile, for fault injection.
 double tile_hash01(int level, int tx, int ty) {
-  std::uint64_t h = std::uint64_t(level) * 0x9E3779B97F4A7C15ull ^ std::uint64_t(tx) * 0xC2B2AE3D27D4EB4Full ^
+  std::uint64_t h = std::uint64_t(level) * 0x9E3779B97F4A7C15ull ^
+                    std::uint64_t(tx) * 0xC2B2AE3D27D4EB4Full ^
                     std::uint64_t(ty) * 0x165667B19E3779F9ull;
   h ^= h >> 33;
   h *= 0xff51afd7ed558ccdull;
@@ -61,11 +63,32 @@ struct Done {
   std::string error;
 };
 
+// a += b, field by field (a base and its fine levels' frame figures).
+void add_stats(StreamFrameStats& a, const StreamFrameStats& b) {
+  a.lookups += b.lookups;
+  a.misses += b.misses;
+  a.degraded_samples = a.misses;
+  a.requested += b.requested;
+  a.loaded += b.loaded;
+  a.evicted += b.evicted;
+  a.failed += b.failed;
+  a.bytes_read += b.bytes_read;
+  a.resident_bytes += b.resident_bytes;
+  a.resident_tiles += b.resident_tiles;
+}
+
 }  // namespace
 
 struct StreamingTiles::Impl {
   TileSetInfo set;
   StreamOptions o;
+  // Fine levels (insets): their own cache over the window set; the base's
+  // levels are the renderer's levels k.. (see combined_grid).
+  int k = 0;
+  TerrainGrid cgrid;
+  std::unique_ptr<StreamingTiles> fine;
+  double shift_x = 0, shift_y = 0;  // the window set's frame -> world
+  std::size_t total_budget = 0;
   int pin_from = 0;  // levels pin_from.. are pinned
   std::vector<std::vector<std::unique_ptr<TileData>>> table;
   std::vector<std::vector<State>> state;
@@ -117,7 +140,8 @@ void StreamingTiles::Impl::load_pinned(std::vector<std::unique_ptr<TileFile>>& f
       workers.emplace_back([&, t] {
         for (std::size_t k = t; k < jobs.size() && errors[t].empty(); k += files.size()) {
           data[k] = std::make_unique<TileData>();
-          if (!files[t]->read(jobs[k].level, jobs[k].tx, jobs[k].ty, *data[k], errors[t])) data[k].reset();
+          if (!files[t]->read(jobs[k].level, jobs[k].tx, jobs[k].ty, *data[k], errors[t]))
+            data[k].reset();
         }
       });
   }
@@ -224,6 +248,8 @@ void StreamingTiles::Impl::plan(const Camera& cam, StreamFrameStats& st) {
   FootprintOptions fo{o.margin, o.lookahead_frames, o.pixel_voxel_ratio, o.image_height, pin_from};
   const glm::dvec3 motion = have_last ? cam.position - last_pos : glm::dvec3(0.0);
   footprint(set, cam, motion, fo, want);
+  if (!set.present.empty())  // a fine window set: tiles without inset data are never read
+    std::erase_if(want, [&](const TileKey& t) { return !set.tile_present(t.level, t.tx, t.ty); });
   std::stable_sort(want.begin(), want.end(),
                    [](const TileKey& a, const TileKey& b) { return a.priority < b.priority; });
   for (const TileKey& k : want) last_wanted[std::size_t(k.level)][idx(k.level, k.tx, k.ty)] = frame;
@@ -246,10 +272,12 @@ void StreamingTiles::Impl::plan(const Camera& cam, StreamFrameStats& st) {
       if (state[std::size_t(L)][i] == State::kResident && last_wanted[std::size_t(L)][i] < frame) {
         const int nx = set.tiles_x[std::size_t(L)];
         const double reach = level_reach(set, cam, fo, L);
-        const double d = tile_distance(set, L, int(i % nx), int(i / nx), cam.position.x, cam.position.y);
+        const double d =
+            tile_distance(set, L, int(i % nx), int(i / nx), cam.position.x, cam.position.y);
         victims.push_back({L, i, double(frame - last_wanted[std::size_t(L)][i]) + d / reach});
       }
-  std::sort(victims.begin(), victims.end(), [](const Victim& a, const Victim& b) { return a.score < b.score; });
+  std::sort(victims.begin(), victims.end(),
+            [](const Victim& a, const Victim& b) { return a.score < b.score; });
   for (const TileKey& k : want) {
     const std::size_t i = idx(k.level, k.tx, k.ty);
     if (state[std::size_t(k.level)][i] != State::kEmpty) continue;
@@ -278,8 +306,45 @@ StreamingTiles::StreamingTiles(const TileSetInfo& set, StreamOptions options)
   if (p.o.io_threads < 1 || p.o.io_threads > 64)
     throw InputError(fmt::format("io_threads {}: must be 1..64", p.o.io_threads));
   if (!(p.o.fault_rate >= 0 && p.o.fault_rate <= 1))
-    throw InputError(fmt::format("TERRASPRITE_STREAM_FAULTS {}: must be a share within 0..1", p.o.fault_rate));
+    throw InputError(
+        fmt::format("TERRASPRITE_STREAM_FAULTS {}: must be a share within 0..1", p.o.fault_rate));
   GDALSetCacheMax64(GIntBig(p.o.gdal_cache_bytes));
+  p.total_budget = p.o.cache_bytes;
+  p.cgrid = combined_grid(p.set);
+  if (p.set.fine && p.set.fine_set) {
+    if (!(p.o.fine_share > 0 && p.o.fine_share < 1))
+      throw InputError(fmt::format("fine_share {}: must be within (0, 1)", p.o.fine_share));
+    p.k = p.set.fine->levels;
+    fine_world_shift(p.set, p.shift_x, p.shift_y);
+    StreamOptions fo = p.o;
+    fo.cache_bytes = std::size_t(double(p.o.cache_bytes) * p.o.fine_share);
+    p.o.cache_bytes -= fo.cache_bytes;
+    const TileSetInfo& f = *p.set.fine_set;
+    auto global = [&f](int level, int& tx, int& ty) {
+      tx += (f.origin_x >> level) >> f.grid.tile_log2;
+      ty += (f.origin_y >> level) >> f.grid.tile_log2;
+    };
+    if (p.o.before_read)
+      fo.before_read = [hook = p.o.before_read, global](int level, int tx, int ty) {
+        global(level, tx, ty);
+        hook(level, tx, ty);
+      };
+    if (p.o.fail_read)
+      fo.fail_read = [hook = p.o.fail_read, global](int level, int tx, int ty) {
+        global(level, tx, ty);
+        return hook(level, tx, ty);
+      };
+    const int k = p.k;  // the base's hooks see the renderer's levels
+    if (p.o.before_read)
+      p.o.before_read = [hook = p.o.before_read, k](int level, int tx, int ty) {
+        hook(level + k, tx, ty);
+      };
+    if (p.o.fail_read)
+      p.o.fail_read = [hook = p.o.fail_read, k](int level, int tx, int ty) {
+        return hook(level + k, tx, ty);
+      };
+    p.fine = std::make_unique<StreamingTiles>(f, std::move(fo));
+  }
   const TerrainGrid& g = p.set.grid;
   const int nl = g.bound_levels;
   p.table.resize(std::size_t(nl));
@@ -287,7 +352,8 @@ StreamingTiles::StreamingTiles(const TileSetInfo& set, StreamOptions options)
   p.last_wanted.resize(std::size_t(nl));
   std::vector<std::size_t> level_bytes(std::size_t(nl), 0);
   for (int L = 0; L < nl; ++L) {
-    const std::size_t n = std::size_t(p.set.tiles_x[std::size_t(L)]) * p.set.tiles_y[std::size_t(L)];
+    const std::size_t n =
+        std::size_t(p.set.tiles_x[std::size_t(L)]) * p.set.tiles_y[std::size_t(L)];
     p.table[std::size_t(L)].resize(n);
     p.state[std::size_t(L)].assign(n, State::kEmpty);
     p.last_wanted[std::size_t(L)].assign(n, -1);
@@ -301,8 +367,8 @@ StreamingTiles::StreamingTiles(const TileSetInfo& set, StreamOptions options)
   p.pin_from = g.coarsest_level;
   std::size_t pinned = 0;
   for (int L = nl - 1; L >= g.coarsest_level; --L) pinned += level_bytes[std::size_t(L)];
-  while (p.pin_from > 0 &&
-         pinned + level_bytes[std::size_t(p.pin_from - 1)] <= std::size_t(p.o.pinned_share * double(p.o.cache_bytes))) {
+  while (p.pin_from > 0 && pinned + level_bytes[std::size_t(p.pin_from - 1)] <=
+                               std::size_t(p.o.pinned_share * double(p.o.cache_bytes))) {
     --p.pin_from;
     pinned += level_bytes[std::size_t(p.pin_from)];
   }
@@ -328,11 +394,17 @@ StreamingTiles::~StreamingTiles() {
 }
 
 const TerrainGrid& StreamingTiles::grid() const {
-  return p_->set.grid;
+  return p_->cgrid;
 }
 
 const TileBlock* StreamingTiles::tile(int level, int tx, int ty) const {
   const Impl& p = *p_;
+  if (p.k) {
+    if (level < p.k)
+      return fine_window_tile(*p.set.fine_set, level, tx, ty) ? p.fine->tile(level, tx, ty)
+                                                              : nullptr;
+    level -= p.k;
+  }
   if (level < 0 || level >= int(p.table.size())) return nullptr;
   const int nx = p.set.tiles_x[std::size_t(level)], ny = p.set.tiles_y[std::size_t(level)];
   if (tx < 0 || ty < 0 || tx >= nx || ty >= ny) return nullptr;
@@ -344,7 +416,8 @@ const TileBlock* StreamingTiles::tile(int level, int tx, int ty) const {
     return &d->block;
   s.misses.fetch_add(1, std::memory_order_relaxed);
   auto& flag = p.demand[std::size_t(level)][i];
-  if (!flag.load(std::memory_order_relaxed)) flag.store(1, std::memory_order_relaxed);  // no line ping-pong
+  if (!flag.load(std::memory_order_relaxed))
+    flag.store(1, std::memory_order_relaxed);  // no line ping-pong
   return nullptr;
 }
 
@@ -354,6 +427,11 @@ void StreamingTiles::collect_reads(StreamFrameStats& st) const {
     st.misses += s.misses.exchange(0, std::memory_order_relaxed);
   }
   st.degraded_samples = st.misses;
+  if (p_->fine) {
+    StreamFrameStats f;
+    p_->fine->collect_reads(f);
+    add_stats(st, f);
+  }
 }
 
 StreamFrameStats StreamingTiles::update(const Camera& camera) {
@@ -374,6 +452,12 @@ StreamFrameStats StreamingTiles::update(const Camera& camera) {
   }
   for (const auto& lv : p.state)
     st.resident_tiles += int(std::count(lv.begin(), lv.end(), State::kResident));
+  if (p.fine) {  // the window set in its own frame
+    Camera c = camera;
+    c.position.x -= p.shift_x;
+    c.position.y -= p.shift_y;
+    add_stats(st, p.fine->update(c));
+  }
   return st;
 }
 
@@ -383,20 +467,20 @@ int StreamingTiles::settle() {
     std::unique_lock lk(p.m);
     p.idle_cv.wait(lk, [&] { return p.queue.empty() && p.loading == 0; });
   }
-  return p.install();
+  return p.install() + (p.fine ? p.fine->settle() : 0);
 }
 
 std::size_t StreamingTiles::budget_bytes() const {
-  return p_->o.cache_bytes;
+  return p_->total_budget;
 }
 std::size_t StreamingTiles::pinned_bytes() const {
-  return p_->pinned;
+  return p_->pinned + (p_->fine ? p_->fine->pinned_bytes() : 0);
 }
 int StreamingTiles::failed_tiles() const {
-  return p_->failed;
+  return p_->failed + (p_->fine ? p_->fine->failed_tiles() : 0);
 }
 int StreamingTiles::injected_faults() const {
-  return p_->injected.load();
+  return p_->injected.load() + (p_->fine ? p_->fine->injected_faults() : 0);
 }
 
 }  // namespace terrasprite

@@ -69,7 +69,10 @@ bool TileFile::read(int level, int tx, int ty, TileData& out, std::string& error
   out.level = level;
   out.tx = tx;
   out.ty = ty;
-  return read_window(level, x0, y0, w, h, out, error);
+  if (!read_window(level, x0, y0, w, h, out, error)) return false;
+  out.block.x0 += set_.origin_x >> level;  // a fine window set: the enclosing grid's indices
+  out.block.y0 += set_.origin_y >> level;
+  return true;
 }
 
 bool TileFile::read_level(int level, TileData& out, std::string& error) {

@@ -32,6 +32,11 @@ void tile_window(const TileSetInfo& set, int level, int tx, int ty, int& x0, int
 /// Bytes a tile of `level` takes once read (its storage; see TileData::bytes).
 std::size_t tile_bytes(const TileSetInfo& set, int level, int tx, int ty);
 
+/// Tile (tx, ty) of fine level `level` of the renderer's grid as the fine
+/// window set `fine`'s own tile (changed in place); false outside the window
+/// or where the tile holds no inset data (the base serves it).
+bool fine_window_tile(const TileSetInfo& fine, int level, int& tx, int& ty);
+
 class TileFile {
  public:
   explicit TileFile(const TileSetInfo& set);  ///< throws InputError naming a file

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <gdal_priv.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -46,8 +47,9 @@ int TileSetInfo::tiles_cells_h(int level) const {
   return cells_at(grid.height, level);
 }
 
-void write_tile_set_json(const VoxelTerrain& terrain, const std::optional<GeoTransform>& geo,
-                         const TileWriteOptions& o, const std::string& path) {
+void write_tile_set_json(const VoxelTerrain& terrain, const std::vector<const float*>& bounds,
+                         const std::optional<GeoTransform>& geo, const TileWriteOptions& o,
+                         const std::string& path) {
   const TerrainGrid& g = terrain.grid();
   nlohmann::json j;
   j["format"] = kFormat;
@@ -75,6 +77,18 @@ void write_tile_set_json(const VoxelTerrain& terrain, const std::optional<GeoTra
                       {"samples_full", r.samples_full},
                       {"pixel_size", {r.spacing_m[0], r.spacing_m[1]}}});
   j["insets"] = insets;
+  if (o.fine) {
+    nlohmann::json present = nlohmann::json::array();
+    for (const auto& lv : o.fine->present) {
+      std::string bits(lv.size(), '0');
+      for (std::size_t i = 0; i < lv.size(); ++i) bits[i] = lv[i] ? '1' : '0';
+      present.push_back(bits);
+    }
+    j["fine"] = {{"dir", "fine"},
+                 {"levels", o.fine->levels},
+                 {"origin", {o.fine->origin_x, o.fine->origin_y}},
+                 {"present", present}};
+  }
   nlohmann::json levels = nlohmann::json::array();
   const int T = 1 << o.tile_log2;
   for (int L = 0; L < g.bound_levels; ++L) {
@@ -83,13 +97,13 @@ void write_tile_set_json(const VoxelTerrain& terrain, const std::optional<GeoTra
     std::vector<float> maxes;
     maxes.reserve(std::size_t(nx) * ny);
     // The in-memory pyramid's own tiles are 2^7 cells; recompute per tile of T.
-    const TileBlock* whole = terrain.level_block(L);
+    const float* bound = bounds[std::size_t(L)];
     for (int ty = 0; ty < ny; ++ty)
       for (int tx = 0; tx < nx; ++tx) {
         float m = -std::numeric_limits<float>::infinity();
         for (int b = ty * T; b < std::min(ch, (ty + 1) * T); ++b)
           for (int a = tx * T; a < std::min(cw, (tx + 1) * T); ++a)
-            m = std::max(m, whole->bound[std::size_t(b) * whole->bound_stride + a]);
+            m = std::max(m, bound[std::size_t(b) * std::size_t(cw) + std::size_t(a)]);
         maxes.push_back(m);
       }
     levels.push_back({{"level", L},
@@ -142,6 +156,23 @@ TileSetInfo read_tile_set(const std::string& dir) {
         throw InputError(fmt::format("{}: tile_max_height of level {} has the wrong length", path,
                                      int(t.tile_max.size()) - 1));
     }
+    if (j.contains("fine")) {
+      const auto& fj = j["fine"];
+      FineLevelsInfo fi;
+      fi.levels = fj.at("levels");
+      fi.origin_x = fj.at("origin")[0];
+      fi.origin_y = fj.at("origin")[1];
+      for (const auto& bits : fj.at("present")) {
+        const std::string b = bits.get<std::string>();
+        auto& lv = fi.present.emplace_back(b.size());
+        for (std::size_t i = 0; i < b.size(); ++i) lv[i] = b[i] == '1';
+      }
+      if (fi.levels < 1 || fi.levels > 12 || int(fi.present.size()) != fi.levels ||
+          g.bound_levels + fi.levels > 31 ||
+          (fi.origin_x | fi.origin_y) % ((1 << g.tile_log2) << (fi.levels - 1)) != 0)
+        throw InputError(fmt::format("{}: inconsistent fine levels", path));
+      t.fine = std::move(fi);
+    }
     if (j.contains("geotransform")) {
       GeoTransform gt;
       for (int k = 0; k < 6; ++k) gt.gt[k] = j["geotransform"][k];
@@ -158,6 +189,30 @@ TileSetInfo read_tile_set(const std::string& dir) {
   std::error_code ec;
   for (const std::string& p : {t.height_file(), t.color_file(), t.bound_file()})
     t.bytes_on_disk += (long long)std::filesystem::file_size(p, ec);
+  if (t.fine) {
+    auto fs = std::make_shared<TileSetInfo>(read_tile_set(dir + "/fine"));
+    const FineLevelsInfo& fi = *t.fine;
+    if (fs->fine || fs->grid.tile_log2 != g.tile_log2 || fs->grid.coarsest_level + 1 < fi.levels ||
+        std::abs(fs->grid.spacing_x * (1 << fi.levels) - g.spacing_x) > 1e-6 * g.spacing_x ||
+        std::abs(fs->grid.spacing_y * (1 << fi.levels) - g.spacing_y) > 1e-6 * g.spacing_y)
+      throw InputError(fmt::format("{}/fine: does not fit the base's fine levels", dir));
+    for (int l = 0; l < fi.levels; ++l)
+      if (fi.present[std::size_t(l)].size() !=
+          std::size_t(fs->tiles_x[std::size_t(l)]) * fs->tiles_y[std::size_t(l)])
+        throw InputError(
+            fmt::format("{}: present tiles of fine level {} have the wrong length", path, l));
+    const int align = (1 << g.tile_log2) << (fi.levels - 1);
+    const int fw = (g.width - 1) << fi.levels, fh = (g.height - 1) << fi.levels;
+    if (((fs->grid.width - 1) % align != 0 && fi.origin_x + fs->grid.width - 1 != fw) ||
+        ((fs->grid.height - 1) % align != 0 && fi.origin_y + fs->grid.height - 1 != fh) ||
+        fi.origin_x + fs->grid.width - 1 > fw || fi.origin_y + fs->grid.height - 1 > fh)
+      throw InputError(fmt::format("{}/fine: its window is not whole tiles of the fine grid", dir));
+    fs->origin_x = fi.origin_x;
+    fs->origin_y = fi.origin_y;
+    fs->present = fi.present;
+    t.bytes_on_disk += fs->bytes_on_disk;
+    t.fine_set = std::move(fs);
+  }
   return t;
 }
 

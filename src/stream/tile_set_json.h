@@ -4,13 +4,16 @@
 #pragma once
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "terrasprite/tiled_terrain.h"
 
 namespace terrasprite {
 
-/// Writes `path` (tiles.json) for `terrain` tiled with `options`.
-void write_tile_set_json(const VoxelTerrain& terrain, const std::optional<GeoTransform>& geo,
-                         const TileWriteOptions& options, const std::string& path);
+/// Writes `path` (tiles.json) for `terrain` tiled with `options`; `bounds`
+/// (one per bound level, row-major cells) are the bounds written to bound.tif.
+void write_tile_set_json(const VoxelTerrain& terrain, const std::vector<const float*>& bounds,
+                         const std::optional<GeoTransform>& geo, const TileWriteOptions& options,
+                         const std::string& path);
 
 }  // namespace terrasprite

@@ -147,8 +147,30 @@ void ColumnMarcher::march_with(double dx, double dy, std::span<const double> slo
     return lerp_packed(c, p, std::uint32_t(a * 256.0f + 0.5f));
   };
 
+  // Sparse fine levels (insets): outside their box the finest level is the
+  // base's (sparse_levels); inside it the distance decides alone, so a ray
+  // entering the box refines there (any line of level L is one of level L-1).
+  const bool sparse = d_.sparse_levels > 0;
+  auto floor_at = [&](double u, double v) {
+    return u >= d_.sparse_x0 && u <= d_.sparse_x1 && v >= d_.sparse_y0 && v <= d_.sparse_y1
+               ? 0
+               : std::min(d_.sparse_levels, lmax_);
+  };
+  auto coarsen = [&](int& L, long m, double t) {
+    while (L < lmax_ && (m & ((2L << L) - 1)) == 0 &&
+           dist2(t) >= t1_ * double(1 << L) * t1_ * double(1 << L))
+      ++L;
+    if (!sparse) [[likely]]
+      return;
+    const double q = en + t * gn;
+    const int f = mu ? floor_at(double(m), q) : floor_at(q, double(m));
+    while (L < f && (m & ((2L << L) - 1)) == 0) ++L;
+    if (L > f) L = std::min(L, std::max(f, level_at(t)));
+  };
+
   // Start: entry point as the previous sample, first aligned line after it.
   int L = level_at(t0);
+  if (sparse) L = std::max(L, floor_at(eu_ + t0 * gu, ev_ + t0 * gv));
   const double a0 = em + t0 * gm;
   long m;
   {
@@ -224,18 +246,14 @@ void ColumnMarcher::march_with(double dx, double dy, std::span<const double> slo
         }
       }
       if (skipped) {
-        while (L < lmax_ && (m & ((2L << L) - 1)) == 0 &&
-               dist2(t_cur) >= t1_ * double(1 << L) * t1_ * double(1 << L))
-          ++L;
+        coarsen(L, m, t_cur);
         continue;
       }
     }
     // One step; coarsen first when this line is on the coarser grid.
     t_prev = t_cur;
     h_prev = h_cur;
-    while (L < lmax_ && (m & ((2L << L) - 1)) == 0 &&
-           dist2(t_cur) >= t1_ * double(1 << L) * t1_ * double(1 << L))
-      ++L;
+    coarsen(L, m, t_cur);
     m += dir * (1L << L);
     if (dir * (double(m) - a1) > 0.0) {
       t_cur = t1;

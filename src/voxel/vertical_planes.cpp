@@ -19,6 +19,8 @@ namespace terrasprite {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kMargin = 2.0;  // pixels around the image the columns cover
+constexpr int kMaxStride = 32;   // coarsest tier of the polar layout: every 32nd column
+constexpr int kMinCoarse = 64;   // ... keeping at least this many columns
 }  // namespace
 
 void PlaneLayout::direction(double p, double& wx, double& wy) const {
@@ -44,6 +46,14 @@ void PlaneLayout::locate(double x, double y, double& cf, double& kf) const {
     cf = (b / a - c0) / dc - 0.5;
     kf = a / dr;
   }
+}
+
+std::int64_t PlaneLayout::tier_start(int c) const {
+  if (smax == 1 || c == 0) return 0;
+  const int low = c & -c;  // largest power of 2 dividing c
+  if (low >= smax) return 0;
+  // Pixels read column c only at strides s <= low, i.e. where kf dc > kTierSpacing / (2 low).
+  return std::max<std::int64_t>(0, std::int64_t(std::floor(kTierSpacing / (2.0 * low * dc))) - 2);
 }
 
 bool PlaneLayout::rows(int c, int width, int height, std::int64_t& k0, std::int64_t& k1) const {
@@ -121,6 +131,27 @@ PlaneLayout make_plane_layout(const Camera& cam, int width, int height, double o
   const double span = std::max(hi - lo, 1e-12);
   L.columns =
       std::clamp(int(std::ceil(span * reach * oversample)) + 1, 1, 64 * std::max(width, height));
+  if (L.polar) {
+    // Tiers: the smallest radius in the image (0 when V is inside) sets the
+    // coarsest stride; columns are rounded up so the coarse ones close the
+    // circle (wrap: n a multiple of smax) or end on the last column (n - 1).
+    double near = 0;
+    if (!L.wrap) {
+      const double cx = std::clamp(L.vx, -kMargin, width + kMargin);
+      const double cy = std::clamp(L.vy, -kMargin, height + kMargin);
+      near = std::hypot(cx - L.vx, cy - L.vy);
+    }
+    const double dc_fine = span / L.columns;
+    const double t = near * oversample * dc_fine / PlaneLayout::kTierSpacing;
+    int smax = 1;
+    while (smax < kMaxStride && t * (2 * smax) <= 1.0 && L.columns / (2 * smax) >= kMinCoarse)
+      smax *= 2;
+    L.smax = smax;
+    if (L.wrap)
+      L.columns = (L.columns + smax - 1) / smax * smax;
+    else
+      L.columns = (L.columns - 1 + smax - 1) / smax * smax + 1;
+  }
   L.c0 = lo;
   L.dc = span / L.columns;
   return L;

@@ -24,6 +24,29 @@ struct PlaneLayout {
   double c0 = 0, dc = 1;     // column c has parameter c0 + (c + 0.5) dc (angle from e, or lambda)
   int columns = 0;
   double dr = 1;  // sample spacing along a column (pixels)
+  /// Tiered polar layout: near V the fine columns lie far closer together
+  /// than pixels, so there only every stride-th column is sampled. Column c
+  /// carries samples from radius tier_start(c) outward; a pixel at sample
+  /// radius kf interpolates between columns L and L + s, s = stride_at(kf), L
+  /// a multiple of s. smax (a power of 2) is the coarsest stride; 1 = untiered.
+  int smax = 1;
+  /// Widest spacing of a tier's columns, in samples (dr): a tier ends where
+  /// its columns would lie further apart.
+  static constexpr double kTierSpacing = 0.7;
+
+  /// The coarsest stride s (power of 2, <= smax) whose columns are at most
+  /// kTierSpacing samples apart at radius kf: s kf dc <= kTierSpacing.
+  int stride_at(double kf) const {
+    if (smax == 1) return 1;
+    const double t = kf * dc * (1.0 / kTierSpacing);
+    if (t * smax <= 1.0) return smax;
+    int s = 1;
+    while (t * (2 * s) <= 1.0) s *= 2;
+    return s;
+  }
+  /// First sample index column c needs: the inner edge of the finest tier
+  /// that reads it (2 samples inside), 0 for columns of every tier.
+  std::int64_t tier_start(int c) const;
 
   /// Sample k of column c is at V + k * dr * (wx, wy).
   void column_dir(int c, double& wx, double& wy) const { direction(c0 + (c + 0.5) * dc, wx, wy); }

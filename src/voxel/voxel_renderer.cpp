@@ -12,14 +12,18 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <thread>
 #include <vector>
 
 #include "terrasprite/error.h"
 #include "voxel/column_march.h"
+#include "voxel/column_rays.h"
 #include "voxel/locate_row.h"
+#include "voxel/resample_blend.h"
 #include "voxel/vertical_planes.h"
 #include "voxel/voxel_terrain_data.h"
 
@@ -69,10 +73,8 @@ struct VoxelRenderer::State {
   // Intermediate buffer: per column its first sample index and offset.
   std::vector<std::int64_t> k0, k1;
   std::vector<std::size_t> offset;
-  struct Sample {
-    std::uint32_t color;
-    float depth;  // metres along the view axis, +inf = sky
-  };
+  using Sample = PlaneSample;
+
   std::vector<Sample> samples;
 
   State(const TerrainTiles& t, int w_, int h_, const VoxelOptions& o)
@@ -160,7 +162,7 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
   for (int c = 0; c < n; ++c) {
     std::int64_t a, b;
     if (layout.rows(c, w, h, a, b)) {
-      k0[c] = a;
+      k0[c] = std::max(a, layout.tier_start(c));
       k1[c] = b;
     }
     offset[c + 1] = offset[c] + std::size_t(std::max<std::int64_t>(0, k1[c] - k0[c] + 1));
@@ -185,14 +187,10 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
     // Samples in order of rising elevation; the ray is affine in k.
     const glm::dvec3 d0 = rays.at(layout.vx, layout.vy);
     const glm::dvec3 dk = rays.at(layout.vx + layout.dr * wx, layout.vy + layout.dr * wy) - d0;
-    for (std::int64_t i = 0; i < count; ++i) {
-      const std::int64_t k = layout.rise_outward ? k0[c] + i : k1[c] - i;
-      const glm::dvec3 d = d0 + double(k) * dk;
-      const double hz = std::max(std::sqrt(d.x * d.x + d.y * d.y), 1e-12);
-      slopes[i] = d.z / hz;
-      if (i > 0) slopes[i] = std::max(slopes[i], slopes[i - 1]);
-      inv_hz[i] = 1.0 / hz;
-    }
+    const double d0v[3] = {d0.x, d0.y, d0.z}, dkv[3] = {dk.x, dk.y, dk.z};
+    column_rays(d0v, dkv, layout.rise_outward ? k0[c] : k1[c], layout.rise_outward ? 1 : -1, count,
+                slopes.data(), inv_hz.data());
+    for (std::int64_t i = 1; i < count; ++i) slopes[i] = std::max(slopes[i], slopes[i - 1]);
     // The plane's horizontal direction, from the sample farthest from V.
     const std::int64_t kf = k1[c];
     const glm::dvec3 df =
@@ -208,183 +206,84 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
                      hit ? float(hits[i].t * inv_hz[i]) : Frame::kSky};
     }
   };
-  // One pixel from the buffer: bilinear colour; depth bilinear on a surface,
-  // nearest across a silhouette.
+  // Resampling, a row segment at a time: first each pixel's two columns (L
+  // and L + s; s = 1 but in a tiered polar layout's inner tiers, where L is a
+  // multiple of s, so cf / s, a product by 2^-log2(s), is exact) and sample rows kb, kb + 1, with a
+  // prefetch of the samples; then the blends: bilinear colour, depth bilinear
+  // on a surface and nearest across a silhouette. Splitting the two keeps many
+  // pixels' buffer reads in flight at once (the blend waited on them).
   const double inv_dc = 1.0 / layout.dc, inv_dr = 1.0 / layout.dr;
-  auto locate = [&](int x, int y, double& cf, double& kf) {
-    if (layout.polar) return layout.locate(x + 0.5, y + 0.5, cf, kf);
-    const double dx = x + 0.5 - layout.vx, dy = y + 0.5 - layout.vy;
-    const double a = dx * layout.ex + dy * layout.ey, b = dy * layout.ex - dx * layout.ey;
-    cf = (b / a - layout.c0) * inv_dc - 0.5;  // one division per pixel
-    kf = a * inv_dr;
-  };
-  auto resample = [&](int x, int y, double cf, double kf) {
-    const double cfl = double(floor_i64(cf)), kfl = double(floor_i64(kf));
-    const float fc = float(cf - cfl), fk = float(kf - kfl);
-    const long cbase = long(cfl);
-    const std::int64_t kbase = std::int64_t(kfl);
-    float acc[3] = {0, 0, 0}, wsum = 0, wbest = -1, dsum = 0, dmin = Frame::kSky, dmax = 0;
-    float dbest = Frame::kSky;
-    bool all_hit = true;
-    for (int a = 0; a < 2; ++a) {
-      long c = cbase + a;
-      if (c < 0 || c >= n) {
-        if (!layout.wrap) continue;
-        c = c < 0 ? c + n : c - n;
+  using Tap = ResampleTap;
+
+  auto resample_span = [&](int y, int x0, int count, const double* cf, const double* kf) {
+    thread_local std::vector<Tap> taps;
+    taps.resize(std::size_t(count));
+    std::uint8_t* row = out.color.px(0, y);
+    float* depth = out.depth.data() + std::size_t(y) * w;
+    int m = 0;
+    for (int i = 0; i < count; ++i) {
+      int s = 1;
+      double cs = cf[i];
+      if (layout.smax > 1) {
+        s = layout.stride_at(kf[i]);
+        cs *= std::bit_cast<double>(std::uint64_t(1023 - std::countr_zero(unsigned(s))) << 52);
       }
-      const float wc = a ? fc : 1 - fc;
-      const std::int64_t c0k = k0[c], c1k = k1[c];
-      const std::size_t base = offset[c];
-      for (int b = 0; b < 2; ++b) {
-        const std::int64_t k = kbase + b;
-        if (k < c0k || k > c1k) continue;
-        const float wgt = wc * (b ? fk : 1 - fk);
-        const Sample& smp = samples[base + std::size_t(k - c0k)];
-        const std::uint32_t p = smp.color;
-        acc[0] += wgt * float(p & 0xff);
-        acc[1] += wgt * float((p >> 8) & 0xff);
-        acc[2] += wgt * float((p >> 16) & 0xff);
-        wsum += wgt;
-        dsum += wgt * smp.depth;
-        all_hit = all_hit && smp.depth < Frame::kSky;
-        dmin = std::min(dmin, smp.depth);
-        dmax = std::max(dmax, smp.depth);
-        if (wgt > wbest) {
-          wbest = wgt;
-          dbest = smp.depth;
+      const double cfl = double(floor_i64(cs)), kfl = double(floor_i64(kf[i]));
+      const long cbase = long(cfl) * s;
+      Tap& t = taps[std::size_t(m++)];
+      t.x = x0 + i;
+      t.fc = float(cs - cfl);
+      t.fk = float(kf[i] - kfl);
+      t.ok = 0;
+      const std::int64_t kb = std::int64_t(kfl);
+      for (int a = 0; a < 2; ++a) {
+        long c = cbase + a * s;
+        t.at[a] = 0;
+        if (c < 0 || c >= n) {
+          if (!layout.wrap) continue;
+          c = c < 0 ? c + n : c - n;
         }
+        const std::int64_t c0k = k0[c], c1k = k1[c];
+        const bool b0 = kb >= c0k && kb <= c1k, b1 = kb + 1 >= c0k && kb + 1 <= c1k;
+        t.ok |= (unsigned(b0) | unsigned(b1) << 1) << (2 * a);
+        t.at[a] = offset[c] + std::size_t(kb - c0k);
+        if (b0 || b1) __builtin_prefetch(&samples[t.at[a] + (b0 ? 0 : 1)]);
       }
     }
-    std::uint8_t* px = out.color.px(x, y);
-    if (wsum > 0) {
-      const float inv = 1.0f / wsum;
-      for (int ch = 0; ch < 3; ++ch) px[ch] = std::uint8_t(std::min(acc[ch] * inv + 0.5f, 255.f));
-    } else {
-      for (int ch = 0; ch < 3; ++ch) px[ch] = kSkyColor[ch];
-    }
-    px[3] = 255;
-    // Depth: interpolated on a surface, nearest across a silhouette.
-    const bool smooth = wsum > 0 && all_hit && dmax - dmin <= 0.3f * dmin;
-    out.depth[std::size_t(y) * w + x] = smooth ? dsum / wsum : dbest;
+    blend_taps(taps.data(), m, samples.data(), kSkyPacked, row, depth);
   };
-
-  if (layout.wrap) {
-    // V inside the image (looking steeply down or up): the planes fan out
-    // all around it. March every column, then resample.
-    tbb::parallel_for(
-        tbb::blocked_range<int>(0, n, 2),
-        [&](const tbb::blocked_range<int>& range) {
-          for (int c = range.begin(); c < range.end(); ++c) march_column(c);
-        },
-        tbb::simple_partitioner());
-    constexpr int kStrip = 8;  // vertical strips read few buffer columns, sequentially
-    tbb::parallel_for(tbb::blocked_range<int>(0, (w + kStrip - 1) / kStrip, 1),
-                      [&](const tbb::blocked_range<int>& range) {
-                        const int x0 = range.begin() * kStrip,
-                                  x1 = std::min(w, range.end() * kStrip);
-                        for (int y = 0; y < h; ++y)
-                          for (int x = x0; x < x1; ++x) {
-                            double cf, kf;
-                            locate(x, y, cf, kf);
-                            resample(x, y, cf, kf);
-                          }
-                      });
-    return;
-  }
-
-  // V outside the image: the pool hands out chunks of adjacent columns; a
-  // task marches its chunk and at once resamples the pixels lying between
-  // the chunk's columns, while they are in cache. Pixels between two chunks
-  // (one seam per chunk) follow when all columns are done.
-  constexpr int kChunk = 24;
-  const int chunks = (n + kChunk - 1) / kChunk;
   const SlopeRowLocator slope_row{layout.vx, layout.vy, layout.ex, layout.ey,
-                                  layout.c0, inv_dc,    inv_dr,    n - 1};
-  auto key_of = [&](double cf) { return std::clamp(long(floor_i64(cf)), -1L, long(n) - 1); };
-  // Pixels whose key lies in [lo, hi): per row, the wedge between the planes
-  // bounding those keys is an interval of x. Key k holds the parameters
-  // [c0 + (k + 0.5) dc, c0 + (k + 1.5) dc); the wedge is widened by a quarter
-  // column each side (many orders above locate's rounding), so the scan stays
-  // tight: with 24-column chunks and their seams, a pixel is located about
-  // 1.3 times instead of 1.7-1.8 (1080p, -30 deg; the key filter still
-  // decides; the polar side test below brings atan2 calls to ~1.0 a pixel). The first and last keys
-  // also take the clamped pixels: widened by a column.
-  auto resample_keys = [&](long lo, long hi) {
-    const double slack_lo = lo < 0 ? 1.0 : 0.25, slack_hi = hi >= n ? 1.0 : 0.25;
-    const double p_lo = layout.c0 + (double(lo) + 0.5 - slack_lo) * layout.dc;
-    const double p_hi = layout.c0 + (double(hi) + 0.5 + slack_hi) * layout.dc;
-    const bool bounded = !layout.polar || p_hi - p_lo < 3.0;  // wedge well under pi
-    double lx, ly, hx, hy;
-    layout.direction(p_lo, lx, ly);
-    layout.direction(p_hi, hx, hy);
-    // Polar: pixels outside the keys' wedge widened by a thousandth of a column
-    // skip locate's atan2 (a side test on the planes; the margin is still far
-    // above the rounding of either computation).
-    const double t_lo = layout.c0 + (double(lo) + 0.5 - 1e-3) * layout.dc;
-    const double t_hi = layout.c0 + (double(hi) + 0.5 + 1e-3) * layout.dc;
-    const bool pretest = layout.polar && bounded && lo >= 0 && hi < n;
-    double tlx, tly, thx, thy;
-    layout.direction(t_lo, tlx, tly);
-    layout.direction(t_hi, thx, thy);
-    for (int y = 0; y < h; ++y) {
-      const double dy = y + 0.5 - layout.vy;
-      // In the wedge: cross(w_lo, P - V) >= 0 and cross(P - V, w_hi) >= 0, with P = (x + 0.5, y +
-      // 0.5).
-      double xa = 0, xb = w - 1;
-      if (bounded) {
-        auto bound = [&](double coef, double rhs, bool upper_if_positive) {
-          if (std::abs(coef) < 1e-12) return;
-          const double x = layout.vx + rhs / coef - 0.5;
-          const bool upper = (coef > 0) == upper_if_positive;
-          if (upper)
-            xb = std::min(xb, std::ceil(x));
-          else
-            xa = std::max(xa, std::floor(x));
-        };
-        bound(ly, lx * dy, true);   // ly (x+.5-vx) <= lx dy
-        bound(hy, hx * dy, false);  // hy (x+.5-vx) >= hx dy
-      }
-      const int x0 = int(std::max(xa, 0.0)), x1 = int(std::min(xb, double(w - 1)));
-      if (!layout.polar && x1 >= x0) {
-        // Locate the row's interval at once (vectorised), then resample its keys.
-        thread_local std::vector<double> cfs, kfs;
-        thread_local std::vector<std::int32_t> keys;
-        const int count = x1 - x0 + 1;
-        cfs.resize(count);
-        kfs.resize(count);
-        keys.resize(count);
-        locate_slope_row(slope_row, y, x0, count, cfs.data(), kfs.data(), keys.data());
-        for (int i = 0; i < count; ++i)
-          if (keys[i] >= lo && keys[i] < hi) resample(x0 + i, y, cfs[i], kfs[i]);
-        continue;
-      }
-      for (int x = x0; x <= x1; ++x) {
-        if (pretest) {
-          const double dx = x + 0.5 - layout.vx;
-          if (tlx * dy - tly * dx < 0 || dx * thy - dy * thx < 0) continue;
-        }
-        double cf, kf;
-        locate(x, y, cf, kf);
-        const long key = key_of(cf);
-        if (key >= lo && key < hi) resample(x, y, cf, kf);
-      }
-    }
+                                  layout.c0, inv_dc,    inv_dr};
+  const PolarRowLocator polar_row{layout.vx, layout.vy, layout.ex, layout.ey,
+                                  layout.c0, inv_dc,    inv_dr,    layout.wrap};
+  thread_local std::vector<double> cfs, kfs;
+  // Locates pixels x0 .. x0 + count - 1 of row y into cfs, kfs.
+  auto locate_span = [&](int y, int x0, int count) {
+    cfs.resize(std::size_t(count));
+    kfs.resize(std::size_t(count));
+    if (layout.polar) return locate_polar_row(polar_row, y, x0, count, cfs.data(), kfs.data());
+    locate_slope_row(slope_row, y, x0, count, cfs.data(), kfs.data());
   };
+
+  // March every column, then resample the image in vertical strips of 64
+  // pixels (whole cache lines of the output rows), a row segment at a time.
+  // (Marching chunks of columns and resampling each chunk's wedge at once,
+  // while its columns were in cache, cost more: each chunk wrote a few pixels
+  // of every row, so the output lines were fetched 2-3 times, and a pixel was
+  // located 1.3 times; the buffer reads are prefetched instead.)
   tbb::parallel_for(
-      tbb::blocked_range<int>(0, chunks, 1),
+      tbb::blocked_range<int>(0, n, 2),
       [&](const tbb::blocked_range<int>& range) {
-        for (int j = range.begin(); j < range.end(); ++j) {
-          const int ca = j * kChunk, cb = std::min(n, ca + kChunk);
-          for (int c = ca; c < cb; ++c) march_column(c);
-          resample_keys(j == 0 ? -1 : ca, j == chunks - 1 ? n : cb - 1);
-        }
+        for (int c = range.begin(); c < range.end(); ++c) march_column(c);
       },
       tbb::simple_partitioner());
-  tbb::parallel_for(tbb::blocked_range<int>(0, chunks - 1, 1),
+  constexpr int kStrip = 64;
+  tbb::parallel_for(tbb::blocked_range<int>(0, (w + kStrip - 1) / kStrip, 1),
                     [&](const tbb::blocked_range<int>& range) {
-                      for (int j = range.begin(); j < range.end(); ++j) {
-                        const long seam = long(j + 1) * kChunk - 1;
-                        resample_keys(seam, seam + 1);
+                      const int x0 = range.begin() * kStrip, x1 = std::min(w, range.end() * kStrip);
+                      for (int y = 0; y < h; ++y) {
+                        locate_span(y, x0, x1 - x0);
+                        resample_span(y, x0, x1 - x0, cfs.data(), kfs.data());
                       }
                     });
 }

@@ -33,7 +33,7 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
       "bench hybrid --scene " + (dir / "scene.json") +
       " --size 160x90 --frames 10 --score-every 2 --target-ms 40 --table-sizes 64"
       " --table-angle-step 120 --relief-resolutions 16,32 --octahedral-resolutions 16"
-      " --terrain-quads 16 --cache " +
+      " --terrain-quads 16 --quality-context-frames 2 --cache " +
       (dir / "cache");
   const tstest::CliResult r =
       tstest::run_cli(args + " --json " + (dir / "h.json") + " --out " + (dir / "h"));
@@ -62,6 +62,15 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
   for (const char* k : {"policy", "ms_per_frame", "objective_greedy", "objective_optimal"})
     EXPECT_TRUE(sel.contains(k)) << k;
   EXPECT_GE(sel["objective_optimal"].get<double>(), sel["objective_greedy"].get<double>());
+  // The tables in context: an error scale per (model, representation) seen
+  // in the context views (this short path's may show none).
+  ASSERT_TRUE(j.contains("quality_context"));
+  EXPECT_TRUE(j["quality_context"].is_array());
+  for (const auto& q : j["quality_context"]) {
+    EXPECT_GE(q["error_scale"].get<double>(), 0.25);
+    EXPECT_LE(q["error_scale"].get<double>(), 8.0);
+    EXPECT_GT(q["pixels"].get<double>(), 0.0);
+  }
   EXPECT_TRUE(std::filesystem::exists(dir / "h/index.html"));
   EXPECT_TRUE(std::filesystem::exists(dir / "h/table2.md"));
   EXPECT_TRUE(std::filesystem::exists(dir / "h/fig6_mixed-optimal.png"));
@@ -73,7 +82,8 @@ TEST(BenchHybrid, BadInputExitsTwoWithoutOutput) {
       << R"({"keyframes": [{"t": 0, "position": [0, 0, 50], "yaw_deg": 0},
     {"t": 2, "position": [10, 0, 50], "yaw_deg": 0}], "checkpoints": [{"name": "A", "t": 5}]})";
   for (const std::string& bad :
-       std::vector<std::string>{"--target-ms 0", "--path " + (dir / "path.json"), "--size 0x0"}) {
+       std::vector<std::string>{"--target-ms 0", "--path " + (dir / "path.json"), "--size 0x0",
+                                "--budget-fractions 0.1,x", "--diagnosis-conditions scene,moon"}) {
     const tstest::CliResult r =
         tstest::run_cli("bench hybrid --frames 4 " + bad + " --out " + (dir / "o"));
     EXPECT_EQ(r.status, 2) << bad << ": " << r.output;

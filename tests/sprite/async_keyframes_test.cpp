@@ -55,7 +55,8 @@ TEST(AsyncKeyframes, LandedTexturesEqualAKeyframeDrawnHere) {
   const auto grid = std::make_shared<const CoarseGrid>(make_coarse_grid(t.heights, 16));
   const std::vector<Camera> path = paper_path(t.heights, 20, 1.0);
   AsyncKeyframes worker(
-      gl, t, [&](const Camera&) { return grid; }, w, h, false);
+      gl, t, [&](const Camera&) { return grid; }, w, h, /*lighting=*/false, /*contrast=*/false,
+      TerrainShading::kPlain);
   Keyframe here(w, h);
   for (int i : {0, 10, 19}) {
     worker.request(path[i]);

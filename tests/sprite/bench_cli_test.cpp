@@ -143,3 +143,57 @@ TEST(BenchLodsprite, AsyncReportsBothDisplays) {
 }
 
 }  // namespace
+
+namespace {
+
+// The trigger comparison finds the contrast threshold that spends the
+// geometric trigger's keyframes, and rich shading reaches every renderer
+// (full, LOD, sprite), so the report says so and the images change.
+TEST(BenchLodsprite, CompareTriggerAndRichShading) {
+  tstest::TempDir tmp;
+  const fs::path dir = tmp.path;
+  const std::string common =
+      "bench lodsprite --synthetic-size 65 --resample 65 --frames 16 --size 64x64 --lod-quads 4 "
+      "--thresholds 1 --frame-counts 16 --lod-sweep 4 ";
+  auto load = [](const fs::path& p) {
+    std::ifstream f(p);
+    return nlohmann::json::parse(f);
+  };
+  ASSERT_EQ(run(common + "--compare-trigger --shading rich --threshold 0.3 --json " +
+                (dir / "a.json").string() + " --out " + (dir / "a").string()),
+            0);
+  ASSERT_EQ(run(common + "--json " + (dir / "b.json").string() + " --out " + (dir / "b").string()),
+            0);
+  const nlohmann::json a = load(dir / "a.json"), b = load(dir / "b.json");
+  EXPECT_EQ(a["shading"], "rich");
+  EXPECT_EQ(b["shading"], "plain");
+  EXPECT_FALSE(b.contains("trigger_comparison"));
+  const nlohmann::json& t = a["trigger_comparison"];
+  EXPECT_EQ(t["main"]["metric"], "paper");
+  EXPECT_EQ(t["other"]["metric"], "contrast");
+  EXPECT_EQ(t["other"]["unit"], "grey levels");
+  EXPECT_GT(int(t["simulations"]), 0);
+  // Within one keyframe of each other (the counts are a step function of the threshold).
+  EXPECT_LE(std::abs(int(t["main"]["keyframes"]) - int(t["other"]["keyframes"])), 1);
+  EXPECT_GT(int(t["main"]["keyframes"]), 1);
+  for (const char* side : {"main", "other"})
+    for (const char* k : {"threshold", "mean_ssim", "mean_psnr", "min_ssim"})
+      EXPECT_TRUE(t[side].contains(k)) << side << " " << k;
+  // Rich shading changes the full-resolution frames the sprite is scored against.
+  std::ifstream fa(dir / "a" / "fig14_full.png", std::ios::binary),
+      fb(dir / "b" / "fig14_full.png", std::ios::binary);
+  const std::string pa((std::istreambuf_iterator<char>(fa)), {}),
+      pb((std::istreambuf_iterator<char>(fb)), {});
+  EXPECT_FALSE(pa.empty());
+  EXPECT_NE(pa, pb);
+  std::ifstream report(dir / "a" / "index.html");
+  const std::string html((std::istreambuf_iterator<char>(report)), {});
+  EXPECT_NE(html.find("rich terrain shading"), std::string::npos);
+  EXPECT_NE(html.find("Keyframe trigger"), std::string::npos);
+  // Bad values and combinations: one line, status 2.
+  EXPECT_EQ(run(common + "--shading glossy --out " + (dir / "c").string()), 2);
+  EXPECT_EQ(run(common + "--compare-trigger --cache --out " + (dir / "c").string()), 2);
+  EXPECT_FALSE(fs::exists(dir / "c" / "lodsprite.json"));
+}
+
+}  // namespace

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -251,6 +252,39 @@ TEST(CogSource, BenchStreamFliesACogAndRefusesBadOnesWithExit2) {
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
     EXPECT_FALSE(std::filesystem::exists(t.path / "bad")) << args;
   }
+}
+
+// The bounds pass's result is cached (TERRASPRITE_CACHE_DIR): a second open
+// of the same file reads it back, equal; a changed file computes it afresh.
+TEST(CogSource, BoundsAreCachedForAnUnchangedFileOnly) {
+  tstest::TempDir t;
+  std::filesystem::create_directories(t.path);
+  const std::string cog = make_cog(t.path / "dem.tif", 257);
+  const std::string dir = t / "cache";
+  ASSERT_EQ(setenv("TERRASPRITE_CACHE_DIR", dir.c_str(), 1), 0);
+  const TileSetInfo a = open_cog(cog, "", 4, 1 << 10);
+  const TileSetInfo b = open_cog(cog, "", 4, 1 << 10);
+  EXPECT_FALSE(a.cog->bounds_cached);
+  EXPECT_TRUE(b.cog->bounds_cached);
+  EXPECT_EQ(a.cog->bound_from, b.cog->bound_from);
+  EXPECT_EQ(a.cog->bound, b.cog->bound);
+  EXPECT_EQ(a.tile_max, b.tile_max);
+  EXPECT_EQ(a.grid.max_height, b.grid.max_height);
+  EXPECT_EQ(a.grid.min_height, b.grid.min_height);
+  // Another held level is another key.
+  EXPECT_FALSE(open_cog(cog, "", 4, 1 << 22).cog->bounds_cached);
+  // The file rewritten (another size and time): computed again, then cached.
+  std::filesystem::remove(cog);
+  make_cog(t.path / "dem.tif", 129);
+  std::filesystem::last_write_time(cog,
+                                   std::filesystem::last_write_time(cog) + std::chrono::seconds(5));
+  EXPECT_FALSE(open_cog(cog, "", 4, 1 << 10).cog->bounds_cached);
+  EXPECT_TRUE(open_cog(cog, "", 4, 1 << 10).cog->bounds_cached);
+  // A damaged cache file is ignored, never an error.
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    std::filesystem::resize_file(e.path(), 40);
+  EXPECT_FALSE(open_cog(cog, "", 4, 1 << 10).cog->bounds_cached);
+  ASSERT_EQ(unsetenv("TERRASPRITE_CACHE_DIR"), 0);
 }
 
 }  // namespace

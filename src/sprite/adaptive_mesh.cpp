@@ -59,7 +59,7 @@ double two_triangles(double za, double zb, double zd, double ze, double u, doubl
 struct AdaptiveMesher::Impl {
   const Heightfield& h;
   int levels = 0;
-  std::vector<std::vector<int>> xs, ys;               // per level: quad_indices(n, 2^level)
+  std::vector<std::vector<int>> xs, ys;  // per level: quad_indices(n, 2^level)
   // Levels below `levels`, row-major: geometric error (monotone), the node's
   // own two-triangle error, height range.
   std::vector<std::vector<float>> error, own, zmin, zmax;

@@ -143,9 +143,9 @@ struct SpriteRenderer::State {
     ++serial;
     if (cache.capacity() == 0 || !key->valid) return;
     std::unique_ptr<Keyframe> spare = cache.put(std::move(key), tick, now);
-    key = spare ? std::move(spare)
-                : std::make_unique<Keyframe>(width, height,
-                                             options.metric == ErrorMetric::kContrast);
+    key = spare
+              ? std::move(spare)
+              : std::make_unique<Keyframe>(width, height, options.metric == ErrorMetric::kContrast);
     key->valid = false;
   }
 };
@@ -161,7 +161,8 @@ const SpriteOptions& validated(const SpriteOptions& o) {
   if (!(o.async_lead > 0 && o.async_lead <= 1))
     throw InputError(fmt::format("async_lead {}: must be in (0, 1]", o.async_lead));
   if (o.mesh == CoarseMesh::kAdaptive && o.metric == ErrorMetric::kContrast)
-    throw InputError("the contrast metric needs the uniform mesh (its quads are measured on the grid)");
+    throw InputError(
+        "the contrast metric needs the uniform mesh (its quads are measured on the grid)");
   if (o.mesh_triangles != 0 && o.mesh_triangles < 2)
     throw InputError(fmt::format("mesh_triangles {}: must be 0 (the uniform grid's) or at least 2",
                                  o.mesh_triangles));
@@ -183,8 +184,8 @@ SpriteRenderer::SpriteRenderer(Scene& scene, int width, int height, SpriteOption
   if (options.async_context)
     s_->async = std::make_unique<AsyncKeyframes>(
         *options.async_context, scene.terrain(),
-        [s = s_.get()](const Camera& c) { return s->grid_for(c); }, width, height,
-        options.lighting, options.metric == ErrorMetric::kContrast, scene.shading());
+        [s = s_.get()](const Camera& c) { return s->grid_for(c); }, width, height, options.lighting,
+        options.metric == ErrorMetric::kContrast, scene.shading());
 }
 
 SpriteRenderer::~SpriteRenderer() = default;

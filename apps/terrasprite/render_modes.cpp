@@ -66,7 +66,10 @@ RenderStack make_render_stack(const std::string& mode, const Terrain& terrain, i
     o.mesh = sprite_mesh;
     o.mesh_triangles = sprite_mesh_triangles;
     use_gl();
-    if (async_keyframes) o.async_context = context ? context : s.gl.get();
+    if (async_keyframes) {
+      o.async_context = context ? context : s.gl.get();
+      o.async_first_keyframe = true;  // a mode or threshold switch never waits for a keyframe
+    }
     s.scene = std::make_unique<Scene>(terrain);
     s.renderer = std::make_unique<SpriteRenderer>(*s.scene, width, height, o);
     return s;

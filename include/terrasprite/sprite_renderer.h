@@ -67,7 +67,9 @@ struct SpriteOptions {
   /// Ours: a coarse quad whose largest deviation from the full-resolution
   /// surface projects below this many pixels in the current view takes the
   /// drape texture, as plain LOD would: there the coarse geometry is already
-  /// right and the drape is sharper than a resampled keyframe. 0 disables.
+  /// right and the drape is sharper than a resampled keyframe. 0 disables;
+  /// so does the scene's rich shading (TerrainShading::kRich), under which
+  /// the drape would pay the per-fragment shading the keyframe already paid.
   double sharp_px = 0.5;
   /// Keyframe cache: memory budget in bytes for all keyframes held (the
   /// current one and the cached ones, width x height x 8 bytes each: colour
@@ -92,6 +94,11 @@ struct SpriteOptions {
   /// on, the keyframe latency in frames being measured as it goes. Must
   /// outlive the renderer. Not with the keyframe cache (cache_bytes > 0).
   const GlContext* async_context = nullptr;
+  /// Async only: the first keyframe too comes from the worker. Until it
+  /// lands, draw() draws the coarse mesh with the drape texture (frame class
+  /// "lod"), so no frame ever waits for a full-resolution render (a viewer
+  /// switching mode or threshold). Off: the first frame is a keyframe.
+  bool async_first_keyframe = false;
   /// Async only: a keyframe is also requested when the error predicted for
   /// the view it would land on exceeds this fraction of threshold_px. At 1 a
   /// keyframe lands just as the old one reaches the threshold, slightly off

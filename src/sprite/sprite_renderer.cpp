@@ -285,8 +285,12 @@ void SpriteRenderer::draw_sprite_pass(const Camera& camera) {
   TerrainGpu& terrain = s.scene.terrain_gpu();
   const CoarseGrid& g = s.grid();
   s.flags = s.current().fallback;
-  if (s.options.sharp_px > 0) {
-    // Quads whose coarse geometry is already right at this distance take the drape texture.
+  if (!s.current().valid)  // no keyframe yet (async first keyframe): all drape, plain LOD
+    s.flags.assign(static_cast<std::size_t>(g.quad_count()), 1);
+  if (s.options.sharp_px > 0 && s.scene.shading() == TerrainShading::kPlain) {
+    // Quads whose coarse geometry is already right at this distance take the
+    // drape texture. Not under rich shading: there the drape would pay the
+    // per-fragment shading the keyframe has already paid.
     const double limit = s.options.sharp_px * camera.pixel_angle(height());
     for (std::size_t q = 0; q < s.flags.size(); ++q)
       if (!s.flags[q] && g.max_deviation[q] < limit * glm::length(g.centre[q] - camera.position))
@@ -308,7 +312,8 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
   const auto decision_start = std::chrono::steady_clock::now();
   if (s.async) s.predictor.observe(camera);
   SpriteError e = error(camera);
-  if (!has_keyframe()) {
+  const bool first_async = s.async && s.options.async_first_keyframe && d == Decision::kAuto;
+  if (!has_keyframe() && !first_async) {
     e = {};
     s.trigger = Trigger::kFirst;
   } else if (d == Decision::kKeyframe) {
@@ -359,6 +364,8 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
     }
     triangles = terrain.mesh(0).triangles;
   } else {
+    // Before the first keyframe lands every quad takes the drape (a new
+    // keyframe's fallback flags are all set): plain coarse LOD.
     draw_sprite_pass(camera);
     triangles = s.grid().triangle_count();
   }
@@ -366,7 +373,7 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
   const gl::FrameTime t = timer().end();
   s.last = e;
   s.last_was_key = key;
-  return make_frame(camera, t, key ? "key" : "sprite", triangles);
+  return make_frame(camera, t, key ? "key" : has_keyframe() ? "sprite" : "lod", triangles);
 }
 
 void SpriteRenderer::read_back(Frame& f, ReadBack what) {
@@ -405,7 +412,7 @@ SpriteError SpriteRenderer::land_and_request(const Camera& camera, SpriteError e
     const SpriteError ek = sprite_error(*k->grid, k->samples, camera);
     const bool late = trigger_for(ek).has_value();
     st.late += late;
-    if (!late || ek.value(m) < e.value(m)) {
+    if (!late || ek.value(m) < e.value(m) || !s.current().valid) {
       s.drop_held();
       s.held = k;
       ++s.serial;
@@ -418,8 +425,10 @@ SpriteError SpriteRenderer::land_and_request(const Camera& camera, SpriteError e
   }
   if (!s.async->busy()) {
     const Camera ahead = s.predictor.predict(s.latency_frames, s.scene.terrain().heights);
-    const SpriteError at_landing = sprite_error(*s.current().grid, s.current().samples, ahead);
-    if (trigger_for(e) || trigger_for(at_landing) ||
+    const SpriteError at_landing = s.current().valid
+                                       ? sprite_error(*s.current().grid, s.current().samples, ahead)
+                                       : SpriteError{};
+    if (!s.current().valid || trigger_for(e) || trigger_for(at_landing) ||
         at_landing.value(s.options.metric) > s.options.async_lead * s.options.threshold_px) {
       s.async->request(ahead);
       s.requested_at = s.tick;

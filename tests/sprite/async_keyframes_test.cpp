@@ -170,5 +170,29 @@ TEST(AsyncSprite, ShutsDownCleanlyMidKeyframe) {
                InputError);
 }
 
+// async_first_keyframe: no frame waits for the first keyframe; the coarse
+// mesh with the drape ("lod") is drawn until it lands, then sprites follow.
+TEST(AsyncSprite, FirstKeyframeFromTheWorkerDrawsPlainLodMeanwhile) {
+  GlContext gl;
+  Terrain t = small_mountains();
+  Scene scene(t);
+  const std::vector<Camera> path = paper_path(t.heights, 8, 1.0);
+  SpriteRenderer r(scene, 96, 96, {.async_context = &gl, .async_first_keyframe = true});
+  const Frame first = r.render(path[0]);
+  EXPECT_EQ(first.cls, "lod");
+  EXPECT_FALSE(r.has_keyframe());
+  EXPECT_EQ(r.async_stats().requested, 1);
+  MeshRenderer full(scene, 96, 96, 0);
+  const Coverage want = coverage(full.render(path[0]).color);
+  EXPECT_GT(coverage(first.color).terrain, 0.9 * want.terrain);  // drawn, not left empty
+  EXPECT_LE(coverage(first.color).black, want.black + 0.01);
+  r.wait_for_keyframe();
+  const Frame next = r.render(path[1]);
+  EXPECT_EQ(next.cls, "sprite");
+  EXPECT_TRUE(r.has_keyframe());
+  EXPECT_TRUE(r.last_landed());
+  EXPECT_EQ(r.async_stats().used, 1);
+}
+
 }  // namespace
 }  // namespace terrasprite

@@ -32,8 +32,7 @@ std::string read_file_bytes(const std::filesystem::path& path);
 /// Returns false (nothing left behind) when any step fails.
 bool write_file_atomically(const std::filesystem::path& file, std::string_view bytes);
 
-/// The objects cache folder: $TERRASPRITE_CACHE/objects, else
-/// $XDG_CACHE_HOME/terrasprite/objects, else ~/.cache/terrasprite/objects.
+/// The objects cache folder: cache_root() (terrasprite/cache_dir.h) / objects.
 std::string default_cache_dir();
 
 /// FNV-1a of the model file's bytes, then of `options.texture`'s (if any).

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "terrasprite/cache_dir.h"
 #include "terrasprite/error.h"
 
 namespace terrasprite {
@@ -104,14 +105,7 @@ bool write_file_atomically(const std::filesystem::path& file, std::string_view b
 }
 
 std::string default_cache_dir() {
-  namespace fs = std::filesystem;
-  if (const char* d = std::getenv("TERRASPRITE_CACHE"); d && *d)
-    return (fs::path(d) / "objects").string();
-  if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d)
-    return (fs::path(d) / "terrasprite" / "objects").string();
-  if (const char* d = std::getenv("HOME"); d && *d)
-    return (fs::path(d) / ".cache" / "terrasprite" / "objects").string();
-  return (fs::temp_directory_path() / "terrasprite-cache" / "objects").string();
+  return (std::filesystem::path(cache_root()) / "objects").string();
 }
 
 std::uint64_t model_files_hash(const std::string& model_file, const ModelOptions& m) {

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "terrasprite/cache_dir.h"
+
 namespace terrasprite {
 namespace {
 
@@ -27,15 +29,7 @@ std::string file_of(const std::string& dir, const std::string& key) {
 }  // namespace
 
 std::string bounds_cache_dir(bool& explicit_dir) {
-  explicit_dir = false;
-  if (const char* d = std::getenv("TERRASPRITE_CACHE_DIR")) {
-    explicit_dir = true;
-    return d;
-  }
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x)
-    return std::string(x) + "/terrasprite";
-  if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/terrasprite";
-  return {};
+  return (std::filesystem::path(cache_root(&explicit_dir)) / "cog-bounds").string();
 }
 
 std::string bounds_cache_key(const CogInput& in, int width, int height, int bound_from,

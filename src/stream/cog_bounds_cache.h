@@ -11,9 +11,8 @@
 
 namespace terrasprite {
 
-/// The cache directory: $TERRASPRITE_CACHE_DIR when set (empty: no cache),
-/// else $XDG_CACHE_HOME/terrasprite, else $HOME/.cache/terrasprite; "" when
-/// none applies. `explicit_dir` says whether TERRASPRITE_CACHE_DIR chose it.
+/// The cache directory: cache_root() (terrasprite/cache_dir.h) / cog-bounds.
+/// `explicit_dir` says whether TERRASPRITE_CACHE chose the root.
 std::string bounds_cache_dir(bool& explicit_dir);
 
 /// What identifies a pass's result: the file and every input of the pass.

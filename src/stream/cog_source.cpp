@@ -30,7 +30,7 @@ namespace {
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr int kStripRows = 256;
 // Rasters from this many samples (2049²) cache their bounds by default (the
-// pass takes seconds there); smaller ones only with TERRASPRITE_CACHE_DIR set.
+// pass takes seconds there); smaller ones only with TERRASPRITE_CACHE set.
 constexpr std::int64_t kCacheSamples = std::int64_t(1) << 22;
 
 struct Dataset {

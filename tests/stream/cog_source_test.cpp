@@ -254,14 +254,16 @@ TEST(CogSource, BenchStreamFliesACogAndRefusesBadOnesWithExit2) {
   }
 }
 
-// The bounds pass's result is cached (TERRASPRITE_CACHE_DIR): a second open
+// The bounds pass's result is cached (under TERRASPRITE_CACHE): a second open
 // of the same file reads it back, equal; a changed file computes it afresh.
 TEST(CogSource, BoundsAreCachedForAnUnchangedFileOnly) {
   tstest::TempDir t;
   std::filesystem::create_directories(t.path);
   const std::string cog = make_cog(t.path / "dem.tif", 257);
-  const std::string dir = t / "cache";
-  ASSERT_EQ(setenv("TERRASPRITE_CACHE_DIR", dir.c_str(), 1), 0);
+  const std::string root = t / "cache", dir = (t.path / "cache" / "cog-bounds").string();
+  const char* was = std::getenv("TERRASPRITE_CACHE");  // ctest sets one for every test
+  const std::string before = was ? was : "";
+  ASSERT_EQ(setenv("TERRASPRITE_CACHE", root.c_str(), 1), 0);
   const TileSetInfo a = open_cog(cog, "", 4, 1 << 10);
   const TileSetInfo b = open_cog(cog, "", 4, 1 << 10);
   EXPECT_FALSE(a.cog->bounds_cached);
@@ -284,7 +286,10 @@ TEST(CogSource, BoundsAreCachedForAnUnchangedFileOnly) {
   for (const auto& e : std::filesystem::directory_iterator(dir))
     std::filesystem::resize_file(e.path(), 40);
   EXPECT_FALSE(open_cog(cog, "", 4, 1 << 10).cog->bounds_cached);
-  ASSERT_EQ(unsetenv("TERRASPRITE_CACHE_DIR"), 0);
+  if (was)
+    ASSERT_EQ(setenv("TERRASPRITE_CACHE", before.c_str(), 1), 0);
+  else
+    ASSERT_EQ(unsetenv("TERRASPRITE_CACHE"), 0);
 }
 
 }  // namespace

@@ -7,27 +7,15 @@
 #include <cmath>
 
 #include "sprite/keyframe_contrast.h"
+#include "sprite_test_util.h"
 #include "terrasprite/frame.h"
 #include "terrasprite/sprite_metric.h"
 
 namespace terrasprite {
 namespace {
 
-Heightfield flat(int n, double spacing) {
-  Heightfield h;
-  h.width = h.height = n;
-  h.spacing_x = h.spacing_y = spacing;
-  h.heights.assign(static_cast<std::size_t>(n) * n, 0.f);
-  h.name = "flat";
-  return h;
-}
-
-Camera overhead(glm::dvec3 above, double height) {
-  Camera c = Camera::look_at(above + glm::dvec3(0, 0, height), above, 60.0, 1.0);
-  c.near_m = 1.0;
-  c.far_m = 1e5;
-  return c;
-}
+using sprite_test::flat;
+using sprite_test::overhead;
 
 constexpr int kSize = 256;
 

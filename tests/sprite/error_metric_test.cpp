@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "sprite_test_util.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/sprite_metric.h"
 #include "terrasprite/terrain_gen.h"
@@ -12,24 +13,11 @@
 namespace terrasprite {
 namespace {
 
-Heightfield flat(int n, double spacing) {
-  Heightfield h;
-  h.width = h.height = n;
-  h.spacing_x = h.spacing_y = spacing;
-  h.heights.assign(static_cast<std::size_t>(n) * n, 0.f);
-  h.name = "flat";
-  return h;
-}
+using sprite_test::flat;
+using sprite_test::overhead;
 
 std::vector<std::uint8_t> all_visible(const CoarseGrid& g) {
   return std::vector<std::uint8_t>(g.quad_count(), 1);
-}
-
-Camera overhead(glm::dvec3 above, double height) {
-  Camera c = Camera::look_at(above + glm::dvec3(0, 0, height), above, 60.0, 1.0);
-  c.near_m = 1.0;
-  c.far_m = 1e5;
-  return c;
 }
 
 TEST(CoarseGrid, CentresAreFullResolutionVerticesInsideQuads) {

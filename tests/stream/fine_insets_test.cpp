@@ -15,6 +15,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "stream_test_util.h"
 #include "terrasprite/error.h"
 #include "terrasprite/streaming_tiles.h"
 #include "terrasprite/tiled_terrain.h"
@@ -39,14 +40,7 @@ float detail(int x, int y) {
 }
 
 std::string utm11() {
-  OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
-  OSRImportFromEPSG(srs, 32611);
-  char* w = nullptr;
-  OSRExportToWkt(srs, &w);
-  std::string s = w;
-  CPLFree(w);
-  OSRDestroySpatialReference(srs);
-  return s;
+  return stream_test::utm_wkt(32611);
 }
 
 void write_tif(const std::string& path, int n, const double gt[6], const std::vector<float>& v) {
@@ -201,13 +195,7 @@ TEST(FineInsets, StreamedEqualsInMemoryFaultsFallBackAndTheMarcherReadsFineLevel
   EXPECT_GT(counted.fine_hits.load(), 1000);
   // Streamed: once resident, the same frame.
   VoxelRenderer rm(mem, kW, kH), rs(s, kW, kH);
-  StreamFrameStats st = s.update(c);
-  for (int k = 0; k < 20; ++k) {
-    rs.draw(c);
-    s.settle();
-    st = s.update(c);
-    if (st.degraded_samples == 0) break;
-  }
+  const StreamFrameStats st = stream_test::draw_until_resident(rs, s, c);
   ASSERT_EQ(st.degraded_samples, 0);
   EXPECT_GT(st.resident_tiles, 0);
   const Frame a = rm.draw(c), b = rs.draw(c);

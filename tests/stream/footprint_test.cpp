@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 // The prefetch footprint: the tiles ahead of the eye and under it, not those
 // behind; the motion pushes it forwards.
+#include "stream/footprint.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
-
-#include "stream/footprint.h"
 
 namespace terrasprite {
 namespace {
@@ -26,7 +26,8 @@ TileSetInfo grid_only() {
 }
 
 bool has(const std::vector<TileKey>& keys, int tx, int ty) {
-  return std::any_of(keys.begin(), keys.end(), [&](const TileKey& k) { return k.tx == tx && k.ty == ty; });
+  return std::any_of(keys.begin(), keys.end(),
+                     [&](const TileKey& k) { return k.tx == tx && k.ty == ty; });
 }
 
 TEST(Footprint, AheadAndUnderTheEyeNotBehind) {
@@ -41,9 +42,9 @@ TEST(Footprint, AheadAndUnderTheEyeNotBehind) {
   o.image_height = 1080;
   std::vector<TileKey> keys;
   footprint(s, c, {0, 0, 0}, o, keys);
-  EXPECT_TRUE(has(keys, 8, 8));   // under the eye
-  EXPECT_TRUE(has(keys, 8, 2));   // ahead (north: smaller rows)
-  EXPECT_FALSE(has(keys, 8, 14)); // behind
+  EXPECT_TRUE(has(keys, 8, 8));    // under the eye
+  EXPECT_TRUE(has(keys, 8, 2));    // ahead (north: smaller rows)
+  EXPECT_FALSE(has(keys, 8, 14));  // behind
   for (const TileKey& k : keys) EXPECT_TRUE(k.tx >= 0 && k.tx < 16 && k.ty >= 0 && k.ty < 16);
 
   // Flying south fast while looking north: the look-ahead position adds tiles behind.

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "stream_test_util.h"
 #include "terrasprite/error.h"
 #include "terrasprite/terrain_gen.h"
 #include "test_util.h"
@@ -22,16 +23,7 @@
 namespace terrasprite {
 namespace {
 
-std::string utm_wkt(int epsg) {
-  OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
-  EXPECT_EQ(OSRImportFromEPSG(srs, epsg), OGRERR_NONE);
-  char* w = nullptr;
-  OSRExportToWkt(srs, &w);
-  std::string s = w;
-  CPLFree(w);
-  OSRDestroySpatialReference(srs);
-  return s;
-}
+using stream_test::utm_wkt;
 
 constexpr double kX0 = 500000, kY0 = 4000000;  // the base's top-left corner (UTM 11N)
 

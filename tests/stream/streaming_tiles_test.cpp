@@ -3,6 +3,8 @@
 // GDAL's own windowed reads and the in-memory pyramid, the cache holds its
 // budget, a stalled or failing loader never stops a frame, and a streamed
 // image equals the in-memory one once its tiles are resident.
+#include "terrasprite/streaming_tiles.h"
+
 #include <gdal.h>
 #include <gtest/gtest.h>
 
@@ -12,9 +14,9 @@
 #include <mutex>
 
 #include "stream/tile_file.h"
+#include "stream_test_util.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/error.h"
-#include "terrasprite/streaming_tiles.h"
 #include "terrasprite/tiled_terrain.h"
 #include "terrasprite/voxel_renderer.h"
 #include "test_util.h"
@@ -38,7 +40,8 @@ struct TiledFixture {
   Terrain terrain;
   std::unique_ptr<VoxelTerrain> vt;
   TileSetInfo set;
-  explicit TiledFixture(int n) : terrain(small_terrain(n)), vt(std::make_unique<VoxelTerrain>(terrain)) {
+  explicit TiledFixture(int n)
+      : terrain(small_terrain(n)), vt(std::make_unique<VoxelTerrain>(terrain)) {
     TileWriteOptions o;
     o.tile_log2 = 4;
     o.color_compress = "DEFLATE";
@@ -52,7 +55,8 @@ std::vector<Camera> path(const Terrain& t, int frames) {
 }
 
 TEST(TiledTerrain, OverviewsAreTheVertexAlignedLevelsAndTilesMatchGdalWindows) {
-  TiledFixture f(77);  // 77 - 1 = 76 cells: GDAL's own overviews would be 39, 20, ... not 39, 20, 11
+  TiledFixture f(
+      77);  // 77 - 1 = 76 cells: GDAL's own overviews would be 39, 20, ... not 39, 20, 11
   const VoxelTerrain::Data& d = f.vt->data();
   ASSERT_EQ(f.set.grid.coarsest_level, int(d.levels.size()) - 1);
   GDALDatasetH hds = GDALOpen(f.set.height_file().c_str(), GA_ReadOnly);
@@ -76,14 +80,19 @@ TEST(TiledTerrain, OverviewsAreTheVertexAlignedLevelsAndTilesMatchGdalWindows) {
         const TileBlock& b = t.block;
         EXPECT_EQ(b.x0, tx * 16);
         EXPECT_EQ(b.y0, ty * 16);
-        EXPECT_LE(b.max_height, f.set.tile_max[std::size_t(L)][std::size_t(ty) * f.set.tiles_x[std::size_t(L)] + tx]);
+        EXPECT_LE(
+            b.max_height,
+            f.set.tile_max[std::size_t(L)][std::size_t(ty) * f.set.tiles_x[std::size_t(L)] + tx]);
         std::vector<float> gdal(std::size_t(b.w) * b.h);
         if (lb) {
-          ASSERT_EQ(GDALRasterIO(lb, GF_Read, b.x0, b.y0, b.w, b.h, gdal.data(), b.w, b.h, GDT_Float32, 0, 0), CE_None);
+          ASSERT_EQ(GDALRasterIO(lb, GF_Read, b.x0, b.y0, b.w, b.h, gdal.data(), b.w, b.h,
+                                 GDT_Float32, 0, 0),
+                    CE_None);
         }
         for (int j = 0; j < b.h - 1; ++j)
           for (int i = 0; i < b.w - 1; ++i) {
-            ASSERT_EQ(b.bound[j * b.bound_stride + i], mem->bound[(b.y0 + j) * mem->bound_stride + b.x0 + i]);
+            ASSERT_EQ(b.bound[j * b.bound_stride + i],
+                      mem->bound[(b.y0 + j) * mem->bound_stride + b.x0 + i]);
           }
         if (!lb) continue;
         for (int j = 0; j < b.h; ++j)
@@ -202,14 +211,7 @@ TEST(StreamingTiles, StreamedImageEqualsInMemoryOnceResident) {
   VoxelRenderer rm(mem, kW, kH), rs(s, kW, kH);
   for (const Camera& c : path(f.terrain, 3)) {
     // Draw until a frame reads nothing coarser than it wanted.
-    StreamFrameStats st;
-    s.update(c);
-    for (int k = 0; k < 20; ++k) {
-      rs.draw(c);
-      s.settle();
-      st = s.update(c);
-      if (st.degraded_samples == 0) break;
-    }
+    const StreamFrameStats st = stream_test::draw_until_resident(rs, s, c);
     ASSERT_EQ(st.degraded_samples, 0);
     const Frame a = rm.draw(c), b = rs.draw(c);
     ASSERT_EQ(a.color.rgba, b.color.rgba);

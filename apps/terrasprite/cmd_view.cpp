@@ -81,6 +81,10 @@ class StackRenderer : public viewer::ViewRenderer {
     return sprite_ ? sprite_->last_error().value(sprite_->options().metric) : -1;
   }
   bool landed_keyframe() const override { return sprite_ && sprite_->last_landed(); }
+  std::optional<AsyncKeyframeStats> keyframe_stats() const override {
+    if (!sprite_ || !sprite_->async()) return std::nullopt;
+    return sprite_->async_stats();
+  }
 
  private:
   RenderStack stack_;

@@ -121,6 +121,8 @@ struct AsyncKeyframeStats {
   long long late_used = 0;         ///< late ones used anyway
   double last_latency_frames = 0;  ///< displayed frames from request to landing, the last one
   double mean_latency_frames = 0;  ///< the same, mean over the landed ones
+  double last_keyframe_ms = 0;     ///< the worker's wall time for the last one it finished, ms
+  bool in_flight = false;          ///< a request is being rendered or waits to be taken
 };
 
 /// Why a keyframe was drawn.

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <chrono>
 #include <utility>
 
 #include "terrasprite/scene.h"
@@ -94,10 +95,14 @@ void AsyncKeyframes::run(std::unique_ptr<GlContext> context, const Terrain& terr
       glWaitSync(freed, 0, GL_TIMEOUT_IGNORED);
       glDeleteSync(freed);
     }
+    const auto t0 = std::chrono::steady_clock::now();
     render(*slot, camera, scene->terrain_gpu());
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     lock.lock();
     rendering_ = false;
     ++finished_;
+    last_render_ms_ = ms;
     if (discard_) {
       discard_ = false;
       glDeleteSync(std::exchange(slot->landed, nullptr));
@@ -203,6 +208,11 @@ void AsyncKeyframes::cancel() {
 long long AsyncKeyframes::finished() const {
   std::lock_guard lock(mutex_);
   return finished_;
+}
+
+double AsyncKeyframes::last_render_ms() const {
+  std::lock_guard lock(mutex_);
+  return last_render_ms_;
 }
 
 }  // namespace terrasprite

@@ -66,6 +66,9 @@ class AsyncKeyframes {
   void cancel();
   /// Keyframes the worker finished (taken or discarded).
   long long finished() const;
+  /// Wall time the worker spent rendering the last keyframe it finished
+  /// (capture and depth read-back; sharing the cores with the caller), ms; 0 before the first.
+  double last_render_ms() const;
 
  private:
   struct Slot;
@@ -89,6 +92,7 @@ class AsyncKeyframes {
   bool started_ = false;
   std::exception_ptr start_error_;
   long long finished_ = 0;
+  double last_render_ms_ = 0;
   std::thread worker_;
 };
 

@@ -409,6 +409,7 @@ SpriteError SpriteRenderer::land_and_request(const Camera& camera, SpriteError e
     st.last_latency_frames = double(s.tick - s.requested_at);
     st.mean_latency_frames += (st.last_latency_frames - st.mean_latency_frames) / double(st.landed);
     s.latency_frames = st.last_latency_frames;
+    st.last_keyframe_ms = s.async->last_render_ms();
     const SpriteError ek = sprite_error(*k->grid, k->samples, camera);
     const bool late = trigger_for(ek).has_value();
     st.late += late;
@@ -435,6 +436,7 @@ SpriteError SpriteRenderer::land_and_request(const Camera& camera, SpriteError e
       ++st.requested;
     }
   }
+  st.in_flight = s.async->busy();
   return e;
 }
 

@@ -57,6 +57,13 @@ PanelActions draw_panel(const PanelInfo& info, LiveSettings& settings) {
     settings.mode = kModes[std::size_t(mode)];
   if (settings.mode == "sprite") {
     ImGui::Text("sprite error %.2f px", info.error_px);
+    if (const auto& k = info.keyframes) {
+      // The second thread's keyframes: how many, how late, what each costs there.
+      ImGui::Text("keyframes %lld landed of %lld asked (%lld late)%s", k->landed, k->requested,
+                  k->late, k->in_flight ? ", one rendering" : "");
+      ImGui::Text("last keyframe %.0f ms on the worker, landed after %.0f frames (mean %.1f)",
+                  k->last_keyframe_ms, k->last_latency_frames, k->mean_latency_frames);
+    }
     float th = float(settings.threshold_px);
     if (ImGui::SliderFloat("threshold px", &th, 0.25f, 8.f, "%.2f", ImGuiSliderFlags_Logarithmic))
       settings.threshold_px = th;

@@ -5,6 +5,7 @@
 // and screenshot buttons; and the F1 key list.
 #pragma once
 #include <deque>
+#include <optional>
 #include <string>
 
 #include "terrasprite/camera.h"
@@ -26,6 +27,7 @@ struct PanelInfo {
   long long triangles = 0;
   std::string cls, device;
   double error_px = -1;
+  std::optional<AsyncKeyframeStats> keyframes;  ///< the keyframe worker's, in sprite mode
   double stale_ms = 0;  ///< age of the frame on screen while the worker is busy
   bool building = false;
   Camera camera;

@@ -132,6 +132,7 @@ RenderedFrame RenderWorker::draw(ViewRenderer& r, const Camera& camera, Targets*
   }
   out.error_px = r.error_px();
   out.landed = r.landed_keyframe();
+  out.keyframes = r.keyframe_stats();
   out.device = r.device();
   return out;
 }

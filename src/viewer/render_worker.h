@@ -27,6 +27,7 @@
 #include "terrasprite/gl_context.h"
 #include "terrasprite/image.h"
 #include "terrasprite/renderer.h"
+#include "terrasprite/sprite_renderer.h"
 
 namespace terrasprite::viewer {
 
@@ -61,6 +62,9 @@ class ViewRenderer {
   /// Whether the last frame took a keyframe that a second thread finished
   /// (LOD-sprite with asynchronous keyframes).
   virtual bool landed_keyframe() const { return false; }
+  /// The keyframe worker's figures so far (LOD-sprite with asynchronous
+  /// keyframes), else none.
+  virtual std::optional<AsyncKeyframeStats> keyframe_stats() const { return std::nullopt; }
 };
 /// Builds the renderer for `settings`; `context` is the worker's GL context
 /// (current on the calling thread; null when there is none), for GL renderers.
@@ -75,7 +79,8 @@ struct RenderedFrame {
   unsigned texture = 0;          ///< the GL texture holding the frame (rows bottom-up), or 0
   std::uint64_t generation = 0;  ///< the input generation its camera included
   double error_px = -1;
-  bool landed = false;  ///< it took a keyframe finished on another thread
+  bool landed = false;                          ///< it took a keyframe finished on another thread
+  std::optional<AsyncKeyframeStats> keyframes;  ///< the keyframe worker's figures, when one runs
   std::string device;
   LiveSettings settings;
   int slot = -1;

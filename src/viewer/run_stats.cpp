@@ -24,22 +24,26 @@ nlohmann::json stats_json(const RunStats& s) {
   nlohmann::json compared = nlohmann::json::array();
   for (const auto& c : s.comparisons)
     compared.push_back({{"mode", c.mode}, {"psnr", c.psnr}, {"ssim", c.ssim}, {"flip", c.flip}});
-  return {{"mode", s.mode},
-          {"size", {s.width, s.height}},
-          {"frames", s.frames},
-          {"fps_median", rate(p50)},
-          {"fps_low_1pct", rate(p99)},
-          {"frame_ms_p50", p50},
-          {"frame_ms_p99", p99},
-          {"render_ms_p50", percentile(s.render_ms, 50)},
-          {"latency_ms_p95", percentile(lat, 95)},
-          {"latency_ms_max", lat.empty() ? 0.0 : *std::max_element(lat.begin(), lat.end())},
-          {"events", events},
-          {"camera_start", pose(s.camera_start)},
-          {"camera_end", pose(s.camera_end)},
-          {"classes", s.classes},
-          {"keyframes_landed", s.keyframes_landed},
-          {"comparisons", compared}};
+  return {
+      {"mode", s.mode},
+      {"size", {s.width, s.height}},
+      {"frames", s.frames},
+      {"fps_median", rate(p50)},
+      {"fps_low_1pct", rate(p99)},
+      {"frame_ms_p50", p50},
+      {"frame_ms_p99", p99},
+      {"render_ms_p50", percentile(s.render_ms, 50)},
+      {"latency_ms_p95", percentile(lat, 95)},
+      {"latency_ms_max", lat.empty() ? 0.0 : *std::max_element(lat.begin(), lat.end())},
+      {"events", events},
+      {"camera_start", pose(s.camera_start)},
+      {"camera_end", pose(s.camera_end)},
+      {"classes", s.classes},
+      {"keyframes_landed", s.keyframes_landed},
+      {"keyframe_ms_p50", percentile(s.keyframe_ms, 50)},
+      {"keyframe_ms_max",
+       s.keyframe_ms.empty() ? 0.0 : *std::max_element(s.keyframe_ms.begin(), s.keyframe_ms.end())},
+      {"comparisons", compared}};
 }
 
 }  // namespace terrasprite::viewer

@@ -26,6 +26,8 @@ struct RunStats {
   Camera camera_start, camera_end;     ///< the flight's first and last pose
   std::map<std::string, int> classes;  ///< displayed new frames by class (key, sprite, warp, ...)
   int keyframes_landed = 0;  ///< displayed frames that took a keyframe drawn on another thread
+  /// The keyframe worker's wall time for each landed keyframe, ms (sharing the cores).
+  std::vector<double> keyframe_ms;
   struct Compared {
     std::string mode;
     double psnr = 0, ssim = 0, flip = 0;
@@ -36,7 +38,8 @@ struct RunStats {
 /// The stats file: mode, size, frames, fps_median, fps_low_1pct (the rate of
 /// the 99th-percentile frame time), frames (displayed new frames), frame_ms_p50, frame_ms_p99,
 /// render_ms_p50, latency_ms_p95, latency_ms_max, events [{t, latency_ms}], camera_start and
-/// camera_end ({position, yaw_deg, pitch_deg}), classes {class: frames}, keyframes_landed and
+/// camera_end ({position, yaw_deg, pitch_deg}), classes {class: frames}, keyframes_landed,
+/// keyframe_ms_p50 and keyframe_ms_max (the worker's time per landed keyframe; 0 without one) and
 /// comparisons [{mode, psnr, ssim, flip}] (against full resolution).
 nlohmann::json stats_json(const RunStats& s);
 

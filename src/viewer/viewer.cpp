@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <future>
 #include <optional>
 
 #include "terrasprite/image.h"
@@ -35,12 +36,18 @@ struct Pending {
   std::string screenshot;  // non-empty: write the window to this PNG on that frame
 };
 
-/// Reads the window's back buffer (panel included) into a PNG.
-void save_window(int w, int h, const std::string& file) {
+/// Reads the window's back buffer (panel included), as GL leaves it: rows bottom-up.
+Image read_window(int w, int h) {
   Image img(w, h);
   glReadBuffer(GL_BACK);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
+  return img;
+}
+
+/// Flips a read_window() image to top-down rows, makes it opaque and writes the PNG.
+void write_window_png(Image img, const std::string& file) {
+  const int w = img.width, h = img.height;
   std::vector<std::uint8_t> row(std::size_t(w) * 4);
   for (int y = 0; y < h / 2; ++y) {  // GL's rows are bottom-up
     std::swap_ranges(img.px(0, y), img.px(0, y) + row.size(), img.px(0, h - 1 - y));
@@ -110,6 +117,11 @@ class Loop {
   double play_t0_ = 0;
   std::optional<Image> difference_;  // of the last compare
   double last_script_t_ = 0;
+  // Screenshots are read before the swap but encoded on their own threads after
+  // it: a PNG of 1280 x 720 takes ~170 ms, which would otherwise delay the swap
+  // and count against the latency of every event that frame shows.
+  std::vector<std::pair<Image, std::string>> shots_;
+  std::vector<std::future<void>> writes_;
 };
 
 void Loop::start_recording(const std::string& file) {
@@ -267,6 +279,7 @@ void Loop::present(std::optional<RenderedFrame>& f, Clock::time_point now) {
     info_.triangles = f->frame.triangles;
     info_.cls = f->landed ? f->frame.cls + " (keyframe landed)" : f->frame.cls;
     info_.error_px = f->error_px;
+    info_.keyframes = f->keyframes;
     info_.device = f->device;
     shown_at_ = now;
   }
@@ -291,16 +304,20 @@ void Loop::present(std::optional<RenderedFrame>& f, Clock::time_point now) {
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   if (f) {
     for (Pending& p : pending_)
-      if (!p.screenshot.empty() && p.generation <= f->generation) save_window(fw, fh, p.screenshot);
+      if (!p.screenshot.empty() && p.generation <= f->generation)
+        shots_.emplace_back(read_window(fw, fh), p.screenshot);
   }
   if (!screenshot_request_.empty()) {
-    save_window(fw, fh, screenshot_request_);
+    shots_.emplace_back(read_window(fw, fh), screenshot_request_);
     info_.message = "screenshot: " + screenshot_request_;
     screenshot_request_.clear();
   }
   win_.swap();
   const Clock::time_point swapped = Clock::now();
   last_swap_ = swapped;
+  for (auto& [img, file] : shots_)
+    writes_.push_back(std::async(std::launch::async, write_window_png, std::move(img), file));
+  shots_.clear();
   if (!f) return;
   // Book-keeping of a newly shown frame: its interval and the events it shows.
   if (stats_.frames > 0) {
@@ -316,6 +333,7 @@ void Loop::present(std::optional<RenderedFrame>& f, Clock::time_point now) {
   stats_.render_ms.push_back(f->frame.ms);
   ++stats_.classes[f->frame.cls];
   stats_.keyframes_landed += f->landed;
+  if (f->landed && f->keyframes) stats_.keyframe_ms.push_back(f->keyframes->last_keyframe_ms);
   if (!begun_) begin(swapped);
   ++stats_.frames;
   last_new_swap_ = swapped;
@@ -362,6 +380,7 @@ RunStats Loop::run() {
     }
   }
   if (recorder_) stop_recording();
+  for (std::future<void>& w : writes_) w.get();  // a failed write throws here
   stats_.camera_end = fly_.camera();
   stats_.mode = settings_.mode;
   return stats_;

@@ -274,6 +274,9 @@ TEST(ViewCli, SpriteKeyframesLandFromASecondThreadUnderXvfb) {
   EXPECT_GE(s["classes"].value("lod", 0), 1) << s["classes"];  // until the first one lands
   EXPECT_GE(s["classes"].value("sprite", 0), 5) << s["classes"];
   EXPECT_GE(s["keyframes_landed"].get<int>(), 1) << s;
+  // The worker's own time per keyframe reaches the stats (and the panel).
+  EXPECT_GT(s["keyframe_ms_p50"].get<double>(), 0) << s;
+  EXPECT_GE(s["keyframe_ms_max"].get<double>(), s["keyframe_ms_p50"].get<double>()) << s;
   ASSERT_EQ(s["events"].size(), 3u);
   for (const auto& e : s["events"]) EXPECT_GE(e["latency_ms"].get<double>(), 0) << e;
 }

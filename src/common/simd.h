@@ -14,6 +14,17 @@
 #define TS_CLONES_V3
 #endif
 
+// For the few kernels written with AVX2 intrinsics (shuffles that vector
+// extensions do not express well): TS_TARGET_AVX2 compiles one function for
+// AVX2, and the caller picks it only where simd::has_avx2().
+#if defined(__x86_64__) && defined(__GNUC__)
+#define TS_HAVE_TARGET_AVX2 1
+#define TS_TARGET_AVX2 __attribute__((target("avx2")))
+#else
+#define TS_HAVE_TARGET_AVX2 0
+#define TS_TARGET_AVX2
+#endif
+
 namespace terrasprite::simd {
 // GCC/Clang vector extensions: element-wise arithmetic that compiles to SSE
 // or AVX2 in the matching clone.
@@ -21,4 +32,14 @@ typedef double v4d __attribute__((vector_size(32)));
 typedef float v4f __attribute__((vector_size(16)));
 typedef float v8f __attribute__((vector_size(32)));
 typedef std::int32_t v4i __attribute__((vector_size(16)));
+
+/// The CPU runs AVX2 (checked once); false where TS_TARGET_AVX2 is empty.
+inline bool has_avx2() {
+#if TS_HAVE_TARGET_AVX2
+  static const bool yes = __builtin_cpu_supports("avx2");
+  return yes;
+#else
+  return false;
+#endif
+}
 }  // namespace terrasprite::simd

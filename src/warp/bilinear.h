@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The warps' bilinear read of an RGBA8 reference, split in two so loops
 // vectorise: tap() turns a position into a 2 x 2 block and 8-bit weights
-// (pure arithmetic, no branches); bilinear_block() reads and blends it.
+// (pure arithmetic, no branches); bilinear_block() reads and blends one
+// block, bilinear_span() a span of them across vector lanes (the same bits).
 #pragma once
 #include <cstdint>
 
@@ -56,5 +57,11 @@ inline std::uint32_t bilinear_block(const std::uint32_t* src, int o, int w, std:
                      lerp_packed(src[o + w], src[o + w + 1], fi), fj);
 #endif
 }
+
+/// out[k] = bilinear_block(src, off[k], w, wx[k], wy[k]) for k < n, blended
+/// across vector lanes (packed 16-bit channel pairs in 32-bit lanes). The
+/// same bits as bilinear_block: vertical lerp first, each rounded.
+void bilinear_span(const std::uint32_t* src, int w, const int* off, const std::uint32_t* wx,
+                   const std::uint32_t* wy, int n, std::uint32_t* out);
 
 }  // namespace terrasprite::warp

@@ -18,11 +18,12 @@
 // Speed: both passes work in spans of a row, first a loop without branches
 // that vectorises (where each real pixel lands; where each output pixel
 // reads, from its winner or, for an empty pixel, from its direction: sky is
-// a homography of the rotation alone), then every pixel of the span is read
-// and written as a winner would be, and only the others are visited one at
-// a time. An empty pixel with no winner within 2 px is sky or a hole at
-// once; only those near winners (cracks, silhouettes) pay the neighbour
-// search and iteration. The buffers come from the caller's Warper; the
+// a homography of the rotation alone), then every pixel of the span is
+// blended as a winner would be (bilinear_span, across vector lanes). A
+// second vectorised pass (classify_span) settles the empty pixels with no
+// winner within 2 px whose direction the reference sees as sky; only the
+// rest (cracks and silhouettes, which search and iterate, and holes) are
+// visited one at a time. The buffers come from the caller's Warper; the
 // winner slots are 32 bits (the real pixel, its depth recomputed).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -431,13 +432,52 @@ void map_span(const SplatMap& map, glm::vec3 dir, glm::vec3 dir_step, const std:
   }
 }
 
-// column[x] = 1 where output rows y-2..y+2 hold a winner in column x.
+// near[x] = 1 where output rows y-2..y+2, columns x-2..x+2 hold a winner
+// (the neighbourhood Resolver::farthest_neighbour searches); `column` is
+// scratch of w bytes.
 TS_CLONES_AVX2
-void winner_columns(const std::uint32_t* win, int w, int h, int y, std::uint8_t* column) {
+void near_winners(const std::uint32_t* win, int w, int h, int y, std::uint8_t* __restrict column,
+                  std::uint8_t* __restrict near) {
   for (int x = 0; x < w; ++x) column[x] = 0;
   for (int b = std::max(y - 2, 0); b <= std::min(y + 2, h - 1); ++b) {
     const std::uint32_t* k = win + std::size_t(b) * w;
     for (int x = 0; x < w; ++x) column[x] |= std::uint8_t(k[x] != kEmpty);
+  }
+  for (int x = 2; x < w - 2; ++x)
+    near[x] = column[x - 2] | column[x - 1] | column[x] | column[x + 1] | column[x + 2];
+  for (int x : {0, 1, w - 2, w - 1}) {
+    if (x < 0 || x >= w) continue;
+    std::uint8_t any = 0;
+    for (int a = std::max(x - 2, 0); a <= std::min(x + 2, w - 1); ++a) any |= column[a];
+    near[x] = any;
+  }
+}
+
+// After map_span, pixels [0, n) of a span (`near` and `depth` start at its
+// first pixel): an empty pixel with no winner nearby whose direction the
+// reference sees as sky (three probes around it, as sees_sky) is sky, its
+// colour already read from that direction; visit[k] = 1 for the pixels the
+// resolver must still visit one at a time (searches, cracks, holes). Depth
+// of the rest written. No branches: the loop vectorises.
+TS_CLONES_AVX2
+void classify_span(const SpanMap& m, const std::uint8_t* __restrict near,
+                   const float* __restrict ref_depth, int sw, int sh, int n,
+                   float* __restrict depth, std::uint8_t* __restrict visit) {
+  const float wmax = float(sw - 1), hmax = float(sh - 1);
+  // !(depth < sky) at the texel holding (px, py), clamped to the image.
+  auto sky_at = [&](float px, float py) {
+    px = px > 0.f ? px : 0.f;
+    py = py > 0.f ? py : 0.f;
+    px = px < wmax ? px : wmax;
+    py = py < hmax ? py : hmax;
+    return int(!(ref_depth[int(py) * sw + int(px)] < Frame::kSky));
+  };
+  for (int k = 0; k < n; ++k) {
+    const float sx = m.sx[k], sy = m.sy[k];
+    const int sky = (m.kind[k] == kEmptyPixel) & (near[k] == 0) & (m.sky[k] != 0) &
+                    (sky_at(sx, sy) | sky_at(sx + 0.5f, sy + 0.5f) | sky_at(sx - 0.5f, sy - 0.5f));
+    depth[k] = sky ? Frame::kSky : m.zt[k];
+    visit[k] = std::uint8_t((m.kind[k] != kWinner) & (1 - sky));
   }
 }
 
@@ -462,17 +502,17 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
   const float kx = float(ref.cam.fx / out.fx), ky = float(ref.cam.fy / out.fy);
   tbb::parallel_for(tbb::blocked_range<int>(0, out.h, 4), [&](const tbb::blocked_range<int>& rows) {
     Resolver local = res;
-    std::vector<std::uint8_t> column(std::size_t(out.w));      // a winner in the column's 5 rows
+    std::vector<std::uint8_t> column(std::size_t(out.w));      // scratch of near_winners
+    std::vector<std::uint8_t> near(std::size_t(out.w));        // a winner within 2 px
     std::vector<std::uint8_t> unresolved(std::size_t(out.w));  // this row's, for extend_background
     SpanMap m;
+    std::uint8_t visit[kSpan];
     for (int y = rows.begin(); y < rows.end(); ++y) {
       const std::size_t row = std::size_t(y) * out.w;
       const std::uint32_t* keys = win.data() + row;
       std::uint8_t* miss = unresolved.data();
-      // At the row's first empty pixel: which columns hold a winner within
-      // 2 rows, so an empty pixel knows whether one lies within 2 px (it
-      // searches as before) or not (sky or a hole, directly).
-      bool columns = false;
+      // Computed at the row's first span with an empty pixel.
+      bool near_done = false;
       glm::vec3 dir, step;
       sky.row(y, dir, step);
       auto* color = reinterpret_cast<std::uint32_t*>(result.frame.color.rgba.data() + row * 4);
@@ -492,56 +532,31 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
         }
         map_span(map, dir, step, keys, ref.frame.depth.data(), sw, sh, kx, ky, x0, x1, y, m);
         // Every pixel first as a winner reads (and sky, from its direction):
-        // passes without branches; the other kinds overwrite theirs below.
+        // passes without branches; the others are visited below.
         const int n = x1 - x0;
-        for (int k = 0; k < n; ++k)
-          color[x0 + k] = bilinear_block(src, m.off[k], sw, m.wx[k], m.wy[k]);
-        for (int k = 0; k < n; ++k) {
-          depth[x0 + k] = m.zt[k];
-          hole[x0 + k] = 0;
-          miss[x0 + k] = 0;
-        }
+        bilinear_span(src, sw, m.off, m.wx, m.wy, n, color + x0);
+        std::memset(hole + x0, 0, std::size_t(n));
+        std::memset(miss + x0, 0, std::size_t(n));
         if (options.keep_sources) {
           std::copy_n(m.sx, n, result.source_x.data() + row + x0);
           std::copy_n(m.sy, n, result.source_y.data() + row + x0);
         }
-        for (int x = x0; x < x1; ++x) {
-          const int k = x - x0;
-          if (m.kind[k] == kWinner) continue;
-          bool ok;
-          if (m.kind[k] == kSearch) {
-            ok = local.search(x, y);
-          } else {
-            // A crack has a winner beside it (checked first); otherwise the
-            // row's column summary answers for the 5 x 5 neighbourhood.
-            bool near =
-                (x > 0 && keys[x - 1] != kEmpty) || (x + 1 < out.w && keys[x + 1] != kEmpty);
-            if (!near) {
-              if (!columns) winner_columns(win.data(), out.w, out.h, y, column.data());
-              columns = true;
-              for (int a = std::max(x - 2, 0); a <= std::min(x + 2, out.w - 1); ++a)
-                near |= column[std::size_t(a)] != 0;
-            }
-            if (near) {
-              ok = local.search(x, y);
-            } else {
-              // Sky where the reference sees sky in this direction (the
-              // three probes of sees_sky; its colour and source are already
-              // written); else a hole.
-              const float sx = m.sx[k], sy = m.sy[k];
-              auto sky_at = [&](float px, float py) {
-                const int i = std::clamp(int(px), 0, sw - 1), j = std::clamp(int(py), 0, sh - 1);
-                return !(ref.frame.depth[std::size_t(j) * sw + i] < Frame::kSky);
-              };
-              if (m.sky[k] && (sky_at(sx, sy) || sky_at(sx + 0.5f, sy + 0.5f) ||
-                               sky_at(sx - 0.5f, sy - 0.5f))) {
-                depth[x] = Frame::kSky;
-                ok = true;
-              } else {
-                ok = local.hole(x, y);
-              }
-            }
-          }
+        bool winners_only = true;
+        for (int k = 0; k < n; ++k) winners_only &= m.kind[k] == kWinner;
+        if (winners_only) {
+          std::copy_n(m.zt, n, depth + x0);
+          continue;
+        }
+        if (!near_done) near_winners(win.data(), out.w, out.h, y, column.data(), near.data());
+        near_done = true;
+        classify_span(m, near.data() + x0, ref.frame.depth.data(), sw, sh, n, depth + x0, visit);
+        for (int k = 0; k < n; ++k) {
+          if (!visit[k]) continue;
+          const int x = x0 + k;
+          // A search (a winner behind the eye, or a crack: a winner within
+          // 2 px), else a hole.
+          const bool ok =
+              m.kind[k] == kSearch || near[std::size_t(x)] ? local.search(x, y) : local.hole(x, y);
           miss[x] = !ok;
           any = any || !ok;
         }

@@ -132,7 +132,7 @@ RowMap row_map(const Coeffs& cx, const Coeffs& cy, const Pinhole& out, int y) {
 // Pixels [x0, x1) of one row (x1 - x0 <= kSpan): bilinear colour (8-bit
 // weights, exact at pixel centres), nearest depth and the outside-the-image
 // mask. The coordinates and clamps come first, in a loop without branches
-// that vectorises; then one 2 x 2 read per pixel. The reference is at least
+// that vectorises; then the 2 x 2 reads, blended across vector lanes. The reference is at least
 // 2 x 2 pixels.
 constexpr int kSpan = 128;
 
@@ -153,10 +153,8 @@ void poly2_span(const RowMap& m, int x0, int x1, const std::uint32_t* __restrict
     const int nj = std::min(std::max(int(ry), 0), sh - 1);
     near[k] = nj * sw + ni;
   }
-  for (int k = 0; k < n; ++k) {
-    color[x0 + k] = bilinear_block(src, off[k], sw, wx[k], wy[k]);
-    depth[x0 + k] = src_depth[near[k]];
-  }
+  bilinear_span(src, sw, off, wx, wy, n, color + x0);
+  for (int k = 0; k < n; ++k) depth[x0 + k] = src_depth[near[k]];
 }
 
 }  // namespace

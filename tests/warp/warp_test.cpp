@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <random>
 #include <tuple>
 
 #include "terrasprite/error.h"
@@ -18,6 +19,7 @@
 #include "terrasprite/renderer.h"
 #include "terrasprite/terrain_gen.h"
 #include "terrasprite/voxel_renderer.h"
+#include "warp/bilinear.h"
 
 namespace terrasprite {
 namespace {
@@ -408,6 +410,27 @@ TEST(Warp, RejectsFramesWithoutDepthAndBadSizes) {
     o.method = m;
     EXPECT_EQ(warp_frame(thin, Camera{}, 3, 5, o).frame.color.width, 3) << to_string(m);
   }
+}
+
+TEST(Warp, BilinearSpanMatchesBilinearBlock) {
+  // Random texels, positions anywhere (clamped, NaN, exact centres) and a
+  // span length that leaves a tail after the vector loop's groups of four.
+  const int w = 37, h = 11, n = 203;
+  std::mt19937 rng(7);
+  std::vector<std::uint32_t> src(std::size_t(w) * h);
+  for (auto& t : src) t = std::uint32_t(rng());
+  std::uniform_real_distribution<float> pos(-3.f, 40.f);
+  std::vector<int> off(n);
+  std::vector<std::uint32_t> wx(n), wy(n), span(n);
+  for (int k = 0; k < n; ++k) {
+    float x = pos(rng), y = pos(rng) * 0.3f;
+    if (k % 17 == 0) x = float(k % w) + 0.5f;
+    if (k == 5) x = std::numeric_limits<float>::quiet_NaN();
+    warp::tap(x, y, w, h, off[k], wx[k], wy[k]);
+  }
+  warp::bilinear_span(src.data(), w, off.data(), wx.data(), wy.data(), n, span.data());
+  for (int k = 0; k < n; ++k)
+    ASSERT_EQ(span[k], warp::bilinear_block(src.data(), off[k], w, wx[k], wy[k])) << k;
 }
 
 }  // namespace

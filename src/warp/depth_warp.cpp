@@ -462,18 +462,10 @@ void near_winners(const std::uint32_t* win, int w, int h, int y, std::uint8_t* _
   }
 }
 
-// After map_span, pixels [0, n) of a span (`near` and `depth` start at its
-// first pixel): an empty pixel with no winner nearby whose direction the
-// reference sees as sky (three probes around it, as sees_sky) is sky, its
-// colour already read from that direction; visit[k] = 1 for the pixels the
-// resolver must still visit one at a time (searches, cracks, holes). Depth
-// of the rest written. No branches: the loop vectorises.
-TS_CLONES_AVX2
-void classify_span(const SpanMap& m, const std::uint8_t* __restrict near,
-                   const float* __restrict ref_depth, int sw, int sh, int n,
-                   float* __restrict depth, std::uint8_t* __restrict visit) {
+// Whether the reference sees sky at one of three probes around (sx, sy)
+// (as sees_sky), clamped to the image; no branches.
+inline int sky_probes(float sx, float sy, const float* ref_depth, int sw, int sh) {
   const float wmax = float(sw - 1), hmax = float(sh - 1);
-  // !(depth < sky) at the texel holding (px, py), clamped to the image.
   auto sky_at = [&](float px, float py) {
     px = px > 0.f ? px : 0.f;
     py = py > 0.f ? py : 0.f;
@@ -481,10 +473,29 @@ void classify_span(const SpanMap& m, const std::uint8_t* __restrict near,
     py = py < hmax ? py : hmax;
     return int(!(ref_depth[int(py) * sw + int(px)] < Frame::kSky));
   };
+  return sky_at(sx, sy) | sky_at(sx + 0.5f, sy + 0.5f) | sky_at(sx - 0.5f, sy - 0.5f);
+}
+
+// An empty pixel with no winner within 2 px (`near` false) whose direction
+// lies in the reference where it sees sky: sky, its colour already read from
+// that direction.
+inline int sky_direct(const SpanMap& m, int k, std::uint8_t near, const float* ref_depth, int sw,
+                      int sh) {
+  return (m.kind[k] == kEmptyPixel) & (near == 0) & (m.sky[k] != 0) &
+         sky_probes(m.sx[k], m.sy[k], ref_depth, sw, sh);
+}
+
+// After map_span, pixels [0, n) of a span with many empty pixels (`near`
+// and `depth` start at its first pixel): the sky_direct ones settled, depth
+// of all but the rest written, visit[k] = 1 for the rest, which the
+// resolver visits one at a time (searches, cracks, holes). No branches: the
+// loop vectorises.
+TS_CLONES_AVX2
+void classify_span(const SpanMap& m, const std::uint8_t* __restrict near,
+                   const float* __restrict ref_depth, int sw, int sh, int n,
+                   float* __restrict depth, std::uint8_t* __restrict visit) {
   for (int k = 0; k < n; ++k) {
-    const float sx = m.sx[k], sy = m.sy[k];
-    const int sky = (m.kind[k] == kEmptyPixel) & (near[k] == 0) & (m.sky[k] != 0) &
-                    (sky_at(sx, sy) | sky_at(sx + 0.5f, sy + 0.5f) | sky_at(sx - 0.5f, sy - 0.5f));
+    const int sky = sky_direct(m, k, near[k], ref_depth, sw, sh);
     depth[k] = sky ? Frame::kSky : m.zt[k];
     visit[k] = std::uint8_t((m.kind[k] != kWinner) & (1 - sky));
   }
@@ -550,18 +561,30 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
           std::copy_n(m.sx, n, result.source_x.data() + row + x0);
           std::copy_n(m.sy, n, result.source_y.data() + row + x0);
         }
-        bool winners_only = true;
-        for (int k = 0; k < n; ++k) winners_only &= m.kind[k] == kWinner;
-        if (winners_only) {
+        int others = 0;  // pixels that are not winners
+        for (int k = 0; k < n; ++k) others += m.kind[k] != kWinner;
+        if (others == 0) {
           std::copy_n(m.zt, n, depth + x0);
           continue;
         }
         if (!near_done) near_winners(win.data(), out.w, out.h, y, column.data(), near.data());
         near_done = true;
-        classify_span(m, near.data() + x0, ref.frame.depth.data(), sw, sh, n, depth + x0, visit);
+        // Many empty pixels (sky): classified across vector lanes; a few
+        // (cracks): each tested for sky_direct when visited.
+        const bool sparse = others * 8 < n;
+        if (sparse) {
+          std::copy_n(m.zt, n, depth + x0);
+          for (int k = 0; k < n; ++k) visit[k] = m.kind[k] != kWinner;
+        } else {
+          classify_span(m, near.data() + x0, ref.frame.depth.data(), sw, sh, n, depth + x0, visit);
+        }
         for (int k = 0; k < n; ++k) {
           if (!visit[k]) continue;
           const int x = x0 + k;
+          if (sparse && sky_direct(m, k, near[std::size_t(x)], ref.frame.depth.data(), sw, sh)) {
+            depth[x] = Frame::kSky;
+            continue;
+          }
           // A search (a winner behind the eye, or a crack: a winner within
           // 2 px), else a hole.
           const bool ok =

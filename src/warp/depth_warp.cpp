@@ -292,10 +292,11 @@ struct Resolver {
     float zf;
     const std::uint32_t key = win[at];
     bool ok = key != kEmpty && from_winner(key, x, y, sx, sy, zf);
+    std::uint32_t nb = kEmpty;
     if (ok) {
       zt = zf;
     } else {
-      const std::uint32_t nb = farthest_neighbour(px, py);
+      nb = farthest_neighbour(px, py);
       ok =
           nb != kEmpty && from_winner(nb, x, y, sx, sy, zf) && converge(ref, out, x, y, sx, sy, zt);
       if (!ok && sees_sky(ref, out, x, y, sx, sy)) {
@@ -307,11 +308,12 @@ struct Resolver {
       write(at, sx, sy, zt);
       return true;
     }
-    return hole(px, py);
+    return hole(px, py, nb);
   }
 
-  // A pixel neither the real frame's surfaces nor its sky cover.
-  bool hole(int px, int py) {
+  // A pixel neither the real frame's surfaces nor its sky cover; `nb` its
+  // farthest_neighbour.
+  bool hole(int px, int py, std::uint32_t nb) {
     const std::size_t at = std::size_t(py) * out.w + px;
     result.holes[at] = 1;
     result.frame.depth[at] = Frame::kSky;
@@ -319,16 +321,15 @@ struct Resolver {
     if (keep_sources) {
       result.source_x[at] = result.source_y[at] = std::numeric_limits<float>::quiet_NaN();
     }
-    return second && from_second(px, py, result.frame.color.rgba.data() + at * 4);
+    return second && from_second(px, py, nb, result.frame.color.rgba.data() + at * 4);
   }
 
   // A hole of the primary reference read from the second one: start where
   // the pixel's ray at its neighbours' (background) depth lands.
-  bool from_second(int px, int py, std::uint8_t* rgba) {
+  bool from_second(int px, int py, std::uint32_t nb, std::uint8_t* rgba) {
     const std::size_t at = std::size_t(py) * out.w + px;
     const double x = px + 0.5, y = py + 0.5;
     double sx, sy, zt, d;
-    const std::uint32_t nb = farthest_neighbour(px, py);
     if (nb != kEmpty) {
       const float z = key_depth(map, ref, nb);
       if (second->cam.project(out.unproject(x, y, z), sx, sy, d) &&
@@ -586,9 +587,9 @@ void warp_depth(const Reference& ref, const Reference* second, const Pinhole& ou
             continue;
           }
           // A search (a winner behind the eye, or a crack: a winner within
-          // 2 px), else a hole.
-          const bool ok =
-              m.kind[k] == kSearch || near[std::size_t(x)] ? local.search(x, y) : local.hole(x, y);
+          // 2 px), else a hole with no winner nearby.
+          const bool ok = m.kind[k] == kSearch || near[std::size_t(x)] ? local.search(x, y)
+                                                                       : local.hole(x, y, kEmpty);
           miss[x] = !ok;
           any = any || !ok;
         }

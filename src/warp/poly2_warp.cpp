@@ -132,17 +132,24 @@ RowMap row_map(const Coeffs& cx, const Coeffs& cy, const Pinhole& out, int y) {
 // Pixels [x0, x1) of one row (x1 - x0 <= kSpan): bilinear colour (8-bit
 // weights, exact at pixel centres), nearest depth and the outside-the-image
 // mask. The coordinates and clamps come first, in a loop without branches
-// that vectorises; then the 2 x 2 reads, blended across vector lanes. The reference is at least
-// 2 x 2 pixels.
+// that vectorises, into the caller's `taps`; then the 2 x 2 reads, blended
+// across vector lanes. The reference is at least 2 x 2 pixels.
 constexpr int kSpan = 128;
+
+struct SpanTaps {
+  int off[kSpan], near[kSpan];  // bilinear block; nearest texel
+  std::uint32_t wx[kSpan], wy[kSpan];
+};
 
 TS_CLONES_AVX2
 void poly2_span(const RowMap& m, int x0, int x1, const std::uint32_t* __restrict src,
                 const float* __restrict src_depth, int sw, int sh, std::uint32_t* __restrict color,
-                float* __restrict depth, std::uint8_t* __restrict hole) {
+                float* __restrict depth, std::uint8_t* __restrict hole, SpanTaps& taps) {
   const float fw = float(sw), fh = float(sh);
-  int off[kSpan], near[kSpan];
-  std::uint32_t wx[kSpan], wy[kSpan];
+  int* __restrict off = taps.off;
+  int* __restrict near = taps.near;
+  std::uint32_t* __restrict wx = taps.wx;
+  std::uint32_t* __restrict wy = taps.wy;
   const int n = x1 - x0;
   for (int k = 0; k < n; ++k) {
     const float fx = float(x0 + k);
@@ -174,6 +181,7 @@ void warp_poly2(const Reference& ref, const Pinhole& out, const WarpOptions& opt
   const auto* src = reinterpret_cast<const std::uint32_t*>(ref.frame.color.rgba.data());
   tbb::parallel_for(
       tbb::blocked_range<int>(0, out.h, 16), [&](const tbb::blocked_range<int>& rows) {
+        SpanTaps taps;
         for (int y = rows.begin(); y < rows.end(); ++y) {
           const RowMap m = row_map(cx, cy, out, y);
           auto* color = reinterpret_cast<std::uint32_t*>(f.color.px(0, y));
@@ -182,7 +190,7 @@ void warp_poly2(const Reference& ref, const Pinhole& out, const WarpOptions& opt
           if (!tiny) {
             for (int x = 0; x < out.w; x += kSpan)
               poly2_span(m, x, std::min(x + kSpan, out.w), src, ref.frame.depth.data(), sw, sh,
-                         color, depth, hole);
+                         color, depth, hole, taps);
           }
           if (!tiny && !options.keep_sources) continue;
           for (int x = 0; x < out.w; ++x) {

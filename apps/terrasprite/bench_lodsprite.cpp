@@ -77,6 +77,12 @@ void add_bench_lodsprite(CLI::App& bench) {
   cmd->add_option("--sharp-px", o->config.sharp_px,
                   "quads whose coarse geometry errs less than this many pixels take the drape "
                   "texture (default 0.5; 0 = off)");
+  cmd->add_option("--key-margin", o->config.key_margin,
+                  "keyframes see past the view by this fraction of its size on each side "
+                  "(0..0.5, default 0): fewer quads fall back to the drape texture");
+  cmd->add_option("--key-supersample", o->config.key_supersample,
+                  "keyframes sample the view this many times more densely (1..2, default 1): "
+                  "the scale trigger fires later");
   cmd->add_flag("--there-and-back", o->config.there_and_back,
                 "fly the path there and back: its frames, then the same cameras reversed");
   cmd->add_flag_function(

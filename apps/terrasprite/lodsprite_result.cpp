@@ -91,6 +91,8 @@ nlohmann::json to_json(const LodspriteResult& r) {
       {"metric", r.metric},
       {"max_fallback_fraction", r.max_fallback_fraction},
       {"sharp_px", r.sharp_px},
+      {"key_margin", r.key_margin},
+      {"key_supersample", r.key_supersample},
       {"shading", r.shading},
       {"max_resample_scale", std::isfinite(r.max_resample_scale)
                                  ? nlohmann::json(r.max_resample_scale)

@@ -144,6 +144,7 @@ struct LodspriteResult {
   double threshold_px = 0;
   std::string metric;  ///< "paper" | "exact"
   double max_fallback_fraction = 0, sharp_px = 0;
+  double key_margin = 0, key_supersample = 1;
   std::string shading = "plain";   ///< terrain shading: "plain" | "rich"
   double max_resample_scale = 0;   ///< may be +inf (the trigger off): JSON null
   bool anisotropic_scale = false;  ///< the scale trigger reads the worst axis

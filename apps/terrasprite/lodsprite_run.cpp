@@ -118,6 +118,8 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   so.max_resample_scale = cfg.max_resample_scale;
   so.anisotropic_scale = cfg.anisotropic_scale;
   so.sharp_px = cfg.sharp_px;
+  so.key_margin = cfg.key_margin;
+  so.key_supersample = cfg.key_supersample;
   so.cache_bytes = cfg.cache_bytes;
   so.cache_policy = cfg.cache_policy;
   so.cache_accept = cfg.cache_accept;
@@ -174,6 +176,8 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   res.metric = metric_name(cfg.metric);
   res.max_fallback_fraction = cfg.max_fallback_fraction;
   res.sharp_px = cfg.sharp_px;
+  res.key_margin = cfg.key_margin;
+  res.key_supersample = cfg.key_supersample;
   res.shading = cfg.shading == TerrainShading::kRich ? "rich" : "plain";
   res.max_resample_scale = cfg.max_resample_scale;
   res.anisotropic_scale = cfg.anisotropic_scale;

@@ -31,6 +31,7 @@ struct LodspriteConfig {
   double max_resample_scale = 1.25;
   bool anisotropic_scale = false;  ///< SpriteOptions::anisotropic_scale
   double sharp_px = 0.5;
+  double key_margin = 0, key_supersample = 1;  ///< SpriteOptions::key_margin, key_supersample
   std::vector<double> thresholds = {0.25, 0.5, 1, 2, 4, 8};
   std::vector<int> frame_counts = {115, 230, 460, 920, 1840};
   std::vector<int> lod_sweep = {8, 16, 32, 64};

@@ -112,7 +112,14 @@ bool project_to_pixel(const Camera& camera, int width, int height, glm::dvec3 p,
 /// surface) and whether C was visible in the keyframe.
 struct KeyframeSamples {
   Camera key;
-  int width = 0, height = 0;
+  int width = 0, height = 0;  ///< the keyframe image, pixels
+  /// The image the sprite frames are drawn at, pixels. It may be smaller than
+  /// the keyframe's: a keyframe may see past the view's edges (a wider field
+  /// of view, same aspect) and sample it more densely (SpriteOptions::key_margin,
+  /// key_supersample). Then `supersample` = keyframe pixels per view pixel at
+  /// equal camera (linear, >= 1 expected).
+  int view_width = 0, view_height = 0;
+  double supersample = 1.0;
   std::vector<glm::dvec3> c_prime;    ///< per quad, metres
   std::vector<std::uint8_t> visible;  ///< per quad: C unoccluded and inside the key view
   glm::dvec3 beta_reference{
@@ -124,9 +131,13 @@ struct KeyframeSamples {
 };
 
 /// Builds the samples. `visible` holds one flag per quad (C visible in the
-/// keyframe); its size is grid.quad_count().
+/// keyframe); its size is grid.quad_count(). `width` x `height` is the
+/// keyframe image; `view_width` x `view_height` the sprite frames' (0: the
+/// keyframe's), drawn with `view_fov_y_deg` (0: the keyframe's) at the same aspect.
 KeyframeSamples make_keyframe_samples(const CoarseGrid& grid, const Camera& key, int width,
-                                      int height, std::span<const std::uint8_t> visible);
+                                      int height, std::span<const std::uint8_t> visible,
+                                      int view_width = 0, int view_height = 0,
+                                      double view_fov_y_deg = 0);
 
 enum class ErrorMetric {
   kPaper,  ///< the paper's approximation: common angle beta, b from C's distance to the coarse edge
@@ -155,16 +166,18 @@ struct SpriteError {
     return in_view > 0 ? double(in_view - samples) / in_view : 0.0;
   }
   /// How much the keyframe's pixels are stretched or shrunk in the new view:
-  /// per sample, the linear scale s between the pixel footprints of the
-  /// surface at C in the two views (distance, foreshortening against C's
-  /// normal, off-axis pixel size), folded to max(s, 1/s); the geometric mean
-  /// over the samples. 1 = same sampling density. A sprite resamples the
+  /// per sample, the linear scale s (view pixels per keyframe pixel) between
+  /// the pixel footprints of the surface at C in the two views (distance,
+  /// foreshortening against C's normal, off-axis pixel size), folded to
+  /// max(s, 1/(s k), 1) for a keyframe supersampled k times
+  /// (KeyframeSamples::supersample; k = 1: max(s, 1/s)); the geometric mean
+  /// over the samples. 1 = no worse than the keyframe's own density. A sprite resamples the
   /// keyframe bilinearly, so a large scale blurs (or aliases) even when the
   /// geometric error is small, e.g. on low-relief terrain.
   double resample_scale = 1.0;
   /// The same per direction: per sample, the singular values s1 >= s2 of
   /// the Jacobian from keyframe pixels to new-view pixels on the plane of
-  /// C's coarse normal, folded to max(s1, 1/s2) (the worst-stretched or
+  /// C's coarse normal, folded to max(s1, 1/(s2 k), 1) (the worst-stretched or
   /// worst-shrunk axis); the geometric mean over the samples. At least
   /// resample_scale's figure for each sample; larger where the view turns or
   /// tilts so the keyframe is stretched one way and shrunk the other (equal
@@ -180,7 +193,7 @@ struct SpriteError {
   }
 };
 
-/// Error of `view` (a width x height image, the keyframe's size) against the keyframe.
+/// Error of `view` (a KeyframeSamples::view_width x view_height image) against the keyframe.
 /// No samples give zero error.
 SpriteError sprite_error(const CoarseGrid& grid, const KeyframeSamples& key, const Camera& view);
 

@@ -71,6 +71,17 @@ struct SpriteOptions {
   /// so does the scene's rich shading (TerrainShading::kRich), under which
   /// the drape would pay the per-fragment shading the keyframe already paid.
   double sharp_px = 0.5;
+  /// Ours: keyframes see past the view's edges by this fraction of its width
+  /// (and height) on each side (a wider field of view and a larger image at
+  /// the same pixels per degree), so quads entering the view after a
+  /// keyframe are still in it instead of falling back to the drape texture.
+  /// A keyframe's own frame is then its middle, composited. In [0, 0.5].
+  double key_margin = 0;
+  /// Ours: keyframes sample the view this many times more densely (linear;
+  /// image size times this), so the camera can close in further before the
+  /// scale trigger (max_resample_scale) fires, and sprite frames minify the
+  /// keyframe instead of magnifying it. In [1, 2] (bilinear taps, no mipmaps).
+  double key_supersample = 1;
   /// Keyframe cache: memory budget in bytes for all keyframes held (the
   /// current one and the cached ones, width x height x 8 bytes each: colour
   /// and depth). When a keyframe is due, a cached keyframe that no trigger

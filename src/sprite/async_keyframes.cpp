@@ -28,13 +28,14 @@ struct AsyncKeyframes::Slot {
 
 AsyncKeyframes::AsyncKeyframes(const GlContext& share, const Terrain& terrain, GridMaker make_grid,
                                int width, int height, bool lighting, bool contrast,
-                               TerrainShading shading)
+                               TerrainShading shading, KeyframeFraming framing)
     : make_grid_(std::move(make_grid)),
       width_(width),
       height_(height),
       lighting_(lighting),
       contrast_(contrast),
-      shading_(shading) {
+      shading_(shading),
+      framing_(framing) {
   std::unique_ptr<GlContext> context = share.create_shared();
   worker_ = std::thread(&AsyncKeyframes::run, this, std::move(context), std::cref(terrain));
   std::unique_lock lock(mutex_);
@@ -86,7 +87,7 @@ void AsyncKeyframes::run(std::unique_ptr<GlContext> context, const Terrain& terr
     if (!slot) {
       slots_.push_back(std::make_unique<Slot>());
       slot = slots_.back().get();
-      slot->key = std::make_unique<Keyframe>(width_, height_, contrast_);
+      slot->key = std::make_unique<Keyframe>(width_, height_, contrast_, framing_);
     }
     slot->state = Slot::State::kRendering;
     const GLsync freed = std::exchange(slot->freed, nullptr);

@@ -41,7 +41,8 @@ class AsyncKeyframes {
   /// camera (called on the worker thread).
   using GridMaker = std::function<std::shared_ptr<const CoarseGrid>(const Camera&)>;
   AsyncKeyframes(const GlContext& share, const Terrain& terrain, GridMaker make_grid, int width,
-                 int height, bool lighting, bool contrast, TerrainShading shading);
+                 int height, bool lighting, bool contrast, TerrainShading shading,
+                 KeyframeFraming framing = {});
   /// Stops the worker: a keyframe being rendered is finished first (GL has no
   /// way to abandon a draw), then the worker frees its GL objects and context.
   ~AsyncKeyframes();
@@ -80,8 +81,9 @@ class AsyncKeyframes {
   const int width_, height_;
   const bool lighting_;
   const bool contrast_;
-  const TerrainShading shading_;  // the main scene's, for the worker's own scene  // keyframes also
-                                  // measure their contrast (ErrorMetric::kContrast)
+  const TerrainShading shading_;
+  const KeyframeFraming framing_;  // the main scene's, for the worker's own scene  // keyframes
+                                   // also measure their contrast (ErrorMetric::kContrast)
   mutable std::mutex mutex_;
   std::condition_variable wake_;  // worker: a request or stop; caller: ready or landed
   std::vector<std::unique_ptr<Slot>> slots_;

@@ -149,13 +149,26 @@ glm::dvec3 coarse_reprojection(const CoarseGrid& g, int q, glm::dvec3 eye, glm::
   return std::isnan(best_t) ? point : eye + best_t * d;
 }
 
+namespace {
+/// The angle of one pixel at the image centre, radians, exactly (tan-based).
+double centre_pixel(const Camera& c, int height_px) {
+  return 2.0 * std::tan(0.5 * glm::radians(c.fov_y_deg)) / height_px;
+}
+}  // namespace
+
 KeyframeSamples make_keyframe_samples(const CoarseGrid& g, const Camera& key, int width, int height,
-                                      std::span<const std::uint8_t> visible) {
+                                      std::span<const std::uint8_t> visible, int view_width,
+                                      int view_height, double view_fov_y_deg) {
   assert(visible.size() == static_cast<std::size_t>(g.quad_count()));
   KeyframeSamples k;
   k.key = key;
   k.width = width;
   k.height = height;
+  k.view_width = view_width > 0 ? view_width : width;
+  k.view_height = view_height > 0 ? view_height : height;
+  Camera view = key;
+  if (view_fov_y_deg > 0) view.fov_y_deg = view_fov_y_deg;
+  k.supersample = centre_pixel(view, k.view_height) / centre_pixel(key, height);
   k.c_prime.resize(visible.size());
   k.visible.assign(visible.begin(), visible.end());
   const glm::dvec3 fwd = key.forward();
@@ -185,7 +198,8 @@ namespace {
 // (steps of 1e-3 of C's distance from the key eye along two tangents).
 // A plane seen edge-on in either view counts as a large stretch (64).
 double anisotropic_stretch(const glm::dmat4& key_vp, const glm::dmat4& view_vp, int w, int h,
-                           glm::dvec3 C, glm::dvec3 n, double key_distance) {
+                           int vw, int vh, double supersample, glm::dvec3 C, glm::dvec3 n,
+                           double key_distance) {
   constexpr double kEdgeOn = 64.0;
   const glm::dvec3 a = std::abs(n.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
   const double eps = 1e-3 * std::max(key_distance, 1e-6);
@@ -193,8 +207,8 @@ double anisotropic_stretch(const glm::dmat4& key_vp, const glm::dmat4& view_vp, 
                    t2 = glm::normalize(glm::cross(n, t1)) * eps;
   glm::dvec2 k0, k1, k2, v0, v1, v2;
   if (!project(key_vp, w, h, C, k0) || !project(key_vp, w, h, C + t1, k1) ||
-      !project(key_vp, w, h, C + t2, k2) || !project(view_vp, w, h, C, v0) ||
-      !project(view_vp, w, h, C + t1, v1) || !project(view_vp, w, h, C + t2, v2))
+      !project(key_vp, w, h, C + t2, k2) || !project(view_vp, vw, vh, C, v0) ||
+      !project(view_vp, vw, vh, C + t1, v1) || !project(view_vp, vw, vh, C + t2, v2))
     return kEdgeOn;
   const glm::dmat2 K(k1 - k0, k2 - k0), V(v1 - v0, v2 - v0);
   const double det = glm::determinant(K);
@@ -206,7 +220,7 @@ double anisotropic_stretch(const glm::dmat4& key_vp, const glm::dmat4& view_vp, 
   const double root = std::sqrt(std::max(f * f / 4 - d * d, 0.0));
   const double s1 = std::sqrt(f / 2 + root), s2 = std::sqrt(std::max(f / 2 - root, 0.0));
   if (s2 <= 1.0 / kEdgeOn) return kEdgeOn;
-  return std::min(std::max(s1, 1.0 / s2), kEdgeOn);
+  return std::min(std::max({s1, 1.0 / (s2 * supersample), 1.0}), kEdgeOn);
 }
 
 }  // namespace
@@ -224,7 +238,13 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
   const double cos_beta =
       (l1 > 0 && l2 > 0) ? std::clamp(glm::dot(u1, u2) / (l1 * l2), -1.0, 1.0) : 1.0;
   const double sin_beta = std::sqrt(std::max(0.0, 1.0 - cos_beta * cos_beta));
-  const double pixel = view.pixel_angle(k.height);
+  const int vw = k.view_width > 0 ? k.view_width : k.width;
+  const int vh = k.view_height > 0 ? k.view_height : k.height;
+  const double pixel = view.pixel_angle(vh);
+  // View pixels per keyframe pixel of equal solid angle at the image centres,
+  // squared: the footprints below are per steradian.
+  const double density = std::pow(centre_pixel(k.key, k.height) / centre_pixel(view, vh), 2.0);
+  const double log_supersample = std::log(std::max(k.supersample, 1e-9));
   const glm::dmat4 vp = view.view_projection();
   const glm::dvec3 forward = view.forward();
   double sum_paper = 0, sum_exact = 0, sum_log_scale = 0, sum_log_aniso = 0, sum_contrast = 0,
@@ -233,7 +253,7 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
   const glm::dmat4 key_vp = k.key.view_projection();
   const glm::dvec3 key_forward = k.key.forward();
   // Pixels covering a small patch at C: dA |cos(incidence)| / (d^2 cos^3(off-axis angle)), up to
-  // constants shared by both views (same field of view and image size).
+  // each view's pixels per steradian (`density` carries their ratio).
   auto footprint = [](glm::dvec3 eye, glm::dvec3 axis, glm::dvec3 c, glm::dvec3 normal) {
     const glm::dvec3 to = eye - c;
     const double d = glm::length(to);
@@ -245,7 +265,7 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
     if (!g.has_centre[q]) continue;
     const glm::dvec3& C = g.centre[q];
     glm::dvec2 pc;
-    if (!project(vp, k.width, k.height, C, pc) || !inside_image(pc, k.width, k.height)) continue;
+    if (!project(vp, vw, vh, C, pc) || !inside_image(pc, vw, vh)) continue;
     if (glm::dot(C - view.position, forward) < view.near_m) continue;
     ++e.in_view;
     if (!k.visible[q]) continue;
@@ -257,12 +277,16 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
     const double theta = std::atan2(std::abs(b) * sin_beta, d + b * cos_beta) / pixel;
     sum_paper += w * theta * theta;
     const double area_ratio = footprint(view.position, forward, C, g.normal[q]) /
-                              footprint(k.key.position, key_forward, C, g.normal[q]);
-    sum_log_scale += w * std::abs(0.5 * std::log(area_ratio));
-    sum_log_aniso += w * std::log(anisotropic_stretch(key_vp, vp, k.width, k.height, C, g.normal[q],
-                                                      glm::length(k.key.position - C)));
+                              footprint(k.key.position, key_forward, C, g.normal[q]) * density;
+    // Stretch (log s > 0) always counts; shrinking only past the keyframe's
+    // supersampling (a denser keyframe is meant to be shrunk that much).
+    const double log_s = 0.5 * std::log(area_ratio);
+    sum_log_scale += w * std::max({log_s, -log_s - log_supersample, 0.0});
+    sum_log_aniso +=
+        w * std::log(anisotropic_stretch(key_vp, vp, k.width, k.height, vw, vh, k.supersample, C,
+                                         g.normal[q], glm::length(k.key.position - C)));
     glm::dvec2 pp;
-    if (project(vp, k.width, k.height, k.c_prime[q], pp)) {
+    if (project(vp, vw, vh, k.c_prime[q], pp)) {
       const glm::dvec2 dp = pp - pc;
       sum_exact += w * glm::dot(dp, dp);
       if (contrast) {

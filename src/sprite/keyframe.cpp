@@ -4,19 +4,46 @@
 // from its depth buffer which coarse polygons the keyframe can texture.
 #include "sprite/keyframe.h"
 
+#include <cmath>
 #include <utility>
 
 #include "sprite/keyframe_contrast.h"
 
 namespace terrasprite {
 
-Keyframe::Keyframe(int width, int height, bool measure_contrast)
-    : target(width, height), contrast(measure_contrast) {}
+int KeyframeFraming::margin_px(int view_px) const {
+  return int(std::lround(margin * view_px));
+}
+int KeyframeFraming::width(int view_width) const {
+  return int(std::lround((view_width + 2 * margin_px(view_width)) * supersample));
+}
+int KeyframeFraming::height(int view_height) const {
+  return int(std::lround((view_height + 2 * margin_px(view_height)) * supersample));
+}
+Camera KeyframeFraming::camera(const Camera& view, int view_width, int view_height) const {
+  if (identity()) return view;
+  // Widened in tan space by whole margin pixels, so that with supersample 1
+  // the view's pixel centres fall on the keyframe's (an exact crop).
+  const double fx = double(view_width + 2 * margin_px(view_width)) / view_width;
+  const double fy = double(view_height + 2 * margin_px(view_height)) / view_height;
+  Camera c = view;
+  c.fov_y_deg = glm::degrees(2.0 * std::atan(fy * std::tan(0.5 * glm::radians(view.fov_y_deg))));
+  c.aspect = view.aspect * fx / fy;
+  return c;
+}
 
-void Keyframe::capture(TerrainGpu& scene, std::shared_ptr<const CoarseGrid> coarse, const Camera& c,
-                       bool lighting, int pieces) {
+Keyframe::Keyframe(int vw, int vh, bool measure_contrast, KeyframeFraming f)
+    : target(f.width(vw), f.height(vh)),
+      contrast(measure_contrast),
+      framing(f),
+      view_width(vw),
+      view_height(vh) {}
+
+void Keyframe::capture(TerrainGpu& scene, std::shared_ptr<const CoarseGrid> coarse,
+                       const Camera& view, bool lighting, int pieces) {
   grid = std::move(coarse);
-  camera = c;
+  camera = framing.camera(view, view_width, view_height);
+  const Camera& c = camera;
   view_projection = glm::mat4(gl::view_projection_reversed_z(c));
   target.bind_and_clear();
   // Sky is transparent black: sprite fragments tell keyframe sky from
@@ -48,7 +75,8 @@ void Keyframe::capture(TerrainGpu& scene, std::shared_ptr<const CoarseGrid> coar
       corners = corners && vertex_visible[g.triangles[t]];
     fallback[q] = (corners && (centre || !g.has_centre[q])) ? 0 : 1;
   }
-  samples = make_keyframe_samples(g, c, target.width(), target.height(), centre_visible);
+  samples = make_keyframe_samples(g, c, target.width(), target.height(), centre_visible, view_width,
+                                  view_height, view.fov_y_deg);
   if (contrast) {  // uniform grids only (SpriteOptions)
     const Image color = target.read_color();
     QuadContrast qc = quad_contrast(g, c, target.width(), target.height(), color.rgba);

@@ -56,11 +56,13 @@ in vec2 v_uv;
 uniform sampler2D u_key;
 uniform sampler2D u_key_depth;
 uniform vec3 u_sky;
+uniform vec4 u_crop;  // the view's part of a keyframe with a margin: uv * zw + xy
 out vec4 o_color;
 void main() {
-  vec4 k = texture(u_key, v_uv);
+  vec2 uv = v_uv * u_crop.zw + u_crop.xy;
+  vec4 k = texture(u_key, uv);
   o_color = vec4(k.rgb + (1.0 - k.a) * u_sky, 1.0);
-  gl_FragDepth = texture(u_key_depth, v_uv).r;
+  gl_FragDepth = texture(u_key_depth, uv).r;
 }
 )";
 
@@ -75,12 +77,19 @@ SpritePass::SpritePass() : program_(gl::link_program(kVertex, kFragment)) {
   const GLuint c = composite_.id();
   glProgramUniform1i(c, glGetUniformLocation(c, "u_key"), 0);
   glProgramUniform1i(c, glGetUniformLocation(c, "u_key_depth"), 1);
+  u_crop_ = glGetUniformLocation(c, "u_crop");
   glProgramUniform3f(c, glGetUniformLocation(c, "u_sky"), kSkyColor[0] / 255.f,
                      kSkyColor[1] / 255.f, kSkyColor[2] / 255.f);
 }
 
 void SpritePass::composite_keyframe(const Keyframe& key) {
   glUseProgram(composite_.id());
+  // A keyframe with a margin: the view is its middle, whole margin pixels in.
+  const KeyframeFraming& f = key.framing;
+  const double mx = f.margin_px(key.view_width), my = f.margin_px(key.view_height);
+  const double fx = key.view_width + 2 * mx, fy = key.view_height + 2 * my;
+  glUniform4f(u_crop_, float(mx / fx), float(my / fy), float(key.view_width / fx),
+              float(key.view_height / fy));
   glBindTextureUnit(0, key.target.color_texture());
   glBindTextureUnit(1, key.target.depth_texture());
   glDepthFunc(GL_ALWAYS);

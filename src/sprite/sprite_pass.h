@@ -28,7 +28,9 @@ class SpritePass {
   /// grid or `drape` differs from the last call's.
   void draw(TerrainGpu& scene, const GpuMesh& coarse, const CoarseGrid& grid, const Keyframe& key,
             const glm::mat4& view_projection, std::span<const std::uint8_t> drape, bool lighting);
-  /// Copies `key` into the bound target: colour over the sky, and its depth.
+  /// Copies `key` into the bound target: colour over the sky, and its depth;
+  /// of a keyframe with a margin (KeyframeFraming) only the view's part,
+  /// resampled bilinearly when the keyframe is supersampled.
   void composite_keyframe(const Keyframe& key);
   /// Quads drawn from the keyframe by the last draw().
   int keyframe_quads() const { return key_quads_; }
@@ -39,7 +41,7 @@ class SpritePass {
   gl::Program program_;  // keyframe-textured quads: one projective fetch
   gl::Program composite_;
   gl::VertexArray empty_vao_;  // attribute-less draws still need a bound VAO in core profile
-  GLint u_vp_, u_key_vp_;
+  GLint u_vp_, u_key_vp_, u_crop_;
   // The coarse mesh's vertices with two index lists: keyframe quads, drape quads.
   GpuMesh key_mesh_, drape_mesh_;
   GLuint source_ = 0;       // vertex buffer the split meshes point at

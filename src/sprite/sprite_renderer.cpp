@@ -62,6 +62,7 @@ struct SpriteRenderer::State {
   std::unique_ptr<GpuMesh> adaptive_gpu;  // the adaptive grid uploaded last
   std::uint64_t uploaded = 0;             // its serial
   int width, height;
+  KeyframeFraming framing;
   std::unique_ptr<Keyframe> key;          // the keyframe drawn in this context (always allocated)
   std::unique_ptr<AsyncKeyframes> async;  // the keyframe worker, when on
   const Keyframe* held = nullptr;         // the worker's keyframe in use; null: `key` is current
@@ -88,8 +89,9 @@ struct SpriteRenderer::State {
             std::make_shared<const CoarseGrid>(make_coarse_grid(s.terrain().heights, o.lod_quads))),
         width(w),
         height(h),
-        key(std::make_unique<Keyframe>(w, h, o.metric == ErrorMetric::kContrast)),
-        cache(cache_capacity(o, w, h), o.cache_policy) {
+        framing{o.key_margin, o.key_supersample},
+        key(std::make_unique<Keyframe>(w, h, o.metric == ErrorMetric::kContrast, framing)),
+        cache(cache_capacity(o, framing.width(w), framing.height(h)), o.cache_policy) {
     if (o.mesh == CoarseMesh::kAdaptive) {
       mesher = std::make_unique<const AdaptiveMesher>(s.terrain().heights);
       mesh_options.triangle_budget =
@@ -101,7 +103,9 @@ struct SpriteRenderer::State {
   /// The coarse mesh for a keyframe of `camera` (thread-safe).
   std::shared_ptr<const CoarseGrid> grid_for(const Camera& camera) const {
     if (!mesher) return uniform;
-    return std::make_shared<const CoarseGrid>(mesher->build(camera, width, height, mesh_options));
+    return std::make_shared<const CoarseGrid>(mesher->build(framing.camera(camera, width, height),
+                                                            framing.width(width),
+                                                            framing.height(height), mesh_options));
   }
   const CoarseGrid& grid() const { return current().grid ? *current().grid : *uniform; }
   /// The GPU copy of the current keyframe's coarse mesh.
@@ -143,9 +147,9 @@ struct SpriteRenderer::State {
     ++serial;
     if (cache.capacity() == 0 || !key->valid) return;
     std::unique_ptr<Keyframe> spare = cache.put(std::move(key), tick, now);
-    key = spare
-              ? std::move(spare)
-              : std::make_unique<Keyframe>(width, height, options.metric == ErrorMetric::kContrast);
+    key = spare ? std::move(spare)
+                : std::make_unique<Keyframe>(width, height,
+                                             options.metric == ErrorMetric::kContrast, framing);
     key->valid = false;
   }
 };
@@ -163,6 +167,13 @@ const SpriteOptions& validated(const SpriteOptions& o) {
   if (o.mesh == CoarseMesh::kAdaptive && o.metric == ErrorMetric::kContrast)
     throw InputError(
         "the contrast metric needs the uniform mesh (its quads are measured on the grid)");
+  if (!(o.key_margin >= 0 && o.key_margin <= 0.5))
+    throw InputError(fmt::format("key_margin {}: must be in [0, 0.5]", o.key_margin));
+  if (!(o.key_supersample >= 1 && o.key_supersample <= 2))
+    throw InputError(fmt::format("key_supersample {}: must be in [1, 2]", o.key_supersample));
+  if (o.metric == ErrorMetric::kContrast && (o.key_margin != 0 || o.key_supersample != 1))
+    throw InputError(
+        "the contrast metric needs keyframes framed as the view (no key margin or supersampling)");
   if (o.mesh_triangles != 0 && o.mesh_triangles < 2)
     throw InputError(fmt::format("mesh_triangles {}: must be 0 (the uniform grid's) or at least 2",
                                  o.mesh_triangles));
@@ -185,7 +196,7 @@ SpriteRenderer::SpriteRenderer(Scene& scene, int width, int height, SpriteOption
     s_->async = std::make_unique<AsyncKeyframes>(
         *options.async_context, scene.terrain(),
         [s = s_.get()](const Camera& c) { return s->grid_for(c); }, width, height, options.lighting,
-        options.metric == ErrorMetric::kContrast, scene.shading());
+        options.metric == ErrorMetric::kContrast, scene.shading(), s_->framing);
 }
 
 SpriteRenderer::~SpriteRenderer() = default;
@@ -251,7 +262,8 @@ int SpriteRenderer::cached_keyframes() const {
   return s_->cache.size();
 }
 std::size_t SpriteRenderer::keyframe_bytes_held() const {
-  return std::size_t(s_->cache.size() + 1) * State::keyframe_bytes(s_->width, s_->height);
+  return std::size_t(s_->cache.size() + 1) *
+         State::keyframe_bytes(s_->framing.width(s_->width), s_->framing.height(s_->height));
 }
 double SpriteRenderer::last_decision_ms() const {
   return s_->decision_ms;
@@ -356,9 +368,11 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
     s.retire_current(camera);
     s.key->capture(terrain, s.grid_for(camera), camera, s.options.lighting);
     if (s.mesher) s.coarse_gpu(terrain);  // upload the new mesh inside the keyframe's frame
-    // The keyframe textures are the frame; a caller's target, or a frame
-    // with objects over the terrain, gets a copy (keyframes hold terrain only).
-    if (output().framebuffer != own_target().framebuffer() || s.scene.has_objects()) {
+    // The keyframe textures are the frame; a caller's target, a frame with
+    // objects over the terrain (keyframes hold terrain only) or a keyframe
+    // framed wider than the view gets a copy.
+    if (output().framebuffer != own_target().framebuffer() || s.scene.has_objects() ||
+        !s.framing.identity()) {
       begin_output();
       s.pass.composite_keyframe(*s.key);
     }
@@ -379,7 +393,7 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
 void SpriteRenderer::read_back(Frame& f, ReadBack what) {
   State& s = *s_;
   if (!s.last_was_key || output().framebuffer != own_target().framebuffer() ||
-      s.scene.has_objects()) {
+      s.scene.has_objects() || !s.framing.identity()) {
     GlRenderer::read_back(f, what);
     return;
   }

@@ -133,6 +133,28 @@ TEST(ErrorMetric, ResampleScaleIsTheChangeInPixelFootprint) {
   EXPECT_NEAR(sprite_error(g, k, overhead(glm::dvec3(0), 500.0)).resample_scale, 2.0, 1e-6);
 }
 
+// A keyframe supersampled 1.5 times (384 pixels for a 256-pixel view, same
+// field of view): from its own camera nothing is stretched; closing in
+// 1.5 times only undoes the supersampling; 3 times stretches 2 times; and
+// moving away shrinks it past its supersampling only beyond 1 / 1.5.
+TEST(ErrorMetric, ASupersampledKeyframeIsStretchedOnlyPastItsDensity) {
+  Heightfield h = flat(65, 10.0);
+  CoarseGrid g = make_coarse_grid(h, 4);
+  Camera key = overhead(glm::dvec3(0), 1200.0);
+  KeyframeSamples k = make_keyframe_samples(g, key, 384, 384, all_visible(g), 256, 256);
+  EXPECT_NEAR(k.supersample, 1.5, 1e-12);
+  EXPECT_NEAR(sprite_error(g, k, key).resample_scale, 1.0, 1e-9);
+  EXPECT_NEAR(sprite_error(g, k, overhead(glm::dvec3(0), 800.0)).resample_scale, 1.0, 1e-6);
+  EXPECT_NEAR(sprite_error(g, k, overhead(glm::dvec3(0), 400.0)).resample_scale, 2.0, 1e-6);
+  EXPECT_NEAR(sprite_error(g, k, overhead(glm::dvec3(0), 2400.0)).resample_scale, 2.0, 1e-6);
+  EXPECT_NEAR(sprite_error(g, k, overhead(glm::dvec3(0), 400.0)).resample_aniso, 2.0, 1e-4);
+  EXPECT_NEAR(sprite_error(g, k, key).resample_aniso, 1.0, 1e-6);
+  // The paper metric's pixel is the view's: the same motion errs as many view pixels either way.
+  KeyframeSamples plain = make_keyframe_samples(g, key, 256, 256, all_visible(g));
+  Camera moved = overhead(glm::dvec3(30, 0, 0), 1200.0);
+  EXPECT_NEAR(sprite_error(g, k, moved).exact_px, sprite_error(g, plain, moved).exact_px, 1e-9);
+}
+
 // Over a plane seen at 60 degrees incidence from the key's distance, the
 // keyframe is shrunk by cos 60 = 1/2 along one axis and kept along the
 // other: the area's mean reads sqrt 2, the worst axis 2. A pure change of

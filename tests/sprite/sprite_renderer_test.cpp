@@ -62,6 +62,42 @@ TEST(SpriteRenderer, SpriteFromTheKeyframeCameraMatchesTheKeyframe) {
   }
 }
 
+// Keyframes framed wider than the view (a margin) and denser (supersampled):
+// a keyframe's own frame is its middle, the same image as an unframed
+// keyframe's; a sprite drawn from it matches; and a quad just outside the
+// view, which an unframed keyframe cannot texture, is in the framed one.
+// CI cost: about 0.5 s.
+TEST(SpriteRenderer, KeyframesFramedWiderAndDenserShowTheSameView) {
+  GlContext gl;
+  Terrain t = gentle_hills(129);
+  Scene scene(t);
+  const SpriteOptions plain{.lod_quads = 16, .sharp_px = 0};
+  SpriteOptions margin = plain, dense = plain;
+  margin.key_margin = 0.125;  // 16 pixels of 128 on each side: an exact crop
+  dense.key_margin = 0.125;
+  dense.key_supersample = 1.5;
+  SpriteRenderer r0(scene, 128, 128, plain), rm(scene, 128, 128, margin),
+      rs(scene, 128, 128, dense);
+  const Camera c = tilted_view(t.heights, -50.0);
+  const Frame k0 = r0.render_keyframe(c), km = rm.render_keyframe(c), ks = rs.render_keyframe(c);
+  EXPECT_EQ(km.cls, "key");
+  EXPECT_GT(psnr(k0.color, km.color), 45.0);  // the same pixels, up to the projection's rounding
+  EXPECT_GT(psnr(k0.color, ks.color), 28.0);  // resampled from 1.5x as many pixels
+  EXPECT_EQ(rm.keyframe_camera().position, c.position);
+  EXPECT_GT(rm.keyframe_camera().fov_y_deg, c.fov_y_deg + 5);
+  EXPECT_GT(psnr(k0.color, rm.render_sprite(c).color), 40.0);
+  // Framed as the view, the keyframe's own error and scale are nil.
+  EXPECT_NEAR(rm.error(c).resample_scale, 1.0, 1e-6);
+  EXPECT_NEAR(rs.error(c).resample_scale, 1.0, 1e-6);
+  EXPECT_NEAR(rs.error(c).paper_px, 0.0, 1e-9);
+  // Turned so that part of the view lies outside the unframed keyframe:
+  // fewer of its quads fall back with the margin.
+  Camera turned = c;
+  turned.yaw_deg += 8.0;
+  EXPECT_GT(r0.error(turned).fallback_fraction(), 0.0);
+  EXPECT_LT(rm.error(turned).fallback_fraction(), r0.error(turned).fallback_fraction());
+}
+
 // A wall-like ridge across the terrain hides the valley north of it from a
 // low keyframe camera in the south. Seen from above, the valley must show the
 // drape texture (green), not keyframe pixels smeared from the ridge (red).

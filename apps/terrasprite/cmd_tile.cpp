@@ -78,9 +78,17 @@ bool use_strips(const std::string& mode, const TerrainOptions& t, bool insets) {
     return false;
   }
   if (mode == "always") return true;
-  const auto [w, h] = t.resample      ? std::pair{t.resample, t.resample}
-                      : t.dem.empty() ? std::pair{t.synthetic_size, t.synthetic_size}
-                                      : raster_size(t.dem);
+  std::pair<int, int> size{t.synthetic_size, t.synthetic_size};
+  if (t.resample) {
+    size = {t.resample, t.resample};
+  } else if (!t.dem.empty()) {
+    try {
+      size = raster_size(t.dem);
+    } catch (const InputError&) {
+      return false;  // the loader names what is wrong with the file
+    }
+  }
+  const auto [w, h] = size;
   const double need = kInMemoryBytesPerSample * double(w) * double(h);
   return t.resample > 16385 || need > 0.5 * physical_memory_bytes();
 }

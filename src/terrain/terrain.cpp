@@ -90,6 +90,22 @@ void check_heights(const Heightfield& h) {
           h.name, h.heights[p], p % h.width, p / h.width, kMaxAbsHeightM));
 }
 
+// The heights as given (synthesised or read), checked, before --resample.
+Heightfield load_source_heights(const TerrainOptions& o, std::vector<std::string>* warnings) {
+  Heightfield h;
+  if (o.dem.empty()) {
+    SynthOptions s;
+    s.size = o.synthetic_size;
+    s.seed = o.seed;
+    s.erosion_passes = o.erosion_passes;
+    h = synthesize_terrain(s);
+  } else {
+    h = load_dem(o, warnings);
+  }
+  check_heights(h);
+  return h;
+}
+
 // The drape texture of the final grid `heights` (load_terrain's choice).
 void make_texture(const TerrainOptions& o, const Heightfield& source, const HeightSampler& heights,
                   Image& texture, std::array<double, 4>& tex_rect, std::string& texture_name,
@@ -116,16 +132,7 @@ void make_texture(const TerrainOptions& o, const Heightfield& source, const Heig
 Terrain load_terrain(const TerrainOptions& o, std::vector<std::string>* warnings) {
   check_options(o);
   Terrain t;
-  if (o.dem.empty()) {
-    SynthOptions s;
-    s.size = o.synthetic_size;
-    s.seed = o.seed;
-    s.erosion_passes = o.erosion_passes;
-    t.heights = synthesize_terrain(s);
-  } else {
-    t.heights = load_dem(o, warnings);
-  }
-  check_heights(t.heights);
+  t.heights = load_source_heights(o, warnings);
   const Heightfield source = t.heights;  // before resampling, for georegistration
   if (o.resample) t.heights = resample_heightfield(t.heights, o.resample, o.resample);
   if (o.exaggeration != 1.0) {
@@ -209,16 +216,7 @@ LargeTerrain load_large_terrain(const TerrainOptions& options, std::vector<std::
     throw InputError(fmt::format("resample {}: must be between 2 and {} samples", options.resample,
                                  kMaxLargeResample));
   LargeTerrain t;
-  if (o.dem.empty()) {
-    SynthOptions s;
-    s.size = o.synthetic_size;
-    s.seed = o.seed;
-    s.erosion_passes = o.erosion_passes;
-    t.source = synthesize_terrain(s);
-  } else {
-    t.source = load_dem(o, warnings);
-  }
-  check_heights(t.source);
+  t.source = load_source_heights(o, warnings);
   t.resampled = options.resample != 0;
   t.width = t.resampled ? options.resample : t.source.width;
   t.height = t.resampled ? options.resample : t.source.height;

@@ -12,19 +12,24 @@ namespace terrasprite {
 
 /// How the drape texture is filtered at grazing angles.
 enum class DrapeFilter {
-  kAuto,      ///< hardware for full resolution (the quality reference), by hand for LOD
-  kHardware,  ///< the GL's 16x anisotropic filtering
-  kHand,      ///< up to 8 trilinear taps along the footprint, as LOD-sprite's drape fallback
+  kAuto,       ///< hardware for full resolution (the quality reference), trilinear for LOD
+  kHardware,   ///< the GL's 16x anisotropic filtering
+  kHand,       ///< up to 8 trilinear taps along the footprint
+  kTrilinear,  ///< one trilinear tap, as LOD-sprite's drape fallback
 };
 
 struct RasterOptions {
   /// Simple diffuse sun; off by default (the derived texture carries hillshade).
   bool lighting = false;
-  /// kAuto: plain LOD filters its drape as the LOD-sprite fallback does, so
-  /// the two compare on equal terms and neither pays llvmpipe's anisotropic
-  /// path (seconds on single grazing frames of the paper path). Full
-  /// resolution keeps hardware 16x: it is the quality reference, and its small
-  /// triangles never hit that path's stalls.
+  /// kAuto: plain LOD filters its drape as the LOD-sprite fallback does
+  /// (trilinear), so the two compare on equal terms and neither pays
+  /// llvmpipe's anisotropic path (seconds on single grazing frames of the
+  /// paper path). Trilinear replaced the hand filter there: against the
+  /// anisotropic reference on the paper path (quiet, 512²) plain LOD scored
+  /// mean SSIM 0.8771 against 0.8739 in 2.4 against 6.6 ms; on Puget Sound
+  /// 0.9589 against 0.9617 (PSNR 30.77 against 30.56 dB) in 2.1 against 6.5 ms.
+  /// Full resolution keeps hardware 16x: it is the quality reference, and
+  /// its small triangles never hit that path's stalls.
   DrapeFilter drape_filter = DrapeFilter::kAuto;
 };
 

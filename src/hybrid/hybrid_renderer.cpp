@@ -9,9 +9,11 @@ HybridRenderer::HybridRenderer(Scene& scene, HybridObjects* objects, std::string
                                int height, int terrain_quads)
     : scene_(scene), objects_(objects), name_(std::move(name)) {
   // Never llvmpipe's anisotropic path: it stalls for seconds at grazing
-  // angles, and a walkthrough is all grazing angles.
+  // angles, and a walkthrough is all grazing angles. Trilinear, not the hand
+  // filter: the terrain is the same in every scenario, and at 320 x 180 it
+  // took 2.0 ms against the hand filter's 10.5, which went to the objects.
   terrain_ = std::make_unique<MeshRenderer>(scene, width, height, terrain_quads,
-                                            RasterOptions{.drape_filter = DrapeFilter::kHand});
+                                            RasterOptions{.drape_filter = DrapeFilter::kTrilinear});
 }
 
 HybridRenderer::~HybridRenderer() = default;

@@ -35,8 +35,12 @@ Frame MeshRenderer::draw(const Camera& camera) {
   timer().begin();
   begin_output();
   const DrapeFilter filter = s_->options.drape_filter;
-  terrain.draw(mesh, vp, s_->options.lighting,
-               filter == DrapeFilter::kHand || (filter == DrapeFilter::kAuto && s_->quads > 0));
+  const DrapeSampling sampling = filter == DrapeFilter::kHand        ? DrapeSampling::kHand
+                                 : filter == DrapeFilter::kTrilinear ? DrapeSampling::kTrilinear
+                                 : filter == DrapeFilter::kHardware || s_->quads <= 0
+                                     ? DrapeSampling::kHardware
+                                     : DrapeSampling::kTrilinear;
+  terrain.draw(mesh, vp, s_->options.lighting, sampling);
   const long long triangles = mesh.triangles + s_->scene.draw_objects(camera);
   return make_frame(camera, timer().end(), s_->quads <= 0 ? "full" : "lod", triangles);
 }

@@ -262,9 +262,10 @@ void TerrainGpu::set_shading(TerrainShading shading) {
   shading_ = shading;
 }
 
-void TerrainGpu::use_program(const glm::mat4& vp, bool lighting, bool hand_filter) {
+void TerrainGpu::use_program(const glm::mat4& vp, bool lighting, DrapeSampling sampling) {
   const bool rich = shading_ == TerrainShading::kRich;
-  const GLuint p = programs_[rich][hand_filter].id();
+  const bool hand = sampling == DrapeSampling::kHand;
+  const GLuint p = programs_[rich][hand].id();
   glUseProgram(p);
   if (rich) {
     const Heightfield& h = terrain_.heights;
@@ -285,11 +286,12 @@ void TerrainGpu::use_program(const glm::mat4& vp, bool lighting, bool hand_filte
   glUniform1i(glGetUniformLocation(p, "u_lighting"), lighting ? 1 : 0);
   glUniform1i(glGetUniformLocation(p, "u_drape"), 0);
   glBindTextureUnit(0, drape_.id());
-  glBindSampler(0, hand_filter ? trilinear_ : 0);
+  glBindSampler(0, sampling == DrapeSampling::kHardware ? 0 : trilinear_);
 }
 
-void TerrainGpu::draw(const GpuMesh& m, const glm::mat4& vp, bool lighting, bool hand_filter) {
-  use_program(vp, lighting, hand_filter);
+void TerrainGpu::draw(const GpuMesh& m, const glm::mat4& vp, bool lighting,
+                      DrapeSampling sampling) {
+  use_program(vp, lighting, sampling);
   if (m.parts.empty()) {
     glBindVertexArray(m.vao.id());
     glDrawElements(GL_TRIANGLES, m.index_count, GL_UNSIGNED_INT, nullptr);
@@ -303,7 +305,7 @@ void TerrainGpu::draw(const GpuMesh& m, const glm::mat4& vp, bool lighting, bool
 
 void TerrainGpu::draw_in_pieces(const GpuMesh& m, const glm::mat4& vp, bool lighting, int pieces,
                                 const std::function<void()>& between) {
-  use_program(vp, lighting, false);
+  use_program(vp, lighting, DrapeSampling::kHardware);
   const std::size_t parts = std::max<std::size_t>(m.parts.size(), 1);
   const long long n = static_cast<long long>(parts);
   const long long per_part = std::max<long long>(1, (pieces + n - 1) / n);

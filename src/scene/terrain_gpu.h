@@ -19,6 +19,13 @@ namespace terrasprite {
 /// attribute 1 = normal (vec3), one uint32 index list. Grids above 4097 x 4097
 /// samples are split into `parts` (tiles sharing their border samples), each
 /// drawn with its own call; `triangles` then counts all parts.
+/// How the plain terrain shader filters the drape texture.
+enum class DrapeSampling {
+  kHardware,   ///< the texture's own 16x anisotropic filtering (the quality reference)
+  kHand,       ///< up to 8 trilinear taps along the footprint (kHandFilterGlsl)
+  kTrilinear,  ///< one trilinear tap: llvmpipe's fast, per-quad path
+};
+
 struct GpuMesh {
   std::vector<GpuMesh> parts;
   gl::VertexArray vao;
@@ -45,10 +52,9 @@ class TerrainGpu {
   /// Throws InputError when it would need more than 4 GiB of buffers.
   const GpuMesh& mesh(int quads);
   /// Draws `m` with the plain terrain shader: drape texture by world
-  /// position (the texture's own 16x anisotropic filtering, or by hand:
-  /// kHandFilterGlsl), optional sun lighting. The target must be bound.
+  /// position, filtered as `sampling` says, optional sun lighting. The target must be bound.
   void draw(const GpuMesh& m, const glm::mat4& view_projection, bool lighting,
-            bool hand_filter = false);
+            DrapeSampling sampling = DrapeSampling::kHardware);
   /// draw() with the hardware filter, split into about `pieces` draws of
   /// consecutive triangles with `between()` called after each (a keyframe on
   /// a second context calls glFinish there: llvmpipe has one rasterizer for
@@ -68,7 +74,7 @@ class TerrainGpu {
   TerrainShading shading() const { return shading_; }
 
  private:
-  void use_program(const glm::mat4& view_projection, bool lighting, bool hand_filter);
+  void use_program(const glm::mat4& view_projection, bool lighting, DrapeSampling sampling);
 
   const Terrain& terrain_;
   gl::Texture drape_{GL_TEXTURE_2D};

@@ -92,6 +92,9 @@ TEST(BenchLodsprite, BadOptionsExitWithStatus2) {
   EXPECT_EQ(run("bench lodsprite --thresholds 1,abc"), 2);
   EXPECT_EQ(run("bench lodsprite --frame-counts 2.5"), 2);
   EXPECT_EQ(run("bench lodsprite --size 0x0"), 2);
+  EXPECT_EQ(run("bench lodsprite --key-margin 0.7"), 2);
+  EXPECT_EQ(run("bench lodsprite --key-supersample 0.5"), 2);
+  EXPECT_EQ(run("bench lodsprite --key-margin 0.1 --metric contrast"), 2);
 }
 
 TEST(BenchLodsprite, AdaptiveMeshIsRecorded) {
@@ -106,6 +109,24 @@ TEST(BenchLodsprite, AdaptiveMeshIsRecorded) {
   const nlohmann::json d = nlohmann::json::parse(f);
   EXPECT_EQ(d["mesh"], "adaptive");
   EXPECT_EQ(d["mesh_triangles"], 32);  // the uniform 4 x 4 grid's, what plain LOD draws
+}
+
+// Keyframes framed wider and denser, with the adaptive mesh built for the
+// keyframe's wider camera: the run completes and records its framing. CI cost: ~2 s.
+TEST(BenchLodsprite, KeyFramingIsRecorded) {
+  tstest::TempDir tmp;
+  const std::string json = (tmp.path / "k.json").string(), out = (tmp.path / "report").string();
+  ASSERT_EQ(
+      run("bench lodsprite --synthetic-size 65 --resample 65 --frames 6 --size 96x96 --lod-quads 4 "
+          "--mesh adaptive --key-margin 0.125 --key-supersample 1.25 --thresholds 1 "
+          "--frame-counts 6 --lod-sweep 4 --json " +
+          json + " --out " + out),
+      0);
+  std::ifstream f(json);
+  const nlohmann::json d = nlohmann::json::parse(f);
+  EXPECT_EQ(d["key_margin"], 0.125);
+  EXPECT_EQ(d["key_supersample"], 1.25);
+  EXPECT_GE(d["sprite"]["keyframes"].get<int>(), 1);
 }
 
 TEST(BenchLodsprite, AsyncReportsBothDisplays) {

@@ -2,6 +2,7 @@
 // terrasprite tile: a terrain to Cloud-Optimized GeoTIFFs of the ray caster's
 // own pyramid (load -> pyramid -> COGs + tiles.json), for streaming.
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -40,6 +41,74 @@ std::optional<GeoTransform> add_insets(Heightfield& hf, const std::string& dem,
   return geo;
 }
 
+// Bytes the in-memory writer holds per level-0 sample: the terrain, its
+// colour and the pyramid (heights, colours, bounds; a third more for the
+// coarser levels), measured about 24 at 16385^2.
+constexpr double kInMemoryBytesPerSample = 24.0;
+
+double physical_memory_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? double(pages) * double(page) : 0.0;
+}
+
+void print_summary(const std::string& dir, int lg, std::chrono::steady_clock::time_point t0) {
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const TileSetInfo info = read_tile_set(dir);
+  fmt::print("{}: {} x {} samples, {} levels, {}-cell tiles, {:.1f} MB on disk, {:.1f} s\n", dir,
+             info.grid.width, info.grid.height, info.grid.coarsest_level + 1, 1 << lg,
+             info.bytes_on_disk / 1e6, s);
+  if (info.fine_set) {
+    const auto& p0 = info.fine->present[0];
+    fmt::print(
+        "{}/fine: {} fine levels ({:.4g} m), {} x {} samples, {} of {} finest tiles with "
+        "inset data\n",
+        dir, info.fine->levels, info.fine_set->grid.spacing_x, info.fine_set->grid.width,
+        info.fine_set->grid.height, std::count(p0.begin(), p0.end(), 1), p0.size());
+  }
+}
+
+// --strips auto: strip-wise unless insets need the grid in memory, when the
+// in-memory writer would need more than half the machine's memory or the
+// grid is past what load_terrain holds (--resample above 16385).
+bool use_strips(const std::string& mode, const TerrainOptions& t, bool insets) {
+  if (mode == "never") return false;
+  if (insets) {
+    if (mode == "always")
+      throw InputError("--strips always: insets (--inset) need the terrain in memory");
+    return false;
+  }
+  if (mode == "always") return true;
+  std::pair<int, int> size{t.synthetic_size, t.synthetic_size};
+  if (t.resample) {
+    size = {t.resample, t.resample};
+  } else if (!t.dem.empty()) {
+    try {
+      size = raster_size(t.dem);
+    } catch (const InputError&) {
+      return false;  // the loader names what is wrong with the file
+    }
+  }
+  const auto [w, h] = size;
+  const double need = kInMemoryBytesPerSample * double(w) * double(h);
+  return t.resample > 16385 || need > 0.5 * physical_memory_bytes();
+}
+
+// The strip-wise path: the terrain never held at its final size.
+void tile_by_strips(const TerrainOptions& to, const TileWriteOptions& wo, const std::string& dir) {
+  std::vector<std::string> warnings;
+  const LargeTerrain t = load_large_terrain(to, &warnings);
+  for (const auto& w : warnings) fmt::print(stderr, "warning: {}\n", w);
+  std::optional<GeoTransform> geo = t.source.geo;
+  if (t.resampled) geo.reset();  // the source's transform no longer fits the grid
+  OutputDir out(dir, output_policy());
+  const StripWriteStats s =
+      write_tiled_terrain_strips(terrain_rows(t), geo, out.partial().string(), wo);
+  out.commit();
+  fmt::print(
+      "strip-wise: {}-row bands, pyramid {:.1f} s ({:.1f} GB of temporary files), COGs {:.1f} s\n",
+      s.band_rows, s.pyramid_s, s.temp_bytes / 1e9, s.cogs_s);
+}
+
 }  // namespace
 
 void add_tile(CLI::App& app) {
@@ -52,6 +121,7 @@ void add_tile(CLI::App& app) {
     std::string out;
     std::vector<std::string> insets;
     int fine_levels = 0;
+    std::string strips = "auto";
   };
   auto o = std::make_shared<Opts>();
   add_terrain_options(*cmd, o->terrain);
@@ -75,6 +145,11 @@ void add_tile(CLI::App& app) {
                   "with it");
   cmd->add_option("--height-compress", o->write.height_compress, "DEFLATE (default) or ZSTD")
       ->transform(CLI::IsMember({"DEFLATE", "ZSTD"}, CLI::ignore_case));
+  cmd->add_option("--strips", o->strips,
+                  "auto (default), always or never: build the pyramid in strips of rows, "
+                  "never holding the terrain (auto: without --inset, when the in-memory writer "
+                  "would need over half the memory or --resample is above 16385; up to 65537)")
+      ->transform(CLI::IsMember({"auto", "always", "never"}, CLI::ignore_case));
   cmd->callback([o] {
     int lg = 0;
     while ((1 << lg) < o->tile_size) ++lg;
@@ -87,6 +162,11 @@ void add_tile(CLI::App& app) {
     for (const std::string& a : o->insets) specs.push_back(parse_inset(a));
     check_outputs(o->out, {});
     const auto t0 = std::chrono::steady_clock::now();
+    if (use_strips(o->strips, o->terrain, !specs.empty())) {
+      tile_by_strips(o->terrain, o->write, o->out);
+      print_summary(o->out, lg, t0);
+      return;
+    }
     std::unique_ptr<VoxelTerrain> vt;
     std::optional<GeoTransform> geo;
     std::unique_ptr<OutputDir> out;
@@ -106,19 +186,7 @@ void add_tile(CLI::App& app) {
     write_tiled_terrain(*vt, geo, out_dir.partial().string(), o->write);
     o->write.fine.reset();  // the cell maxima are written; free them
     out_dir.commit();
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const TileSetInfo info = read_tile_set(o->out);
-    fmt::print("{}: {} x {} samples, {} levels, {}-cell tiles, {:.1f} MB on disk, {:.1f} s\n",
-               o->out, info.grid.width, info.grid.height, info.grid.coarsest_level + 1, 1 << lg,
-               info.bytes_on_disk / 1e6, s);
-    if (info.fine_set) {
-      const auto& p0 = info.fine->present[0];
-      fmt::print(
-          "{}/fine: {} fine levels ({:.4g} m), {} x {} samples, {} of {} finest tiles with "
-          "inset data\n",
-          o->out, info.fine->levels, info.fine_set->grid.spacing_x, info.fine_set->grid.width,
-          info.fine_set->grid.height, std::count(p0.begin(), p0.end(), 1), p0.size());
-    }
+    print_summary(o->out, lg, t0);
   });
 }
 

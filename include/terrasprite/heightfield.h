@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // A regular grid of terrain heights.
 #pragma once
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,5 +40,18 @@ struct Heightfield {
   float min_height() const;
   float max_height() const;
 };
+
+/// A height field seen through its bilinear sampler: one held in memory
+/// (height_sampler) or one computed on demand, too large to hold (LargeTerrain).
+struct HeightSampler {
+  std::function<float(double x, double y)> sample;  ///< as Heightfield::sample, metres
+  int width = 0, height = 0;                        ///< samples
+  double spacing_x = 1.0, spacing_y = 1.0;          ///< metres between samples
+  float min_height = 0, max_height = 0;             ///< over every sample, metres
+  double extent_x() const { return (width - 1) * spacing_x; }
+  double extent_y() const { return (height - 1) * spacing_y; }
+};
+/// A sampler viewing `h` (which must outlive it).
+HeightSampler height_sampler(const Heightfield& h);
 
 }  // namespace terrasprite

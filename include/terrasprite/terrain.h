@@ -49,4 +49,37 @@ struct TerrainOptions {
 /// spacings outside 1e-6 .. 1e6 m. Warnings (e.g. an untagged nodata sentinel) go to `warnings`.
 Terrain load_terrain(const TerrainOptions& options, std::vector<std::string>* warnings = nullptr);
 
+/// A terrain whose final grid (after --resample and --exaggeration) is too
+/// large to hold (the tile writer's strip-wise path): the source grid in
+/// memory, each final sample computed on demand exactly as load_terrain
+/// computes it (bilinear from the source, then exaggerated), and the drape
+/// texture load_terrain would build for the final grid.
+struct LargeTerrain {
+  Heightfield source;                       ///< before --resample and --exaggeration
+  int width = 0, height = 0;                ///< final samples (>= 2 each)
+  double spacing_x = 1.0, spacing_y = 1.0;  ///< final metres between samples
+  bool resampled = false;  ///< --resample was given (the source's georeferencing no longer fits)
+  double exaggeration = 1.0;
+  float min_height = 0, max_height = 0;  ///< over the final grid, metres
+  Image texture;
+  std::array<double, 4> tex_rect = {0, 0, 1, 1};  ///< as Terrain's
+  std::string texture_name = "derived";
+
+  /// Final sample (i, j), metres: 0 <= i < width, 0 <= j < height.
+  float at(int i, int j) const;
+  /// Row j of the final grid into `out` (width floats). Thread-safe.
+  void row(int j, float* out) const;
+  /// The final grid through its bilinear sampler (views *this).
+  HeightSampler sampler() const;
+};
+
+/// Largest final grid side load_large_terrain accepts for --resample.
+constexpr int kMaxLargeResample = 65537;
+
+/// load_terrain without holding the final grid: the same checks and errors,
+/// but --resample may be up to kMaxLargeResample. One pass over the final grid
+/// (computed, not stored) finds its height range and checks its heights.
+LargeTerrain load_large_terrain(const TerrainOptions& options,
+                                std::vector<std::string>* warnings = nullptr);
+
 }  // namespace terrasprite

@@ -60,6 +60,7 @@ Heightfield resample_heightfield(const Heightfield& h, int width, int height);
 /// Elevation colour ramp times hillshade, sampled at texel centres over the
 /// height samples' extent (Terrain's mapping). width, height >= 1.
 Image derived_texture(const Heightfield& h, int width, int height);
+Image derived_texture(const HeightSampler& h, int width, int height);
 
 /// The paper's red/green checkerboard (its Fig. 13): `squares` per side.
 Image checker_texture(int squares, int size_px);

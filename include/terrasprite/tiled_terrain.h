@@ -9,6 +9,7 @@
 //   DIR/tiles.json  grid, levels, per-tile max-height bounds, georeferencing
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,6 +17,7 @@
 
 #include "terrasprite/image.h"
 #include "terrasprite/insets.h"
+#include "terrasprite/terrain.h"
 #include "terrasprite/terrain_tiles.h"
 #include "terrasprite/voxel_renderer.h"
 
@@ -105,6 +107,46 @@ void fine_world_shift(const TileSetInfo& set, double& x, double& y);
 /// place (GDAL reads it through MEM datasets), plus GDAL's block cache.
 void write_tiled_terrain(const VoxelTerrain& terrain, const std::optional<GeoTransform>& geo,
                          const std::string& dir, const TileWriteOptions& options = {});
+
+/// Level-0 rows of a terrain too large to hold, produced on demand for
+/// write_tiled_terrain_strips.
+struct TerrainRows {
+  int width = 0, height = 0;                ///< samples (>= 2 each)
+  double spacing_x = 1.0, spacing_y = 1.0;  ///< metres between samples
+  float min_height = 0, max_height = 0;     ///< over every sample, metres
+  /// Writes row j's heights (metres) and packed RGBA8 colours, `width` each.
+  /// Called concurrently for different rows.
+  std::function<void(int j, float* heights, std::uint32_t* colors)> row;
+};
+
+/// The final grid of `terrain` (views it: it must outlive the result), its
+/// colour the drape texture box-filtered onto the samples as VoxelTerrain's.
+TerrainRows terrain_rows(const LargeTerrain& terrain);
+
+/// Where write_tiled_terrain_strips spent its time, seconds.
+struct StripWriteStats {
+  double pyramid_s = 0;      ///< level 0 generated, every level and bound to temporary files
+  double cogs_s = 0;         ///< the three COGs copied from them
+  long long temp_bytes = 0;  ///< the temporary files' size (removed at the end)
+  int band_rows = 0;         ///< level-0 rows generated at once
+};
+
+/// write_tiled_terrain without holding the terrain: the same files, equal
+/// sample for sample (the same pyramid arithmetic, row by row). Level 0 is
+/// generated in bands of rows; every render level and bound level is built
+/// from the one below as its rows arrive (three rows of the finer level
+/// held each) and written to a tiled temporary GeoTIFF in DIR/.strips,
+/// copied into the COGs at the end and then removed. Memory: a band of
+/// level 0 (band_rows x width x 8 bytes), a few rows per level, GDAL's
+/// block cache; disk: about 12 bytes a level-0 sample of temporary files.
+/// `options.fine` and `options.insets` must be empty (insets composite into
+/// a grid held in memory). `band_rows`: level-0 rows made at once, a
+/// multiple of the tile size (0: about 64 MB of them, at most 1024 rows).
+/// Throws InputError as write_tiled_terrain.
+StripWriteStats write_tiled_terrain_strips(const TerrainRows& rows,
+                                           const std::optional<GeoTransform>& geo,
+                                           const std::string& dir,
+                                           const TileWriteOptions& options = {}, int band_rows = 0);
 
 /// Reads DIR/tiles.json and checks that the three files exist and open as
 /// rasters of the stated sizes. Throws InputError naming the file otherwise.

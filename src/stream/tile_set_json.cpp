@@ -47,10 +47,34 @@ int TileSetInfo::tiles_cells_h(int level) const {
   return cells_at(grid.height, level);
 }
 
-void write_tile_set_json(const VoxelTerrain& terrain, const std::vector<const float*>& bounds,
+std::vector<std::vector<float>> tile_maxima(const TerrainGrid& g,
+                                            const std::vector<const float*>& bounds,
+                                            int tile_log2) {
+  std::vector<std::vector<float>> out;
+  const int T = 1 << tile_log2;
+  for (int L = 0; L < g.bound_levels; ++L) {
+    const int cw = cells_at(g.width, L), ch = cells_at(g.height, L);
+    const int nx = (cw + T - 1) / T, ny = (ch + T - 1) / T;
+    std::vector<float> maxes;
+    maxes.reserve(std::size_t(nx) * ny);
+    // The in-memory pyramid's own tiles are 2^7 cells; recompute per tile of T.
+    const float* bound = bounds[std::size_t(L)];
+    for (int ty = 0; ty < ny; ++ty)
+      for (int tx = 0; tx < nx; ++tx) {
+        float m = -std::numeric_limits<float>::infinity();
+        for (int b = ty * T; b < std::min(ch, (ty + 1) * T); ++b)
+          for (int a = tx * T; a < std::min(cw, (tx + 1) * T); ++a)
+            m = std::max(m, bound[std::size_t(b) * std::size_t(cw) + std::size_t(a)]);
+        maxes.push_back(m);
+      }
+    out.push_back(std::move(maxes));
+  }
+  return out;
+}
+
+void write_tile_set_json(const TerrainGrid& g, const std::vector<std::vector<float>>& tile_max,
                          const std::optional<GeoTransform>& geo, const TileWriteOptions& o,
                          const std::string& path) {
-  const TerrainGrid& g = terrain.grid();
   nlohmann::json j;
   j["format"] = kFormat;
   j["version"] = kVersion;
@@ -94,23 +118,11 @@ void write_tile_set_json(const VoxelTerrain& terrain, const std::vector<const fl
   for (int L = 0; L < g.bound_levels; ++L) {
     const int cw = cells_at(g.width, L), ch = cells_at(g.height, L);
     const int nx = (cw + T - 1) / T, ny = (ch + T - 1) / T;
-    std::vector<float> maxes;
-    maxes.reserve(std::size_t(nx) * ny);
-    // The in-memory pyramid's own tiles are 2^7 cells; recompute per tile of T.
-    const float* bound = bounds[std::size_t(L)];
-    for (int ty = 0; ty < ny; ++ty)
-      for (int tx = 0; tx < nx; ++tx) {
-        float m = -std::numeric_limits<float>::infinity();
-        for (int b = ty * T; b < std::min(ch, (ty + 1) * T); ++b)
-          for (int a = tx * T; a < std::min(cw, (tx + 1) * T); ++a)
-            m = std::max(m, bound[std::size_t(b) * std::size_t(cw) + std::size_t(a)]);
-        maxes.push_back(m);
-      }
     levels.push_back({{"level", L},
                       {"samples", {cw + 1, ch + 1}},
                       {"has_samples", L <= g.coarsest_level},
                       {"tiles", {nx, ny}},
-                      {"tile_max_height", maxes}});
+                      {"tile_max_height", tile_max[std::size_t(L)]}});
   }
   j["levels"] = levels;
   std::ofstream f(path);

@@ -10,9 +10,15 @@
 
 namespace terrasprite {
 
-/// Writes `path` (tiles.json) for `terrain` tiled with `options`; `bounds`
-/// (one per bound level, row-major cells) are the bounds written to bound.tif.
-void write_tile_set_json(const VoxelTerrain& terrain, const std::vector<const float*>& bounds,
+/// Per bound level of `grid`, the highest bound of each tile of
+/// 2^tile_log2 cells (row-major tiles); `bounds` (one per bound level,
+/// row-major cells) are the bounds written to bound.tif.
+std::vector<std::vector<float>> tile_maxima(const TerrainGrid& grid,
+                                            const std::vector<const float*>& bounds, int tile_log2);
+
+/// Writes `path` (tiles.json) for a terrain of `grid` tiled with `options`;
+/// `tile_max` as tile_maxima's.
+void write_tile_set_json(const TerrainGrid& grid, const std::vector<std::vector<float>>& tile_max,
                          const std::optional<GeoTransform>& geo, const TileWriteOptions& options,
                          const std::string& path);
 

@@ -76,7 +76,7 @@ double covered_fraction(const std::array<double, 4>& r) {
 }
 
 long long fill_transparent_texels(Image& texture, const std::array<double, 4>& rect,
-                                  const Heightfield& heights) {
+                                  const HeightSampler& heights) {
   long long holes = 0;
   for (std::size_t p = 3; p < texture.rgba.size(); p += 4) holes += texture.rgba[p] == 0;
   if (!holes) return 0;

@@ -23,6 +23,6 @@ double covered_fraction(const std::array<double, 4>& rect);
 /// Replaces fully transparent texels (an image's nodata) with the derived
 /// texture of `heights` at the same place, opaque. Returns how many there were.
 long long fill_transparent_texels(Image& texture, const std::array<double, 4>& rect,
-                                  const Heightfield& heights);
+                                  const HeightSampler& heights);
 
 }  // namespace terrasprite::detail

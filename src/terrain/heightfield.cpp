@@ -4,18 +4,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "terrain/grid_sample.h"
+
 namespace terrasprite {
 
 float Heightfield::sample(double x, double y) const {
-  double fi = std::clamp(x / spacing_x + (width - 1) * 0.5, 0.0, double(width - 1));
-  double fj = std::clamp((height - 1) * 0.5 - y / spacing_y, 0.0, double(height - 1));
-  int i0 = std::min(int(fi), std::max(width - 2, 0)),
-      j0 = std::min(int(fj), std::max(height - 2, 0));
-  int i1 = std::min(i0 + 1, width - 1), j1 = std::min(j0 + 1, height - 1);
-  double a = fi - i0, b = fj - j0;
-  double top = at(i0, j0) * (1 - a) + at(i1, j0) * a;
-  double bottom = at(i0, j1) * (1 - a) + at(i1, j1) * a;
-  return float(top * (1 - b) + bottom * b);
+  return detail::sample_grid(width, height, spacing_x, spacing_y, x, y,
+                             [this](int i, int j) { return at(i, j); });
 }
 
 float Heightfield::min_height() const {
@@ -24,6 +19,18 @@ float Heightfield::min_height() const {
 
 float Heightfield::max_height() const {
   return heights.empty() ? 0.f : *std::max_element(heights.begin(), heights.end());
+}
+
+HeightSampler height_sampler(const Heightfield& h) {
+  HeightSampler s;
+  s.sample = [&h](double x, double y) { return h.sample(x, y); };
+  s.width = h.width;
+  s.height = h.height;
+  s.spacing_x = h.spacing_x;
+  s.spacing_y = h.spacing_y;
+  s.min_height = h.min_height();
+  s.max_height = h.max_height();
+  return s;
 }
 
 }  // namespace terrasprite

@@ -35,8 +35,12 @@ void ramp(float t, float out[3]) {
 }  // namespace
 
 Image derived_texture(const Heightfield& h, int width, int height) {
+  return derived_texture(height_sampler(h), width, height);
+}
+
+Image derived_texture(const HeightSampler& h, int width, int height) {
   Image img(width, height);
-  const float lo = h.min_height(), hi = h.max_height();
+  const float lo = h.min_height, hi = h.max_height;
   const float range = std::max(hi - lo, 1e-3f);
   // Sun from the north-west, 45 degrees up (the cartographic convention).
   const double az = 315.0 * M_PI / 180.0, alt = 45.0 * M_PI / 180.0;

@@ -78,50 +78,13 @@ void build_tiles(VoxelTerrain::Data& d) {
   }
 }
 
-// Drape texture box-filtered onto the height samples (Terrain's mapping:
-// u = r0 + s r2, v = r1 + t r3 over s = i/(w-1), t = j/(h-1)).
+// Drape texture box-filtered onto the height samples, row by row.
 std::vector<std::uint32_t> colour_map(const Terrain& t) {
   const Heightfield& hf = t.heights;
-  const Image& tex = t.texture;
-  std::vector<std::uint32_t> out(static_cast<std::size_t>(hf.width) * hf.height,
-                                 pack_rgba(128, 128, 128));
-  if (tex.empty()) return out;
-  const auto& r = t.tex_rect;
-  const double fx = hf.width > 1 ? std::abs(r[2]) * tex.width / (hf.width - 1) : 1.0;
-  const double fy = hf.height > 1 ? std::abs(r[3]) * tex.height / (hf.height - 1) : 1.0;
-  const int nx = std::clamp(int(std::ceil(fx)), 1, 8), ny = std::clamp(int(std::ceil(fy)), 1, 8);
-  auto texel = [&](int x, int y, int ch) {
-    x = std::clamp(x, 0, tex.width - 1);
-    y = std::clamp(y, 0, tex.height - 1);
-    return float(tex.px(x, y)[ch]);
-  };
-  for (int j = 0; j < hf.height; ++j) {
-    double tv = hf.height > 1 ? double(j) / (hf.height - 1) : 0.5;
-    double cy = (r[1] + tv * r[3]) * tex.height - 0.5;
-    for (int i = 0; i < hf.width; ++i) {
-      double su = hf.width > 1 ? double(i) / (hf.width - 1) : 0.5;
-      double cx = (r[0] + su * r[2]) * tex.width - 0.5;
-      float acc[3] = {0, 0, 0};
-      for (int b = 0; b < ny; ++b) {
-        double y = cy + ((b + 0.5) / ny - 0.5) * (ny > 1 ? fy : 0.0);
-        int y0 = int(std::floor(y));
-        float wy = float(y - y0);
-        for (int a = 0; a < nx; ++a) {
-          double x = cx + ((a + 0.5) / nx - 0.5) * (nx > 1 ? fx : 0.0);
-          int x0 = int(std::floor(x));
-          float wx = float(x - x0);
-          for (int ch = 0; ch < 3; ++ch) {
-            float top = texel(x0, y0, ch) * (1 - wx) + texel(x0 + 1, y0, ch) * wx;
-            float bot = texel(x0, y0 + 1, ch) * (1 - wx) + texel(x0 + 1, y0 + 1, ch) * wx;
-            acc[ch] += top * (1 - wy) + bot * wy;
-          }
-        }
-      }
-      const float n = float(nx * ny);
-      out[static_cast<std::size_t>(j) * hf.width + i] =
-          pack_rgba(acc[0] / n, acc[1] / n, acc[2] / n);
-    }
-  }
+  std::vector<std::uint32_t> out(static_cast<std::size_t>(hf.width) * hf.height);
+  for (int j = 0; j < hf.height; ++j)
+    drape_colour_row(t.texture, t.tex_rect, hf.width, hf.height, j,
+                     out.data() + static_cast<std::size_t>(j) * hf.width);
   return out;
 }
 
@@ -131,28 +94,78 @@ PyramidLevel halve(const PyramidLevel& f, int w, int h) {
   c.h = h;
   c.height.resize(static_cast<std::size_t>(w) * h);
   c.color.resize(c.height.size());
-  static constexpr float kTent[3] = {0.25f, 0.5f, 0.25f};
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i) {
-      float hs = 0, cs[3] = {0, 0, 0};
-      for (int b = -1; b <= 1; ++b) {
-        int fj = std::clamp(2 * j + b, 0, f.h - 1);
-        for (int a = -1; a <= 1; ++a) {
-          int fi = std::clamp(2 * i + a, 0, f.w - 1);
-          float wgt = kTent[a + 1] * kTent[b + 1];
-          std::size_t k = static_cast<std::size_t>(fj) * f.w + fi;
-          hs += wgt * f.height[k];
-          for (int ch = 0; ch < 3; ++ch) cs[ch] += wgt * float((f.color[k] >> (8 * ch)) & 0xff);
-        }
-      }
-      std::size_t k = static_cast<std::size_t>(j) * w + i;
-      c.height[k] = hs;
-      c.color[k] = pack_rgba(cs[0], cs[1], cs[2]);
+  for (int j = 0; j < h; ++j) {
+    const float* fh[3];
+    const std::uint32_t* fc[3];
+    for (int b = 0; b < 3; ++b) {
+      const std::size_t k = static_cast<std::size_t>(std::clamp(2 * j + b - 1, 0, f.h - 1)) * f.w;
+      fh[b] = f.height.data() + k;
+      fc[b] = f.color.data() + k;
     }
+    const std::size_t k = static_cast<std::size_t>(j) * w;
+    halve_row(fh, fc, f.w, 0, w, c.height.data() + k, c.color.data() + k);
+  }
   return c;
 }
 
 }  // namespace
+
+void drape_colour_row(const Image& tex, const std::array<double, 4>& r, int w, int h, int j,
+                      std::uint32_t* out) {
+  if (tex.empty()) {
+    std::fill(out, out + w, pack_rgba(128, 128, 128));
+    return;
+  }
+  const double fx = w > 1 ? std::abs(r[2]) * tex.width / (w - 1) : 1.0;
+  const double fy = h > 1 ? std::abs(r[3]) * tex.height / (h - 1) : 1.0;
+  const int nx = std::clamp(int(std::ceil(fx)), 1, 8), ny = std::clamp(int(std::ceil(fy)), 1, 8);
+  auto texel = [&](int x, int y, int ch) {
+    x = std::clamp(x, 0, tex.width - 1);
+    y = std::clamp(y, 0, tex.height - 1);
+    return float(tex.px(x, y)[ch]);
+  };
+  double tv = h > 1 ? double(j) / (h - 1) : 0.5;
+  double cy = (r[1] + tv * r[3]) * tex.height - 0.5;
+  for (int i = 0; i < w; ++i) {
+    double su = w > 1 ? double(i) / (w - 1) : 0.5;
+    double cx = (r[0] + su * r[2]) * tex.width - 0.5;
+    float acc[3] = {0, 0, 0};
+    for (int b = 0; b < ny; ++b) {
+      double y = cy + ((b + 0.5) / ny - 0.5) * (ny > 1 ? fy : 0.0);
+      int y0 = int(std::floor(y));
+      float wy = float(y - y0);
+      for (int a = 0; a < nx; ++a) {
+        double x = cx + ((a + 0.5) / nx - 0.5) * (nx > 1 ? fx : 0.0);
+        int x0 = int(std::floor(x));
+        float wx = float(x - x0);
+        for (int ch = 0; ch < 3; ++ch) {
+          float top = texel(x0, y0, ch) * (1 - wx) + texel(x0 + 1, y0, ch) * wx;
+          float bot = texel(x0, y0 + 1, ch) * (1 - wx) + texel(x0 + 1, y0 + 1, ch) * wx;
+          acc[ch] += top * (1 - wy) + bot * wy;
+        }
+      }
+    }
+    const float n = float(nx * ny);
+    out[i] = pack_rgba(acc[0] / n, acc[1] / n, acc[2] / n);
+  }
+}
+
+void halve_row(const float* const fh[3], const std::uint32_t* const fc[3], int fw, int i0, int i1,
+               float* out_h, std::uint32_t* out_c) {
+  static constexpr float kTent[3] = {0.25f, 0.5f, 0.25f};
+  for (int i = i0; i < i1; ++i) {
+    float hs = 0, cs[3] = {0, 0, 0};
+    for (int b = 0; b < 3; ++b)
+      for (int a = -1; a <= 1; ++a) {
+        const int fi = std::clamp(2 * i + a, 0, fw - 1);
+        const float wgt = kTent[a + 1] * kTent[b];
+        hs += wgt * fh[b][fi];
+        for (int ch = 0; ch < 3; ++ch) cs[ch] += wgt * float((fc[b][fi] >> (8 * ch)) & 0xff);
+      }
+    out_h[i] = hs;
+    out_c[i] = pack_rgba(cs[0], cs[1], cs[2]);
+  }
+}
 
 VoxelTerrain::VoxelTerrain(const Terrain& terrain) : d_(std::make_unique<Data>()) {
   const Heightfield& hf = terrain.heights;

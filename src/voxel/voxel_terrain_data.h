@@ -2,6 +2,7 @@
 // Layout of VoxelTerrain's pyramids, shared by the ray casters in src/voxel/.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -51,6 +52,20 @@ struct VoxelTerrain::Data {
   double grid_u(double x) const { return x / sx + (w - 1) * 0.5; }
   double grid_v(double y) const { return (h - 1) * 0.5 - y / sy; }
 };
+
+/// Row j of the level-0 colour of a w x h sample grid: the drape texture
+/// `tex` (Terrain's mapping through `rect`) box-filtered onto the samples;
+/// grey without a texture. Writes w packed colours to `out`.
+void drape_colour_row(const Image& tex, const std::array<double, 4>& rect, int w, int h, int j,
+                      std::uint32_t* out);
+
+/// Samples i0 <= i < i1 of row j of a level halved from its finer level (fw
+/// samples a row) with the [1 2 1]/4 tent: fh / fc are the finer rows
+/// clamp(2j - 1), clamp(2j), clamp(2j + 1) (clamped to the finer level);
+/// out_h[i], out_c[i] are written. The one implementation of a level's
+/// samples, in memory and strip-wise alike.
+void halve_row(const float* const fh[3], const std::uint32_t* const fc[3], int fw, int i0, int i1,
+               float* out_h, std::uint32_t* out_c);
 
 /// floor() as an integer without a libm call (no SSE4.1 in default flags).
 /// |x| < 2^62 and not NaN.

@@ -4,6 +4,7 @@
 // injected 30% read-fault rate survived and counted.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -65,6 +66,21 @@ TEST(StreamCli, RefusesADirectoryOfTheUsersAndSurvivesInjectedFaults) {
   EXPECT_TRUE(j["in_memory"].is_null());
   EXPECT_EQ(
       tstest::run_cli("bench stream --tiles " + (t / "nothing") + " --out " + (t / "n")).status, 2);
+}
+
+TEST(StreamCli, TileStripsRefusesBadSizesInOneLine) {
+  tstest::TempDir t;
+  auto one_line_error = [&](const std::string& args, const std::string& fragment) {
+    const auto r = tstest::run_cli(args + " --out " + (t / "o"));
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(fragment), std::string::npos) << args << "\n" << r.output;
+    EXPECT_LE(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << "\n" << r.output;
+    EXPECT_FALSE(std::filesystem::exists(t / "o"));
+    EXPECT_FALSE(std::filesystem::exists(t / "o.partial"));
+  };
+  one_line_error("tile --synthetic-size 33 --resample 65538", "--resample 65538");
+  one_line_error("tile --synthetic-size 33 --resample 20000 --strips never", "--resample 20000");
+  one_line_error("tile --synthetic-size 33 --strips sometimes", "--strips");
 }
 
 }  // namespace

@@ -75,7 +75,6 @@ class StreamingTiles final : public TerrainTiles {
 
   const TerrainGrid& grid() const override;
   const TileBlock* tile(int level, int tx, int ty) const override;
-  void count_hole_reads(int level, int tx, int ty, long long n) const override;
 
   /// Between frames: installs finished loads, ends the last frame's
   /// counters, queues the footprint of `camera` (and its motion since the

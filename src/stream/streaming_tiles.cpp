@@ -441,21 +441,6 @@ const TileBlock* StreamingTiles::tile(int level, int tx, int ty) const {
   return nullptr;
 }
 
-void StreamingTiles::count_hole_reads(int level, int tx, int ty, long long n) const {
-  const Impl& p = *p_;
-  if (p.k) {
-    if (level < p.k) {  // absent window tiles are no hole: tile() did not count them
-      if (fine_window_tile(*p.set.fine_set, level, tx, ty))
-        p.fine->count_hole_reads(level, tx, ty, n);
-      return;
-    }
-    level -= p.k;
-  }
-  Shard& s = p.shards[shard_index()];
-  s.lookups.fetch_add(n, std::memory_order_relaxed);
-  s.misses.fetch_add(n, std::memory_order_relaxed);
-}
-
 void StreamingTiles::collect_reads(StreamFrameStats& st) const {
   for (Shard& s : p_->shards) {
     st.lookups += s.lookups.exchange(0, std::memory_order_relaxed);

@@ -22,7 +22,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <vector>
 
+#include "voxel/hit_colors.h"
 #include "voxel/tile_reader.h"
 
 namespace terrasprite {
@@ -58,6 +61,9 @@ void ColumnMarcher::march_with(double dx, double dy, std::span<const double> slo
   };
   if (!d_.has_area()) return sky_from(0);
   Reader tiles(src_);
+  thread_local std::vector<double> hit_t_store;  // each hit's distance, full precision
+  if (hit_t_store.size() < n) hit_t_store.resize(n);
+  double* const hit_t = hit_t_store.data();
 
   // Grid units per horizontal metre along the plane.
   const double gu = dx / d_.spacing_x, gv = -dy / d_.spacing_y;
@@ -205,11 +211,15 @@ void ColumnMarcher::march_with(double dx, double dy, std::span<const double> slo
       }
       const double f = gp > 0.0 ? gp / (gp - gc) : 0.0;
       const double th = t_prev + f * (t_cur - t_prev);
-      hits[r] = {float(th), color_at(L, th)};
+      hit_t[r] = th;  // its colour after the march (below)
+      hits[r] = {float(th), std::uint32_t(L)};
       ++r;
       continue;
     }
-    if (final) return sky_from(r);
+    if (final) {
+      sky_from(r);
+      break;
+    }
     // Hierarchical skip: a block of 2^k lines the ray passes over entirely.
     if (s_.max_skip && kmax >= L + 2 && (m & ((1L << (L + 2)) - 1)) == 0) {
       bool skipped = false;
@@ -263,6 +273,31 @@ void ColumnMarcher::march_with(double dx, double dy, std::span<const double> slo
       t_cur = (double(m) - em) * inv_gm;
       h_cur = height_line(L, m, t_cur);
     }
+  }
+  // The hits' colours, apart from the march: its branches no longer wait on
+  // the colour reads, and these run back to back, four at a time from whole
+  // levels (runs of hits on one level that do not blend).
+  for (std::size_t k = 0; k < n;) {
+    if (!std::isfinite(hits[k].t)) {
+      ++k;
+      continue;
+    }
+    const int Lk = int(hits[k].color);
+    std::size_t e = k + 1;  // colour [k, e) here
+    if constexpr (std::is_same_v<Reader, BasicTileReader<true>>) {
+      std::size_t run = k;
+      while (run < n && std::isfinite(hits[run].t) && int(hits[run].color) == Lk &&
+             alpha(Lk, hit_t[run]) <= 0.f)
+        ++run;
+      if (run - k >= 4) {
+        const typename Reader::Slot* sl = tiles.cell(Lk, 0, 0);
+        const LevelColors level{sl->color, sl->off, sl->stride, tiles.width(Lk), tiles.height(Lk)};
+        const HitLine line{eu_, ev_, gu, gv, 1.0 / double(1 << Lk)};
+        e = run;
+        k += hit_colors(level, line, hit_t + k, hits.data() + k, run - k);
+      }
+    }
+    for (; k < e; ++k) hits[k].color = color_at(int(hits[k].color), hit_t[k]);
   }
 }
 

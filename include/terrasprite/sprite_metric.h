@@ -89,6 +89,16 @@ std::uint64_t next_grid_serial();
 /// Returns `point` itself when the ray misses all of them (grazing rays).
 glm::dvec3 coarse_reprojection(const CoarseGrid& grid, int q, glm::dvec3 eye, glm::dvec3 point);
 
+/// Ours: whether cell `q`'s drape texture is already sharp in `view` (a
+/// `height_px` pixels high image): its largest vertical deviation from the
+/// full-resolution surface (CoarseGrid::max_deviation, metres) moves the
+/// image by under `sharp_px` pixels at its centre C. The image moves by the
+/// offset's component across the ray from the eye to C, dz sin(angle of the
+/// ray to the vertical): seen from straight above a vertical error does not
+/// move the image at all, seen edge-on it moves by all of it.
+bool drape_is_sharp(const CoarseGrid& grid, int q, const Camera& view, int height_px,
+                    double sharp_px);
+
 /// Depth buffer of a keyframe: linear depth in metres along the key camera's
 /// view axis, width*height, row 0 on top (RenderTarget::read_depth), +inf = sky.
 struct DepthView {

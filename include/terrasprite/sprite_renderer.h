@@ -65,11 +65,12 @@ struct SpriteOptions {
   /// instead of resample_scale (the area's mean).
   bool anisotropic_scale = false;
   /// Ours: a coarse quad whose largest deviation from the full-resolution
-  /// surface projects below this many pixels in the current view takes the
-  /// drape texture, as plain LOD would: there the coarse geometry is already
-  /// right and the drape is sharper than a resampled keyframe. 0 disables;
-  /// so does the scene's rich shading (TerrainShading::kRich), under which
-  /// the drape would pay the per-fragment shading the keyframe already paid.
+  /// surface moves the current view's image by less than this many pixels
+  /// (drape_is_sharp: the vertical deviation's component across the view
+  /// ray, so none from straight above) takes the drape texture, as plain LOD would: there the
+  /// coarse geometry is already right and the drape is sharper than a resampled keyframe. 0
+  /// disables; so does the scene's rich shading (TerrainShading::kRich), under which the drape
+  /// would pay the per-fragment shading the keyframe already paid.
   double sharp_px = 0.5;
   /// Ours: keyframes see past the view's edges by this fraction of its width
   /// (and height) on each side (a wider field of view and a larger image at

@@ -149,6 +149,15 @@ glm::dvec3 coarse_reprojection(const CoarseGrid& g, int q, glm::dvec3 eye, glm::
   return std::isnan(best_t) ? point : eye + best_t * d;
 }
 
+bool drape_is_sharp(const CoarseGrid& g, int q, const Camera& view, int height_px,
+                    double sharp_px) {
+  const glm::dvec3 d = g.centre[q] - view.position;
+  const double dist = glm::length(d);
+  // Angle moved = dz sin(ray to vertical) / dist, sin = horizontal / dist.
+  const double moved = g.max_deviation[q] * glm::length(glm::dvec2(d)) / (dist * dist);
+  return moved < sharp_px * view.pixel_angle(height_px);
+}
+
 namespace {
 /// The angle of one pixel at the image centre, radians, exactly (tan-based).
 double centre_pixel(const Camera& c, int height_px) {

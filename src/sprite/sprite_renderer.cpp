@@ -303,9 +303,8 @@ void SpriteRenderer::draw_sprite_pass(const Camera& camera) {
     // Quads whose coarse geometry is already right at this distance take the
     // drape texture. Not under rich shading: there the drape would pay the
     // per-fragment shading the keyframe has already paid.
-    const double limit = s.options.sharp_px * camera.pixel_angle(height());
     for (std::size_t q = 0; q < s.flags.size(); ++q)
-      if (!s.flags[q] && g.max_deviation[q] < limit * glm::length(g.centre[q] - camera.position))
+      if (!s.flags[q] && drape_is_sharp(g, int(q), camera, height(), s.options.sharp_px))
         s.flags[q] = 1;
   }
   const GpuMesh& coarse = s.coarse_gpu(terrain);

@@ -121,6 +121,31 @@ TEST(ErrorMetric, OnlyVisibleCentresCount) {
   EXPECT_NEAR(e.exact_px, 0.0, 1e-9);
 }
 
+// A bump of b metres at one quad centre: the drape moves the image by b's
+// component across the ray, none from straight above, all of it edge-on.
+TEST(SharpDrape, DeviationCountsAcrossTheViewRay) {
+  Heightfield h = flat(65, 10.0);
+  const double b = 20.0;
+  h.at(24, 24) = float(b);
+  CoarseGrid g = make_coarse_grid(h, 4);
+  const int q = 1 * 4 + 1;
+  ASSERT_DOUBLE_EQ(g.max_deviation[q], b);
+  const glm::dvec3 C = g.centre[q];
+  const int size = 512;
+  EXPECT_TRUE(drape_is_sharp(g, q, overhead(C, 3000.0), size, 1e-3));
+  const double pixel = overhead(C, 3000.0).pixel_angle(size);
+  const double D = b / (2.0 * pixel);  // edge-on the bump moves the image 2 pixels
+  const Camera edge_on = Camera::look_at(C + glm::dvec3(D, 0, 0), C, 60.0, 1.0);
+  EXPECT_FALSE(drape_is_sharp(g, q, edge_on, size, 1.9));
+  EXPECT_TRUE(drape_is_sharp(g, q, edge_on, size, 2.1));
+  // From 60 degrees up: half of it (cos 60).
+  const double up = glm::radians(60.0);
+  const Camera steep =
+      Camera::look_at(C + D * glm::dvec3(std::cos(up), 0, std::sin(up)), C, 60.0, 1.0);
+  EXPECT_FALSE(drape_is_sharp(g, q, steep, size, 0.95));
+  EXPECT_TRUE(drape_is_sharp(g, q, steep, size, 1.05));
+}
+
 TEST(ErrorMetric, ResampleScaleIsTheChangeInPixelFootprint) {
   Heightfield h = flat(65, 10.0);
   CoarseGrid g = make_coarse_grid(h, 4);

@@ -110,6 +110,34 @@ TEST(Selection, HysteresisHoldsAndCountsSwitches) {
   EXPECT_GE(switches, 1);
 }
 
+TEST(Selection, HysteresisLetsALargeGainThroughSoonAfterACut) {
+  // A sudden cut in the budget sends every instance to its cheapest (mesh
+  // level 3, SSIM 0.91); when the budget is back, holding them there would
+  // cost 9% of their quality for a whole hold: they go back at once. A small
+  // cut (level 1, 0.97: 3%) is held.
+  const auto instances = scene(10);
+  SelectionHysteresis h({.hold_frames = 8, .min_gain = 0.01, .max_hold_loss = 0.05});
+  auto all_at = [&](int option) {
+    FrameSelection s;
+    for (const InstanceOptions& inst : instances) {
+      s.option.push_back(option);
+      s.cost_ms += inst.options[std::size_t(option)].cost_ms;
+    }
+    return s;
+  };
+  FrameSelection s = all_at(0);
+  h.apply(instances, s, INFINITY);
+  s = all_at(3);
+  EXPECT_EQ(h.apply(instances, s, 0.0), 10);  // the cut: forced
+  s = all_at(0);
+  EXPECT_EQ(h.apply(instances, s, INFINITY), 10);  // back within the hold: 9% gain
+  s = all_at(1);
+  EXPECT_EQ(h.apply(instances, s, 0.0), 10);  // another cut, a small one
+  s = all_at(0);
+  EXPECT_EQ(h.apply(instances, s, INFINITY), 0);  // 3% gain: held
+  for (int option : s.option) EXPECT_EQ(option, 1);
+}
+
 TEST(ExpectedQuality, InterpolatesBetweenSizesAndViews) {
   RepresentationQuality rep;
   for (int size : {100, 400})

@@ -40,6 +40,10 @@ struct BudgetControllerOptions {
   /// the sigma setpoint left the p95 at +36% of a 10 ms target.
   double quantile = 0.95;
   int quantile_window = 40;
+  /// Neither setpoint goes under this fraction of the target: on a machine
+  /// shared with builds (frames 5x their expected time, one in ten) no
+  /// selection holds the p95, and aiming for it starves every frame.
+  double min_setpoint = 0.5;
 };
 
 class BudgetController {

@@ -64,13 +64,14 @@ double BudgetController::setpoint_ms() const {
   // Measured against what the budget assumed (the smoothed ratio), the
   // frames' own tail is the spread to cover.
   const double q = tail();
-  if (std::isfinite(q)) return o_.target_ms * std::min(1.0, o_.tolerance * std::exp(-q));
+  auto clamped = [&](double f) { return o_.target_ms * std::clamp(f, o_.min_setpoint, 1.0); };
+  if (std::isfinite(q)) return clamped(o_.tolerance * std::exp(-q));
   // Too few frames yet: the budget follows the smoothed ratio, which carries
   // w / (2 - w) of the frames' noise variance into the next frame: the
   // spread to cover is the frame's own and the budget's together.
   const double w = o_.ratio_smoothing;
   const double sigma = noise() * std::sqrt(1 + w / (2 - w));
-  return o_.target_ms * std::min(1.0, o_.tolerance * std::exp(-o_.z * sigma));
+  return clamped(o_.tolerance * std::exp(-o_.z * sigma));
 }
 
 void QualityStepController::update(double measured_ms) {

@@ -52,6 +52,7 @@ struct BenchStreamOpts {
   int frames = 300;
   int threads = 0;
   std::string in_memory = "auto";
+  int first_view_ms = 600;  // longest wait for the first view's tiles before frame 0
   bool child = false;  // hidden: be the in-memory peer (frame numbers on fd 3, answers on fd 4)
   std::string json;
   std::string out;
@@ -100,6 +101,13 @@ class StreamedVoxel final : public Renderer {
     tiles_.collect_reads(last_);
     f.ms += update_ms_;
     return f;
+  }
+  /// Before frame 0: a draw at `c` that is not shown (it warms the renderer
+  /// and marks the tiles the view misses), then a wait of at most until
+  /// `deadline` for those tiles. Counts in time to first frame.
+  StreamingTiles::FirstView prime(const Camera& c, Clock::time_point deadline) {
+    r_.draw(c);
+    return tiles_.wait_for_first_view(c, deadline);
   }
   void read_back(Frame& f, ReadBack what) override { r_.read_back(f, what); }
   std::string name() const override { return "stream"; }
@@ -178,6 +186,9 @@ void run_in_memory_child(const BenchStreamOpts& o, const TileSetInfo& set, int w
   VoxelOptions vo;
   vo.threads = o.threads;
   VoxelRenderer r(tiles, w, h, vo);
+  // One unshown draw before the run, as the streamed side's first-view draw:
+  // frame 0 is warm on both sides.
+  if (o.first_view_ms > 0 && !path.empty()) r.draw(path.front());
   ChildReply ready;
   if (!write_all(kChildOut, &ready, sizeof ready)) return;
   LockstepSource cameras(path);
@@ -187,8 +198,6 @@ void run_in_memory_child(const BenchStreamOpts& o, const TileSetInfo& set, int w
             const ChildReply reply{frame++, fr.ms, image_hash(f.color), peak_resident_mb()};
             if (!write_all(kChildOut, &reply, sizeof reply)) std::exit(0);  // the parent is gone
           }});
-  // No warm-up draw: the streamed run has none either (its first frame is
-  // part of the figures), so frame 0 is cold on both sides.
   ExperimentOptions eo;
   eo.warmup_draws = 0;
   ex.run(cameras, eo);
@@ -220,6 +229,8 @@ class InMemoryPeer {
                                      std::to_string(o.frames),
                                      "--threads",
                                      std::to_string(o.threads),
+                                     "--first-view-ms",
+                                     std::to_string(o.first_view_ms),
                                      "--in-memory-child"};
     if (!o.texture.empty()) args.insert(args.end(), {"--texture", o.texture});
     std::vector<char*> argv;
@@ -288,6 +299,8 @@ struct StreamRun {
   int faults_injected = 0, faults_survived = 0;
   std::size_t pinned_bytes = 0;
   double open_ms = 0, path_ms = 0, pinned_ms = 0;  // before the first frame
+  double first_view_ms = 0;                        // the unshown draw and the wait after it
+  StreamingTiles::FirstView first_view;
   // The in-memory run's frames, one per streamed frame while its process lives.
   std::vector<double> in_memory_ms;
   std::vector<std::uint64_t> in_memory_hash;
@@ -336,6 +349,11 @@ StreamRun run_streamed(const BenchStreamOpts& o, StreamingTiles& tiles, Clock::t
   eo.progress = std::ref(progress);
   PathSource cameras(path);
   const auto t_run = Clock::now();
+  if (o.first_view_ms > 0 && !path.empty()) {
+    run.first_view =
+        renderer.prime(path.front(), t_run + std::chrono::milliseconds(o.first_view_ms));
+    run.first_view_ms = ms_since(t_run);
+  }
   ex.run(cameras, eo);
   run.wall_ms = ms_since(t_run) - run.peer_wait_ms;
   run.peak_rss_mb = peak_resident_mb();
@@ -455,11 +473,19 @@ nlohmann::json summary_json(const BenchStreamOpts& o, const TileSetInfo& set, co
         {"pinned_mb", double(run.pinned_bytes) / (1 << 20)},
         {"first_frame_ms", run.first_frame_ms},
         {"first_frame_parts_ms",
-         {{"open", run.open_ms}, {"path", run.path_ms}, {"pinned_levels", run.pinned_ms}}},
+         {{"open", run.open_ms},
+          {"path", run.path_ms},
+          {"pinned_levels", run.pinned_ms},
+          {"first_view", run.first_view_ms}}},
+        {"first_view",
+         {{"max_wait_ms", o.first_view_ms},
+          {"tiles_missed", run.first_view.waited_for},
+          {"still_missing", run.first_view.still_missing}}},
         {"first_frame_method",
          "from the start of the command to the first frame shown: open, then the path planned "
-         "while the pinned levels load (the two overlap), then frame 0; the in-memory peer's "
-         "load is not counted"}}},
+         "while the pinned levels load (the two overlap), then the first view (an unshown draw "
+         "at frame 0's camera, then a wait of at most first_view.max_wait_ms for the tiles it "
+         "missed), then frame 0; the in-memory peer's load is not counted"}}},
       {"in_memory", in_memory},
       {"ratio_median",
        mem_ms.empty()
@@ -504,6 +530,9 @@ void run(const BenchStreamOpts& o) {
   auto [w, h] = parse_size(o.size, "--size");
   if (o.frames < 1 || o.frames > 100000)
     throw InputError(fmt::format("--frames {}: must be between 1 and 100000", o.frames));
+  if (o.first_view_ms < 0 || o.first_view_ms > 60000)
+    throw InputError(
+        fmt::format("--first-view-ms {}: must be between 0 and 60000", o.first_view_ms));
   if (o.cache_mb < 1 || o.cache_mb > 1 << 20)
     throw InputError(fmt::format("--cache-mb {}: must be between 1 and 1048576", o.cache_mb));
   const bool child = o.child;
@@ -578,6 +607,9 @@ void add_bench_stream(CLI::App& bench) {
   cmd->add_option("--path", o->path, "'low-fast' (default), 'paper' or a JSON path file");
   cmd->add_option("--frames", o->frames, "frames along the path (default 300)");
   cmd->add_option("--threads", o->threads, "ray-caster threads (default 0: all)");
+  cmd->add_option("--first-view-ms", o->first_view_ms,
+                  "before frame 0, wait at most this long for the tiles its view reads (default "
+                  "600; 0: draw frame 0 from whatever is resident)");
   cmd->add_option("--in-memory", o->in_memory,
                   "also fly the terrain wholly in memory, in another process: auto (default: when "
                   "it fits in half the free memory), yes, no")

@@ -6,6 +6,7 @@
 // level, grown by a margin and pushed along the motion), and never waited
 // for: a frame reads the finest resident ancestor where a tile is missing.
 #pragma once
+#include <chrono>
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -74,6 +75,7 @@ class StreamingTiles final : public TerrainTiles {
 
   const TerrainGrid& grid() const override;
   const TileBlock* tile(int level, int tx, int ty) const override;
+  void count_hole_reads(int level, int tx, int ty, long long n) const override;
 
   /// Between frames: installs finished loads, ends the last frame's
   /// counters, queues the footprint of `camera` (and its motion since the
@@ -87,6 +89,19 @@ class StreamingTiles final : public TerrainTiles {
   /// Waits until every queued read is done and installs them (tests; the
   /// bench's "once resident" check). Returns the tiles installed.
   int settle();
+  /// Before the first frame is shown, after a draw at `camera` that is not
+  /// shown (its reads mark the tiles that view misses): updates for
+  /// `camera`, which queues those tiles first, and waits until they are in
+  /// (loaded or failed) or `deadline` passes, installing them as they land.
+  /// So the first frames are drawn from the tiles they read, not from the
+  /// pinned levels, at a bounded cost in time to first frame. Returns the
+  /// tiles waited for and how many were still missing at the end.
+  struct FirstView {
+    int waited_for = 0;
+    int still_missing = 0;
+  };
+  FirstView wait_for_first_view(const Camera& camera,
+                                std::chrono::steady_clock::time_point deadline);
 
   std::size_t budget_bytes() const;
   std::size_t pinned_bytes() const;

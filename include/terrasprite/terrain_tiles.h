@@ -100,6 +100,14 @@ class TerrainTiles {
     (void)level;
     return nullptr;
   }
+  /// Reports `n` more reads of tile (tx, ty) of `level` that its caller
+  /// served from a coarser level after tile() returned nullptr for it: a
+  /// reader remembers the hole instead of asking tile() once per read. A
+  /// source that counts degraded reads adds them as if each had asked
+  /// (thread-safe, like tile()); the default ignores them.
+  virtual void count_hole_reads(int level, int tx, int ty, long long n) const {
+    (void)level, (void)tx, (void)ty, (void)n;
+  }
 };
 
 }  // namespace terrasprite

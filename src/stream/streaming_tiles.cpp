@@ -421,6 +421,21 @@ const TileBlock* StreamingTiles::tile(int level, int tx, int ty) const {
   return nullptr;
 }
 
+void StreamingTiles::count_hole_reads(int level, int tx, int ty, long long n) const {
+  const Impl& p = *p_;
+  if (p.k) {
+    if (level < p.k) {  // absent window tiles are no hole: tile() did not count them
+      if (fine_window_tile(*p.set.fine_set, level, tx, ty))
+        p.fine->count_hole_reads(level, tx, ty, n);
+      return;
+    }
+    level -= p.k;
+  }
+  Shard& s = p.shards[shard_index()];
+  s.lookups.fetch_add(n, std::memory_order_relaxed);
+  s.misses.fetch_add(n, std::memory_order_relaxed);
+}
+
 void StreamingTiles::collect_reads(StreamFrameStats& st) const {
   for (Shard& s : p_->shards) {
     st.lookups += s.lookups.exchange(0, std::memory_order_relaxed);
@@ -468,6 +483,43 @@ int StreamingTiles::settle() {
     p.idle_cv.wait(lk, [&] { return p.queue.empty() && p.loading == 0; });
   }
   return p.install() + (p.fine ? p.fine->settle() : 0);
+}
+
+StreamingTiles::FirstView StreamingTiles::wait_for_first_view(
+    const Camera& camera, std::chrono::steady_clock::time_point deadline) {
+  // The tiles the unshown draw missed, in this set and its fine one.
+  struct Wanted {
+    Impl* p;
+    int level;
+    std::size_t i;
+  };
+  std::vector<Wanted> wanted;
+  for (StreamingTiles* t = this; t; t = t->p_->fine.get()) {
+    Impl& p = *t->p_;
+    for (int L = 0; L < p.pin_from; ++L)
+      for (std::size_t i = 0; i < p.state[std::size_t(L)].size(); ++i)
+        if (p.demand[std::size_t(L)][i].load(std::memory_order_relaxed))
+          wanted.push_back({&p, L, i});
+  }
+  update(camera);  // queues them first (its figures are the unshown draw's: dropped)
+  FirstView fv{int(wanted.size()), 0};
+  for (;;) {
+    fv.still_missing = 0;
+    for (const Wanted& w : wanted) {
+      const State s = w.p->state[std::size_t(w.level)][w.i];
+      fv.still_missing += s != State::kResident && s != State::kFailed;
+    }
+    if (fv.still_missing == 0 || std::chrono::steady_clock::now() >= deadline) return fv;
+    for (StreamingTiles* t = this; t; t = t->p_->fine.get()) {
+      Impl& p = *t->p_;
+      {
+        std::unique_lock lk(p.m);
+        p.idle_cv.wait_until(lk, std::min(deadline, std::chrono::steady_clock::now() +
+                                                        std::chrono::milliseconds(5)));
+      }
+      p.install();
+    }
+  }
 }
 
 std::size_t StreamingTiles::budget_bytes() const {

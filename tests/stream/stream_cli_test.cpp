@@ -66,6 +66,14 @@ TEST(StreamCli, RefusesADirectoryOfTheUsersAndSurvivesInjectedFaults) {
   EXPECT_TRUE(j["in_memory"].is_null());
   EXPECT_EQ(
       tstest::run_cli("bench stream --tiles " + (t / "nothing") + " --out " + (t / "n")).status, 2);
+  r = tstest::run_cli("bench stream --tiles " + (t / "tiles") + " --first-view-ms -1 --out " +
+                      (t / "fv"));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--first-view-ms -1"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(t.path / "fv"));
+  // The first view's figures are in the JSON.
+  EXPECT_EQ(j["stream"]["first_view"]["max_wait_ms"], 600);
+  EXPECT_TRUE(j["stream"]["first_frame_parts_ms"].contains("first_view"));
 }
 
 TEST(StreamCli, TileStripsRefusesBadSizesInOneLine) {

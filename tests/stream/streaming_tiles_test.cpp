@@ -180,6 +180,56 @@ TEST(StreamingTiles, StalledLoaderNeverBlocksAFrame) {
   EXPECT_GT(degraded, 0);
 }
 
+// Before the first frame: the tiles an unshown draw missed are loaded, so the
+// first frame reads (almost) nothing coarser; a stalled loader makes the wait
+// end at its deadline instead of hanging.
+TEST(StreamingTiles, FirstViewWaitsForTheTilesItMissedUntilItsDeadline) {
+  TiledFixture f(129);
+  StreamOptions o;
+  o.image_height = kH;
+  o.pinned_share = 0;
+  const Camera c = path(f.terrain, 2).front();
+  {
+    StreamingTiles s(f.set, o);
+    VoxelRenderer r(s, kW, kH);
+    r.draw(c);  // unshown: marks what the view misses
+    StreamFrameStats probe;
+    s.collect_reads(probe);
+    const auto fv =
+        s.wait_for_first_view(c, std::chrono::steady_clock::now() + std::chrono::minutes(5));
+    EXPECT_GT(fv.waited_for, 0);
+    EXPECT_EQ(fv.still_missing, 0);
+    StreamFrameStats first = s.update(c);
+    r.draw(c);
+    s.collect_reads(first);
+    EXPECT_GT(probe.degraded_samples, 0);
+    EXPECT_LT(first.degraded_samples * 10, probe.degraded_samples)
+        << "the first frame should read what the unshown draw missed from its own level";
+  }
+  std::mutex m;
+  std::condition_variable cv;
+  bool release = false;
+  o.before_read = [&](int, int, int) {
+    std::unique_lock lk(m);
+    cv.wait(lk, [&] { return release; });
+  };
+  {
+    StreamingTiles s(f.set, o);
+    VoxelRenderer r(s, kW, kH);
+    r.draw(c);
+    const auto fv =
+        s.wait_for_first_view(c, std::chrono::steady_clock::now() + std::chrono::milliseconds(50));
+    EXPECT_GT(fv.waited_for, 0);
+    EXPECT_EQ(fv.still_missing, fv.waited_for)
+        << "nothing could load: the wait ended at its deadline";
+    {
+      std::lock_guard lk(m);
+      release = true;
+    }
+    cv.notify_all();
+  }
+}
+
 TEST(StreamingTiles, InjectedReadFaultIsSurvivedAndCounted) {
   TiledFixture f(129);
   StreamOptions o;

@@ -15,6 +15,7 @@
 #include "terrasprite/quality.h"
 #include "terrasprite/terrain_gen.h"
 #include "terrasprite/voxel_renderer.h"
+#include "voxel/tile_reader.h"
 
 namespace terrasprite {
 namespace {
@@ -139,6 +140,50 @@ TEST(TerrainTiles, MissingTilesFallBackToCoarserLevels) {
       EXPECT_LT(s, 1.0) << "the coarser levels were not read";
     }
   }
+}
+
+// PartlyResident that counts what a streaming cache would: lookups of
+// hidden tiles, and the later reads a reader served coarser from them.
+class CountingHoles : public PartlyResident {
+ public:
+  using PartlyResident::PartlyResident;
+  const TileBlock* tile(int level, int tx, int ty) const override {
+    const TileBlock* t = PartlyResident::tile(level, tx, ty);
+    if (!t) ++asked_missing;
+    return t;
+  }
+  void count_hole_reads(int level, int tx, int ty, long long n) const override {
+    EXPECT_EQ(PartlyResident::tile(level, tx, ty), nullptr) << "a hole is a missing tile";
+    hole_reads += n;
+  }
+  mutable long long asked_missing = 0, hole_reads = 0;
+};
+
+TEST(TerrainTiles, AReaderAsksOncePerMissingTileAndReportsEveryDegradedRead) {
+  const Terrain t = small_terrain(513);  // level 0: 4 x 4 tiles of 128 cells
+  const VoxelTerrain vt(t);
+  const CountingHoles src(vt, 1, true);  // level 0 as a checkerboard of missing tiles
+  long long degraded = 0;
+  {
+    TileReader r(src);
+    BasicTileReader<true> whole(vt);
+    const int lg = vt.grid().tile_log2;
+    // A row across all four tiles, there and back, as a march's reads run.
+    for (int pass = 0; pass < 2; ++pass)
+      for (int k = 0; k < 2000; ++k) {
+        const double i = (pass ? 2000 - k : k) * 511.0 / 2000, j = 200.25;
+        const bool hidden = ((int(i) >> lg) + (int(j) >> lg)) % 2 == 0;
+        degraded += hidden;
+        // A missing tile reads level 1 at the same place; a resident one level 0.
+        const float want =
+            hidden ? whole.bilinear_height(1, i * 0.5, j * 0.5) : whole.bilinear_height(0, i, j);
+        ASSERT_EQ(r.bilinear_height(0, i, j), want) << "i " << i;
+      }
+  }  // the reader reports its last hole when it goes
+  EXPECT_EQ(src.asked_missing + src.hole_reads, degraded)
+      << "each read served coarser counted once";
+  EXPECT_LE(src.asked_missing, 8) << "asked once per missing tile entered, not once per read";
+  EXPECT_GT(degraded, 1000);
 }
 
 }  // namespace

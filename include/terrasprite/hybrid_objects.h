@@ -63,6 +63,8 @@ struct HybridFrameStats {
   int switches = 0;
   long long triangles = 0, triangles_min = 0, triangles_max = 0;  ///< chosen, cheapest, full
   std::array<int, 3> instances_by_kind{};
+  /// Predicted draw calls the policy could not see (taken off the next budget), ms.
+  double draw_gap_ms = 0;
 };
 
 class HybridObjects : public SceneObjects {

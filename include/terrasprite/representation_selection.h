@@ -45,6 +45,13 @@ struct PolicyOptions {
   double target_ssim = 0.95;
   /// paper: impostors above this resolution are drawn as a mesh instead.
   int max_impostor_resolution = 128;
+  /// paper, past it: when the impostors reaching `target_ssim` and every
+  /// mesh at its cheapest do not fit the budget, the target is lowered by
+  /// `fit_step` (down to `fit_min_ssim`) until they do, in this frame. The
+  /// paper's controller only learns it from the measured frame, a step per
+  /// frame: its first frames ran at 1.4-2.2x a 10 ms target.
+  bool fit_budget = true;
+  double fit_step = 0.01, fit_min_ssim = 0.80;
   OptimalOptions optimal;
 };
 

@@ -21,6 +21,10 @@ void BudgetController::update(double predicted_ms, double measured_ms) {
   // budget 2x and make the next frame the slow one.
   const bool far = r > o_.outlier_factor * ratio_ || r * o_.outlier_factor < ratio_;
   surprise_ = !first_ && far && !surprise_;
+  if (!first_) {
+    residuals_.push_back(std::log(r / ratio_));
+    while (int(residuals_.size()) > std::max(1, o_.quantile_window)) residuals_.pop_front();
+  }
   if (!surprise_) {
     // Log-domain smoothing: a ratio of 2 and one of 0.5 weigh alike.
     if (!first_) changes_.push_back(std::abs(std::log(r) - last_log_ratio_));
@@ -46,13 +50,28 @@ double BudgetController::noise() const {
   return c[c.size() / 2] / (0.6745 * std::sqrt(2.0));
 }
 
+double BudgetController::tail() const {
+  const std::size_t n = residuals_.size();
+  if (n == 0 || int(n) < std::max(1, o_.quantile_window / 4)) return NAN;
+  std::vector<double> e(residuals_.begin(), residuals_.end());
+  const std::size_t k =
+      std::min(n - 1, std::size_t(std::max(0.0, std::ceil(o_.quantile * double(n)) - 1)));
+  std::nth_element(e.begin(), e.begin() + std::ptrdiff_t(k), e.end());
+  return e[k];
+}
+
 double BudgetController::setpoint_ms() const {
-  // The budget follows the smoothed ratio, which carries w / (2 - w) of the
-  // frames' noise variance into the next frame: the spread to cover is the
-  // frame's own and the budget's together.
+  // Measured against what the budget assumed (the smoothed ratio), the
+  // frames' own tail is the spread to cover.
+  const double q = tail();
+  auto clamped = [&](double f) { return o_.target_ms * std::clamp(f, o_.min_setpoint, 1.0); };
+  if (std::isfinite(q)) return clamped(o_.tolerance * std::exp(-q));
+  // Too few frames yet: the budget follows the smoothed ratio, which carries
+  // w / (2 - w) of the frames' noise variance into the next frame: the
+  // spread to cover is the frame's own and the budget's together.
   const double w = o_.ratio_smoothing;
   const double sigma = noise() * std::sqrt(1 + w / (2 - w));
-  return o_.target_ms * std::min(1.0, o_.tolerance * std::exp(-o_.z * sigma));
+  return clamped(o_.tolerance * std::exp(-o_.z * sigma));
 }
 
 void QualityStepController::update(double measured_ms) {

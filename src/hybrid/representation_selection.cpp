@@ -3,10 +3,14 @@
 // paper: Jehaes, Lamotte & Tack (GRAPP 2008), section 3.3: the lowest
 // impostor resolution reaching the target quality, meshes above a hard
 // resolution limit, the budget left after the impostors spent on the meshes
-// by Pareto optimisation of quality against cost.
+// by Pareto optimisation of quality against cost; past it, the target
+// quality lowered within the frame when the impostors would not fit.
 #include "terrasprite/representation_selection.h"
 
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
 
 #include "terrasprite/error.h"
 
@@ -71,19 +75,55 @@ int ibr_choice(const InstanceOptions& inst, double target) {
   return best >= 0 ? best : 0;
 }
 
+/// The cheapest mesh of `inst`'s options (ms), or its cheapest option's when it has no mesh.
+double cheapest_mesh_ms(const InstanceOptions& inst) {
+  double mesh = INFINITY, any = INFINITY;
+  for (const RepresentationOption& o : inst.options) {
+    any = std::min(any, o.cost_ms);
+    if (is_mesh(o)) mesh = std::min(mesh, o.cost_ms);
+  }
+  return std::isfinite(mesh) ? mesh : any;
+}
+
+/// The paper's impostor pass at `target`: per instance its impostor option
+/// or -1 (a mesh); returns the impostors' time plus every mesh at its cheapest.
+double impostor_pass(std::span<const InstanceOptions> instances, double target, int max_res,
+                     std::vector<int>& choice) {
+  choice.assign(instances.size(), -1);
+  double ms = 0;
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    choice[i] = impostor_choice(instances[i], target, max_res);
+    ms += choice[i] >= 0 ? instances[i].options[std::size_t(choice[i])].cost_ms
+                         : cheapest_mesh_ms(instances[i]);
+  }
+  return ms;
+}
+
 FrameSelection paper_selection(std::span<const InstanceOptions> instances, double budget_ms,
                                const PolicyOptions& options) {
   FrameSelection s;
-  s.option.assign(instances.size(), -1);
+  const int max_res = options.max_impostor_resolution;
+  double floor_ms = impostor_pass(instances, options.target_ssim, max_res, s.option);
+  if (options.fit_budget && options.fit_step > 0 && floor_ms > budget_ms) {
+    // Lower the target until the impostors fit; where none does, the
+    // lowest floor found.
+    std::vector<int> choice;
+    for (int k = 1; floor_ms > budget_ms; ++k) {
+      const double t = options.target_ssim - k * options.fit_step;
+      if (t < options.fit_min_ssim - 1e-9) break;
+      const double ms = impostor_pass(instances, t, max_res, choice);
+      if (ms < floor_ms) {
+        floor_ms = ms;
+        s.option = choice;
+      }
+    }
+  }
   std::vector<InstanceOptions> meshes;
   std::vector<std::size_t> mesh_of;
   double impostor_ms = 0;
   for (std::size_t i = 0; i < instances.size(); ++i) {
-    const int c =
-        impostor_choice(instances[i], options.target_ssim, options.max_impostor_resolution);
-    if (c >= 0) {
-      s.option[i] = c;
-      impostor_ms += instances[i].options[std::size_t(c)].cost_ms;
+    if (s.option[i] >= 0) {
+      impostor_ms += instances[i].options[std::size_t(s.option[i])].cost_ms;
     } else {
       meshes.push_back(instances[i]);
       mesh_of.push_back(i);

@@ -38,9 +38,11 @@ int SelectionHysteresis::apply(std::span<const InstanceOptions> instances,
     if (old < 0 || old == now) continue;
     const RepresentationOption& a = instances[i].options[std::size_t(old)];
     const RepresentationOption& b = instances[i].options[std::size_t(now)];
-    const bool too_soon = frame_ - it->second.frame_switched < options_.hold_frames;
-    const bool too_small = std::abs(benefit(instances[i], b) - benefit(instances[i], a)) <=
-                           options_.min_gain * std::max(benefit(instances[i], a), 1e-12);
+    const double gain = benefit(instances[i], b) - benefit(instances[i], a);
+    const bool too_soon = frame_ - it->second.frame_switched < options_.hold_frames &&
+                          gain <= options_.max_hold_loss * benefit(instances[i], b);
+    const bool too_small =
+        std::abs(gain) <= options_.min_gain * std::max(benefit(instances[i], a), 1e-12);
     if (too_soon || too_small) reverts.push_back({i, old, a.cost_ms - b.cost_ms});
   }
   std::sort(reverts.begin(), reverts.end(),

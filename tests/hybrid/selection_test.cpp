@@ -73,6 +73,22 @@ TEST(Selection, PolicyShapes) {
     EXPECT_EQ(instances[i].options[std::size_t(paper.option[i])].rep.kind, ObjectKind::kMesh);
 }
 
+TEST(Selection, PaperLowersItsTargetToFitTheBudgetInTheFrame) {
+  // At target 0.95 every instance takes relief 128 (0.08 ms: 2.4 ms for 30);
+  // a 1.6 ms budget fits relief 64 (0.93, 0.05 ms) once the target is lowered.
+  const auto instances = scene(30);
+  PolicyOptions po;
+  po.fit_budget = false;
+  const FrameSelection as_paper =
+      select_representations(SelectionPolicy::kPaper, instances, 1.6, po);
+  EXPECT_NEAR(as_paper.cost_ms, 2.4, 1e-9);
+  po.fit_budget = true;
+  const FrameSelection fitted = select_representations(SelectionPolicy::kPaper, instances, 1.6, po);
+  EXPECT_LE(fitted.cost_ms, 1.6);
+  for (std::size_t i = 0; i < instances.size(); ++i)
+    EXPECT_EQ(instances[i].options[std::size_t(fitted.option[i])].rep.resolution, 64);
+}
+
 TEST(Selection, InstanceBehindTheCameraIsNotInView) {
   Camera cam;
   cam.position = {0, 0, 2};
@@ -108,6 +124,34 @@ TEST(Selection, HysteresisHoldsAndCountsSwitches) {
   }
   EXPECT_LE(switches, 20 / 5 + 1);  // flip-flopping every frame is held to once per 5 frames
   EXPECT_GE(switches, 1);
+}
+
+TEST(Selection, HysteresisLetsALargeGainThroughSoonAfterACut) {
+  // A sudden cut in the budget sends every instance to its cheapest (mesh
+  // level 3, SSIM 0.91); when the budget is back, holding them there would
+  // cost 9% of their quality for a whole hold: they go back at once. A small
+  // cut (level 1, 0.97: 3%) is held.
+  const auto instances = scene(10);
+  SelectionHysteresis h({.hold_frames = 8, .min_gain = 0.01, .max_hold_loss = 0.05});
+  auto all_at = [&](int option) {
+    FrameSelection s;
+    for (const InstanceOptions& inst : instances) {
+      s.option.push_back(option);
+      s.cost_ms += inst.options[std::size_t(option)].cost_ms;
+    }
+    return s;
+  };
+  FrameSelection s = all_at(0);
+  h.apply(instances, s, INFINITY);
+  s = all_at(3);
+  EXPECT_EQ(h.apply(instances, s, 0.0), 10);  // the cut: forced
+  s = all_at(0);
+  EXPECT_EQ(h.apply(instances, s, INFINITY), 10);  // back within the hold: 9% gain
+  s = all_at(1);
+  EXPECT_EQ(h.apply(instances, s, 0.0), 10);  // another cut, a small one
+  s = all_at(0);
+  EXPECT_EQ(h.apply(instances, s, INFINITY), 0);  // 3% gain: held
+  for (int option : s.option) EXPECT_EQ(option, 1);
 }
 
 TEST(ExpectedQuality, InterpolatesBetweenSizesAndViews) {

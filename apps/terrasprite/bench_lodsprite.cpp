@@ -3,6 +3,8 @@
 // JSON, plots of its Figs. 8-12, images of its Figs. 13-14, index.html.
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "bench_commands.h"
 #include "cli_common.h"
 #include "lodsprite_report.h"
@@ -72,6 +74,10 @@ void add_bench_lodsprite(CLI::App& bench) {
   cmd->add_option("--scale-trigger", o->config.max_resample_scale,
                   "also keyframe when the keyframe's pixels are resampled by more than this factor "
                   "(default 1.25; inf = off)");
+  cmd->add_option(
+      "--scale-per-drape-px", o->config.scale_per_drape_px,
+      "the scale trigger's limit rises to 1 + this x plain LOD's drape displacement "
+      "(pixels) where that is higher (default 0.0625; 0 = the constant --scale-trigger)");
   cmd->add_flag("--scale-aniso", o->config.anisotropic_scale,
                 "the scale trigger reads the keyframe's worst-stretched axis, not its area");
   cmd->add_option("--sharp-px", o->config.sharp_px,
@@ -140,6 +146,9 @@ void add_bench_lodsprite(CLI::App& bench) {
     if (!(c.max_resample_scale >= 1.0))
       throw InputError(fmt::format("--scale-trigger {}: must be at least 1 (inf disables it)",
                                    c.max_resample_scale));
+    if (!(c.scale_per_drape_px >= 0 && std::isfinite(c.scale_per_drape_px)))
+      throw InputError(fmt::format("--scale-per-drape-px {}: must be a finite number, at least 0",
+                                   c.scale_per_drape_px));
     c.thresholds = list_of<double>(o->thresholds, "--thresholds");
     c.frame_counts = list_of<int>(o->frame_counts, "--frame-counts");
     c.lod_sweep = list_of<int>(o->lod_sweep, "--lod-sweep");

@@ -37,6 +37,7 @@ nlohmann::json frame_json(const LodspriteFrame& f) {
           {"fallback_fraction", f.fallback_fraction},
           {"resample_scale", f.resample_scale},
           {"resample_aniso", f.resample_aniso},
+          {"drape_px", f.drape_px},
           {"decision_cpu_ms", f.decision_cpu_ms},
           {"trigger", f.trigger},
           {"keyframe", f.keyframe},
@@ -98,6 +99,7 @@ nlohmann::json to_json(const LodspriteResult& r) {
                                  ? nlohmann::json(r.max_resample_scale)
                                  : nlohmann::json(nullptr)},
       {"scale_trigger_axis", r.anisotropic_scale ? "worst" : "area"},
+      {"scale_per_drape_px", r.scale_per_drape_px},
       {"psnr_cap_db", kPsnrCapDb},
       {"there_and_back", r.there_and_back},
       {"async", r.async.has_value()},

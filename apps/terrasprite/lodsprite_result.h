@@ -27,6 +27,7 @@ struct LodspriteFrame {
   double error_px = 0, error_px_exact = 0;  ///< paper metric / exact reprojection, pixels
   int error_samples = 0;
   double fallback_fraction = 0, resample_scale = 1, resample_aniso = 1, decision_cpu_ms = 0;
+  double drape_px = 0;  ///< SpriteError::drape_px: how far plain LOD is off, pixels
   std::string trigger;  ///< what made this a keyframe ("" for sprite frames, "cache" for a reuse)
   int keyframe = 0;     ///< the frame whose keyframe is in use
   QualityScore sprite, lod;  ///< each against the full-resolution frame
@@ -148,6 +149,7 @@ struct LodspriteResult {
   std::string shading = "plain";   ///< terrain shading: "plain" | "rich"
   double max_resample_scale = 0;   ///< may be +inf (the trigger off): JSON null
   bool anisotropic_scale = false;  ///< the scale trigger reads the worst axis
+  double scale_per_drape_px = 0;   ///< SpriteOptions::scale_per_drape_px
   bool there_and_back = false;
   int sweep_score_every = 1;
   std::string video;  ///< file name inside the output directory; empty: none

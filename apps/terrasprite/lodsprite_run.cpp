@@ -117,6 +117,7 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   so.max_fallback_fraction = cfg.max_fallback_fraction;
   so.max_resample_scale = cfg.max_resample_scale;
   so.anisotropic_scale = cfg.anisotropic_scale;
+  so.scale_per_drape_px = cfg.scale_per_drape_px;
   so.sharp_px = cfg.sharp_px;
   so.key_margin = cfg.key_margin;
   so.key_supersample = cfg.key_supersample;
@@ -141,6 +142,7 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
                                       {"fallback_fraction", e.fallback_fraction()},
                                       {"resample_scale", e.resample_scale},
                                       {"resample_aniso", e.resample_aniso},
+                                      {"drape_px", e.drape_px},
                                       {"decision_cpu_ms", sprite.last_decision_ms()}};
                         if (sprite.last_trigger())
                           r.tags["trigger"] = to_string(*sprite.last_trigger());
@@ -181,6 +183,7 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   res.shading = cfg.shading == TerrainShading::kRich ? "rich" : "plain";
   res.max_resample_scale = cfg.max_resample_scale;
   res.anisotropic_scale = cfg.anisotropic_scale;
+  res.scale_per_drape_px = cfg.scale_per_drape_px;
   res.there_and_back = cfg.there_and_back;
   res.sweep_score_every = every;
   res.video = cfg.video;
@@ -204,6 +207,7 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
     row.fallback_fraction = c.counters.at("fallback_fraction");
     row.resample_scale = c.counters.at("resample_scale");
     row.resample_aniso = c.counters.at("resample_aniso");
+    row.drape_px = c.counters.at("drape_px");
     row.decision_cpu_ms = c.counters.at("decision_cpu_ms");
     if (auto t = c.tags.find("trigger"); t != c.tags.end()) row.trigger = t->second;
     decision_ms.push_back(row.decision_cpu_ms);

@@ -30,6 +30,7 @@ struct LodspriteConfig {
   double max_fallback_fraction = 1.0;
   double max_resample_scale = 1.25;
   bool anisotropic_scale = false;  ///< SpriteOptions::anisotropic_scale
+  double scale_per_drape_px = SpriteOptions{}.scale_per_drape_px;
   double sharp_px = 0.5;
   double key_margin = 0, key_supersample = 1;  ///< SpriteOptions::key_margin, key_supersample
   std::vector<double> thresholds = {0.25, 0.5, 1, 2, 4, 8};

@@ -89,6 +89,14 @@ std::uint64_t next_grid_serial();
 /// Returns `point` itself when the ray misses all of them (grazing rays).
 glm::dvec3 coarse_reprojection(const CoarseGrid& grid, int q, glm::dvec3 eye, glm::dvec3 point);
 
+/// Ours: how far plain LOD's drape of cell `q` is off in `view` (a
+/// `height_px` pixels high image), in pixels at its centre C: its largest
+/// vertical deviation from the full-resolution surface
+/// (CoarseGrid::max_deviation, metres) times sin(angle of the ray from the
+/// eye to C to the vertical), over the distance, per pixel angle. 0 seen
+/// from straight above, the whole deviation edge-on.
+double drape_displacement_px(const CoarseGrid& grid, int q, const Camera& view, int height_px);
+
 /// Ours: whether cell `q`'s drape texture is already sharp in `view` (a
 /// `height_px` pixels high image): its largest vertical deviation from the
 /// full-resolution surface (CoarseGrid::max_deviation, metres) moves the
@@ -193,6 +201,12 @@ struct SpriteError {
   /// tilts so the keyframe is stretched one way and shrunk the other (equal
   /// area, yet blurred along one axis).
   double resample_aniso = 1.0;
+  /// Ours: how far plain LOD of the same coarse mesh would be off in this
+  /// view: the RMS over the in-view cells (visible in the keyframe or not;
+  /// adaptive: weighted by area) of drape_displacement_px, pixels. Keyframe
+  /// independent. Large where the coarse mesh is far from the terrain
+  /// (relief, oblique views), near 0 on flat ground or seen from overhead.
+  double drape_px = 0;
   /// ErrorMetric::kContrast: RMS predicted intensity error, grey levels (0-255).
   double contrast_levels = 0;
   /// The metric's figure: pixels for kPaper and kExact, grey levels for kContrast.

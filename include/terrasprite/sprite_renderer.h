@@ -64,6 +64,15 @@ struct SpriteOptions {
   /// The third trigger reads SpriteError::resample_aniso (the worst axis)
   /// instead of resample_scale (the area's mean).
   bool anisotropic_scale = false;
+  /// Ours: the third trigger gives way where plain LOD would itself be far
+  /// off. A keyframe magnified s times blurs each feature over about s - 1
+  /// more pixels than a full-resolution frame; plain LOD of the same mesh
+  /// misplaces it by SpriteError::drape_px pixels. So the keyframe may stretch
+  /// to 1 + scale_per_drape_px x drape_px where that is above
+  /// max_resample_scale (scale_trigger_limit). 0 = the constant trigger.
+  /// 1/16: paper setup, 1 px, the synthetic terrain's drape is off by about
+  /// 5 px (limit 1.3), Puget Sound's by under 1.5 px (limit 1.25 kept).
+  double scale_per_drape_px = 1.0 / 16;
   /// Ours: a coarse quad whose largest deviation from the full-resolution
   /// surface moves the current view's image by less than this many pixels
   /// (drape_is_sharp: the vertical deviation's component across the view
@@ -136,6 +145,10 @@ struct AsyncKeyframeStats {
   double last_keyframe_ms = 0;     ///< the worker's wall time for the last one it finished, ms
   bool in_flight = false;          ///< a request is being rendered or waits to be taken
 };
+
+/// The third trigger's limit for a view: max(o.max_resample_scale,
+/// 1 + o.scale_per_drape_px x e.drape_px) (SpriteOptions::scale_per_drape_px).
+double scale_trigger_limit(const SpriteOptions& o, const SpriteError& e);
 
 /// Why a keyframe was drawn.
 enum class Trigger {

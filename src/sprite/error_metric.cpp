@@ -149,13 +149,17 @@ glm::dvec3 coarse_reprojection(const CoarseGrid& g, int q, glm::dvec3 eye, glm::
   return std::isnan(best_t) ? point : eye + best_t * d;
 }
 
+double drape_displacement_px(const CoarseGrid& g, int q, const Camera& view, int height_px) {
+  const glm::dvec3 d = g.centre[q] - view.position;
+  const double dist2 = glm::dot(d, d);
+  if (dist2 <= 0) return 0;
+  // Angle moved = dz sin(ray to vertical) / dist, sin = horizontal / dist.
+  return g.max_deviation[q] * glm::length(glm::dvec2(d)) / dist2 / view.pixel_angle(height_px);
+}
+
 bool drape_is_sharp(const CoarseGrid& g, int q, const Camera& view, int height_px,
                     double sharp_px) {
-  const glm::dvec3 d = g.centre[q] - view.position;
-  const double dist = glm::length(d);
-  // Angle moved = dz sin(ray to vertical) / dist, sin = horizontal / dist.
-  const double moved = g.max_deviation[q] * glm::length(glm::dvec2(d)) / (dist * dist);
-  return moved < sharp_px * view.pixel_angle(height_px);
+  return drape_displacement_px(g, q, view, height_px) < sharp_px;
 }
 
 namespace {
@@ -257,7 +261,7 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
   const glm::dmat4 vp = view.view_projection();
   const glm::dvec3 forward = view.forward();
   double sum_paper = 0, sum_exact = 0, sum_log_scale = 0, sum_log_aniso = 0, sum_contrast = 0,
-         sum_weight = 0;
+         sum_weight = 0, sum_drape = 0, sum_view_weight = 0;
   const bool contrast = !k.gradient.empty();
   const glm::dmat4 key_vp = k.key.view_projection();
   const glm::dvec3 key_forward = k.key.forward();
@@ -277,9 +281,12 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
     if (!project(vp, vw, vh, C, pc) || !inside_image(pc, vw, vh)) continue;
     if (glm::dot(C - view.position, forward) < view.near_m) continue;
     ++e.in_view;
+    const double w = g.weight.empty() ? 1.0 : g.weight[q];
+    const double drape = drape_displacement_px(g, int(q), view, vh);
+    sum_drape += w * drape * drape;
+    sum_view_weight += w;
     if (!k.visible[q]) continue;
     ++e.samples;
-    const double w = g.weight.empty() ? 1.0 : g.weight[q];
     sum_weight += w;
     const double b = g.edge_offset[q];
     const double d = glm::length(view.position - C);
@@ -305,6 +312,7 @@ SpriteError sprite_error(const CoarseGrid& g, const KeyframeSamples& k, const Ca
       }
     }
   }
+  if (e.in_view > 0) e.drape_px = std::sqrt(sum_drape / sum_view_weight);
   if (e.samples > 0) {
     e.paper_px = std::sqrt(sum_paper / sum_weight);
     e.exact_px = std::sqrt(sum_exact / sum_weight);

@@ -38,6 +38,10 @@ const char* to_string(Trigger t) {
   return "?";
 }
 
+double scale_trigger_limit(const SpriteOptions& o, const SpriteError& e) {
+  return std::max(o.max_resample_scale, 1.0 + o.scale_per_drape_px * e.drape_px);
+}
+
 const char* to_string(CoarseMesh m) {
   return m == CoarseMesh::kUniform ? "uniform" : "adaptive";
 }
@@ -179,6 +183,9 @@ const SpriteOptions& validated(const SpriteOptions& o) {
                                  o.mesh_triangles));
   if (!(o.mesh_tolerance_px >= 0))
     throw InputError(fmt::format("mesh_tolerance_px {}: must be at least 0", o.mesh_tolerance_px));
+  if (!(o.scale_per_drape_px >= 0 && std::isfinite(o.scale_per_drape_px)))
+    throw InputError(fmt::format("scale_per_drape_px {}: must be a finite number, at least 0",
+                                 o.scale_per_drape_px));
   if (!(o.threshold_px > 0))
     throw InputError(
         fmt::format("threshold_px {}: must be a positive number of pixels", o.threshold_px));
@@ -282,7 +289,7 @@ std::optional<Trigger> SpriteRenderer::trigger_for(const SpriteError& e) const {
   const SpriteOptions& o = s_->options;
   if (e.value(o.metric) > o.threshold_px) return Trigger::kError;
   if (e.fallback_fraction() > o.max_fallback_fraction) return Trigger::kFallback;
-  if ((o.anisotropic_scale ? e.resample_aniso : e.resample_scale) > o.max_resample_scale)
+  if ((o.anisotropic_scale ? e.resample_aniso : e.resample_scale) > scale_trigger_limit(o, e))
     return Trigger::kScale;
   return std::nullopt;
 }

@@ -94,6 +94,7 @@ TEST(BenchLodsprite, BadOptionsExitWithStatus2) {
   EXPECT_EQ(run("bench lodsprite --size 0x0"), 2);
   EXPECT_EQ(run("bench lodsprite --key-margin 0.7"), 2);
   EXPECT_EQ(run("bench lodsprite --key-supersample 0.5"), 2);
+  EXPECT_EQ(run("bench lodsprite --scale-per-drape-px -1"), 2);
   EXPECT_EQ(run("bench lodsprite --key-margin 0.1 --metric contrast"), 2);
 }
 
@@ -126,6 +127,8 @@ TEST(BenchLodsprite, KeyFramingIsRecorded) {
   const nlohmann::json d = nlohmann::json::parse(f);
   EXPECT_EQ(d["key_margin"], 0.125);
   EXPECT_EQ(d["key_supersample"], 1.25);
+  EXPECT_EQ(d["scale_per_drape_px"], 0.0625);
+  EXPECT_TRUE(d["per_frame"][0].contains("drape_px"));
   EXPECT_GE(d["sprite"]["keyframes"].get<int>(), 1);
 }
 

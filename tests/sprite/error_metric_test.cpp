@@ -146,6 +146,35 @@ TEST(SharpDrape, DeviationCountsAcrossTheViewRay) {
   EXPECT_TRUE(drape_is_sharp(g, q, steep, size, 1.05));
 }
 
+// The view's drape error: the RMS over the in-view cells of each cell's
+// drape_displacement_px. One bump in one cell moves plain LOD's image by
+// 2 px edge-on, the other cells by nothing; from straight above by nothing.
+TEST(ErrorMetric, DrapePxIsTheRmsDrapeDisplacementOverTheView) {
+  Heightfield h = flat(65, 10.0);
+  const double b = 20.0;
+  h.at(24, 24) = float(b);
+  CoarseGrid g = make_coarse_grid(h, 4);
+  const int q = 1 * 4 + 1;
+  const glm::dvec3 C = g.centre[q];
+  const int size = 512;
+  const double pixel = overhead(C, 3000.0).pixel_angle(size);
+  const double D = b / (2.0 * pixel);
+  const Camera edge_on = Camera::look_at(C + glm::dvec3(D, 0, 0), C, 60.0, 1.0);
+  EXPECT_NEAR(drape_displacement_px(g, q, edge_on, size), 2.0, 1e-9);
+  KeyframeSamples k = make_keyframe_samples(g, edge_on, size, size, all_visible(g));
+  const SpriteError e = sprite_error(g, k, edge_on);
+  ASSERT_GT(e.in_view, 1);
+  EXPECT_NEAR(e.drape_px, 2.0 / std::sqrt(double(e.in_view)), 1e-9);
+  // Cells hidden in the keyframe count too: the drape error is the view's.
+  std::vector<std::uint8_t> none(g.quad_count(), 0);
+  KeyframeSamples hidden = make_keyframe_samples(g, edge_on, size, size, none);
+  EXPECT_DOUBLE_EQ(sprite_error(g, hidden, edge_on).drape_px, e.drape_px);
+  const Camera above = overhead(C, 3000.0);
+  EXPECT_NEAR(
+      sprite_error(g, make_keyframe_samples(g, above, size, size, all_visible(g)), above).drape_px,
+      0.0, 1e-9);
+}
+
 TEST(ErrorMetric, ResampleScaleIsTheChangeInPixelFootprint) {
   Heightfield h = flat(65, 10.0);
   CoarseGrid g = make_coarse_grid(h, 4);

@@ -9,6 +9,7 @@
 
 #include "sprite_test_util.h"
 #include "terrasprite/camera_path.h"
+#include "terrasprite/error.h"
 #include "terrasprite/gl_context.h"
 #include "terrasprite/mesh_renderer.h"
 #include "terrasprite/terrain_gen.h"
@@ -172,6 +173,41 @@ TEST(SpriteRenderer, GeometryFromOutsideTheKeyframeIsTextured) {
     }
   EXPECT_EQ(blank, 0);
   EXPECT_GT(psnr(lod.render(east).color, f.color), 35.0);
+}
+
+// The scale trigger's limit: the constant where plain LOD is nearly right,
+// 1 + k x its drape error where that is higher.
+TEST(ScaleTrigger, GivesWayWherePlainLodIsFarOff) {
+  SpriteOptions o;  // 1.25, k = 1/16
+  SpriteError e;
+  EXPECT_DOUBLE_EQ(scale_trigger_limit(o, e), 1.25);
+  e.drape_px = 4.0;  // 1 + 4/16 = 1.25
+  EXPECT_DOUBLE_EQ(scale_trigger_limit(o, e), 1.25);
+  e.drape_px = 8.0;
+  EXPECT_DOUBLE_EQ(scale_trigger_limit(o, e), 1.5);
+  o.scale_per_drape_px = 0;
+  EXPECT_DOUBLE_EQ(scale_trigger_limit(o, e), 1.25);
+  o.max_resample_scale = INFINITY;
+  o.scale_per_drape_px = 1.0 / 16;
+  EXPECT_EQ(scale_trigger_limit(o, e), INFINITY);
+}
+
+// The renderer's decision reads that limit. CI cost: ~0.1 s.
+TEST(SpriteRenderer, ScaleTriggerReadsTheDrapeError) {
+  GlContext gl;
+  Terrain t = gentle_hills(33);
+  Scene scene(t);
+  SpriteRenderer r(scene, 64, 64, {.lod_quads = 4});
+  SpriteError e;
+  e.resample_scale = 1.4;
+  e.drape_px = 1.0;
+  EXPECT_EQ(r.trigger_for(e), Trigger::kScale);
+  e.drape_px = 8.0;  // limit 1.5
+  EXPECT_EQ(r.trigger_for(e), std::nullopt);
+  SpriteRenderer constant(scene, 64, 64, {.lod_quads = 4, .scale_per_drape_px = 0});
+  EXPECT_EQ(constant.trigger_for(e), Trigger::kScale);
+  EXPECT_THROW(SpriteRenderer(scene, 64, 64, {.lod_quads = 4, .scale_per_drape_px = -1}),
+               InputError);
 }
 
 TEST(SpriteRenderer, KeyframeTriggerFiresWhenTheThresholdIsExceededAndNotBefore) {

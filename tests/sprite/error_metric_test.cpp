@@ -121,20 +121,33 @@ TEST(ErrorMetric, OnlyVisibleCentresCount) {
   EXPECT_NEAR(e.exact_px, 0.0, 1e-9);
 }
 
-// A bump of b metres at one quad centre: the drape moves the image by b's
-// component across the ray, none from straight above, all of it edge-on.
+// A bump of b = 20 m at the centre C of quad q of a flat 4 x 4 grid; the
+// distance from C at which, edge-on, it moves a 512-pixel image 2 pixels.
+struct OneBump {
+  static constexpr double b = 20.0;
+  static constexpr int q = 1 * 4 + 1, size = 512;
+  CoarseGrid g;
+  glm::dvec3 C;
+  double two_px_distance;
+  OneBump() {
+    Heightfield h = flat(65, 10.0);
+    h.at(24, 24) = float(b);
+    g = make_coarse_grid(h, 4);
+    C = g.centre[q];
+    two_px_distance = b / (2.0 * overhead(C, 3000.0).pixel_angle(size));
+  }
+};
+
+// The drape moves the image by b's component across the ray, none from
+// straight above, all of it edge-on.
 TEST(SharpDrape, DeviationCountsAcrossTheViewRay) {
-  Heightfield h = flat(65, 10.0);
-  const double b = 20.0;
-  h.at(24, 24) = float(b);
-  CoarseGrid g = make_coarse_grid(h, 4);
-  const int q = 1 * 4 + 1;
-  ASSERT_DOUBLE_EQ(g.max_deviation[q], b);
-  const glm::dvec3 C = g.centre[q];
-  const int size = 512;
+  const OneBump bump;
+  const CoarseGrid& g = bump.g;
+  const glm::dvec3 C = bump.C;
+  const int q = bump.q, size = bump.size;
+  ASSERT_DOUBLE_EQ(g.max_deviation[q], bump.b);
   EXPECT_TRUE(drape_is_sharp(g, q, overhead(C, 3000.0), size, 1e-3));
-  const double pixel = overhead(C, 3000.0).pixel_angle(size);
-  const double D = b / (2.0 * pixel);  // edge-on the bump moves the image 2 pixels
+  const double D = bump.two_px_distance;
   const Camera edge_on = Camera::look_at(C + glm::dvec3(D, 0, 0), C, 60.0, 1.0);
   EXPECT_FALSE(drape_is_sharp(g, q, edge_on, size, 1.9));
   EXPECT_TRUE(drape_is_sharp(g, q, edge_on, size, 2.1));
@@ -150,15 +163,11 @@ TEST(SharpDrape, DeviationCountsAcrossTheViewRay) {
 // drape_displacement_px. One bump in one cell moves plain LOD's image by
 // 2 px edge-on, the other cells by nothing; from straight above by nothing.
 TEST(ErrorMetric, DrapePxIsTheRmsDrapeDisplacementOverTheView) {
-  Heightfield h = flat(65, 10.0);
-  const double b = 20.0;
-  h.at(24, 24) = float(b);
-  CoarseGrid g = make_coarse_grid(h, 4);
-  const int q = 1 * 4 + 1;
-  const glm::dvec3 C = g.centre[q];
-  const int size = 512;
-  const double pixel = overhead(C, 3000.0).pixel_angle(size);
-  const double D = b / (2.0 * pixel);
+  const OneBump bump;
+  const CoarseGrid& g = bump.g;
+  const glm::dvec3 C = bump.C;
+  const int q = bump.q, size = bump.size;
+  const double D = bump.two_px_distance;
   const Camera edge_on = Camera::look_at(C + glm::dvec3(D, 0, 0), C, 60.0, 1.0);
   EXPECT_NEAR(drape_displacement_px(g, q, edge_on, size), 2.0, 1e-9);
   KeyframeSamples k = make_keyframe_samples(g, edge_on, size, size, all_visible(g));

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <glm/gtc/type_ptr.hpp>
-#include <numeric>
 #include <string>
 #include <utility>
 
@@ -99,20 +98,7 @@ void SpritePass::composite_keyframe(const Keyframe& key) {
   glDepthFunc(GL_GREATER);
 }
 
-void front_to_back_cells(const CoarseGrid& grid, glm::dvec3 eye, std::vector<int>& order) {
-  const std::size_t n = static_cast<std::size_t>(grid.quad_count());
-  std::vector<double> distance2(n);
-  for (std::size_t q = 0; q < n; ++q) {
-    const glm::dvec2 d = glm::dvec2(grid.centre[q]) - glm::dvec2(eye);
-    distance2[q] = glm::dot(d, d);
-  }
-  order.resize(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return distance2[a] < distance2[b]; });
-}
-
-void SpritePass::split(const GpuMesh& coarse, const CoarseGrid& grid, glm::dvec3 eye,
+void SpritePass::split(const GpuMesh& coarse, const CoarseGrid& grid,
                        std::span<const std::uint8_t> drape) {
   if (source_ != coarse.vertices.id() || grid_ != grid.serial) {
     source_ = coarse.vertices.id();
@@ -128,21 +114,14 @@ void SpritePass::split(const GpuMesh& coarse, const CoarseGrid& grid, glm::dvec3
       }
     }
     last_drape_.clear();
-    last_order_.clear();
   }
-  front_to_back_cells(grid, eye, order_);
-  if (std::equal(drape.begin(), drape.end(), last_drape_.begin(), last_drape_.end()) &&
-      order_ == last_order_)
-    return;
+  if (std::equal(drape.begin(), drape.end(), last_drape_.begin(), last_drape_.end())) return;
   last_drape_.assign(drape.begin(), drape.end());
-  last_order_ = order_;
   std::vector<std::uint32_t> key, rest;
   key.reserve(grid.triangles.size());
   rest.reserve(grid.triangles.size());
   key_quads_ = 0;
-  for (const int cell : order_) {
-    const std::size_t q = static_cast<std::size_t>(cell);
-    if (q >= drape.size() || q + 1 >= grid.cell_first.size()) continue;
+  for (std::size_t q = 0; q < drape.size() && q + 1 < grid.cell_first.size(); ++q) {
     std::vector<std::uint32_t>& to = drape[q] ? rest : key;
     key_quads_ += drape[q] ? 0 : 1;
     to.insert(to.end(), grid.triangles.begin() + grid.cell_first[q],
@@ -156,9 +135,9 @@ void SpritePass::split(const GpuMesh& coarse, const CoarseGrid& grid, glm::dvec3
 }
 
 void SpritePass::draw(TerrainGpu& scene, const GpuMesh& coarse, const CoarseGrid& grid,
-                      const Keyframe& key, const glm::mat4& vp, glm::dvec3 eye,
-                      std::span<const std::uint8_t> drape, bool lighting) {
-  split(coarse, grid, eye, drape);
+                      const Keyframe& key, const glm::mat4& vp, std::span<const std::uint8_t> drape,
+                      bool lighting) {
+  split(coarse, grid, drape);
   if (key_mesh_.index_count > 0) {
     // Clip space [-1, 1] to texture space [0, 1], folded into the matrix.
     const glm::mat4 bias(0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 1, 0, 0.5f, 0.5f, 0, 1);

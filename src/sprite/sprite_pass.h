@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The sprite frame's draws: the coarse grid split by class. Quads the
 // keyframe can texture take one projective fetch; the rest take the drape
-// texture, trilinear, through the plain terrain shader; nearest cells first.
+// texture, filtered by hand, through the plain terrain shader.
 #pragma once
 #include <cstdint>
 #include <span>
@@ -11,13 +11,6 @@
 #include "sprite/keyframe.h"
 
 namespace terrasprite {
-
-/// The cells of `grid` ordered by the horizontal distance of their centre
-/// sample (CoarseGrid::centre) from `eye`, nearest first, into `order`
-/// (resized to grid.quad_count()). Over a height field seen from above it,
-/// a nearer cell is rarely hidden behind a farther one, so drawing in this
-/// order lets the depth test reject most hidden fragments unshaded.
-void front_to_back_cells(const CoarseGrid& grid, glm::dvec3 eye, std::vector<int>& order);
 
 class SpritePass {
  public:
@@ -31,13 +24,10 @@ class SpritePass {
   /// projection (their vertices and centre were visible in it, so every
   /// fragment lands inside it; a fragment on its sky is discarded, where the
   /// coarse mesh sticks out past the true silhouette); the others take the
-  /// drape. Within each class cells are drawn nearest to `eye` (metres)
-  /// first (front_to_back_cells), so the depth test rejects hidden fragments
-  /// before they are shaded. The split index lists are re-uploaded only when
-  /// the grid, `drape` or that order differs from the last call's.
+  /// hand-filtered drape. The split index lists are re-uploaded only when the
+  /// grid or `drape` differs from the last call's.
   void draw(TerrainGpu& scene, const GpuMesh& coarse, const CoarseGrid& grid, const Keyframe& key,
-            const glm::mat4& view_projection, glm::dvec3 eye, std::span<const std::uint8_t> drape,
-            bool lighting);
+            const glm::mat4& view_projection, std::span<const std::uint8_t> drape, bool lighting);
   /// Copies `key` into the bound target: colour over the sky, and its depth;
   /// of a keyframe with a margin (KeyframeFraming) only the view's part,
   /// resampled bilinearly when the keyframe is supersampled.
@@ -46,8 +36,7 @@ class SpritePass {
   int keyframe_quads() const { return key_quads_; }
 
  private:
-  void split(const GpuMesh& coarse, const CoarseGrid& grid, glm::dvec3 eye,
-             std::span<const std::uint8_t> drape);
+  void split(const GpuMesh& coarse, const CoarseGrid& grid, std::span<const std::uint8_t> drape);
 
   gl::Program program_;  // keyframe-textured quads: one projective fetch
   gl::Program composite_;
@@ -58,7 +47,6 @@ class SpritePass {
   GLuint source_ = 0;       // vertex buffer the split meshes point at
   std::uint64_t grid_ = 0;  // serial of the grid they were split from
   std::vector<std::uint8_t> last_drape_;
-  std::vector<int> order_, last_order_;
   int key_quads_ = 0;
 };
 

@@ -317,7 +317,7 @@ void SpriteRenderer::draw_sprite_pass(const Camera& camera) {
   const GpuMesh& coarse = s.coarse_gpu(terrain);
   begin_output();
   s.pass.draw(terrain, coarse, g, s.current(), glm::mat4(gl::view_projection_reversed_z(camera)),
-              camera.position, s.flags, s.options.lighting);
+              s.flags, s.options.lighting);
 }
 
 Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {

@@ -15,26 +15,48 @@
 namespace terrasprite::warp {
 namespace {
 
-// Where real pixels [i0, i1) of row j land: the output pixel index (or
-// kNowhere: sky, behind the eye or outside) and depth. No branches, so the
-// loop vectorises; the depth test is the caller's.
 constexpr std::uint32_t kNowhere = ~0u;
 constexpr int kSplatSpan = 256;
 
+// One real row's landing arithmetic, held in locals so the loops below
+// vectorise (nothing they store can alias it).
+struct RowLanding {
+  glm::vec3 base, step, o;
+  float mx, my, fx, fy, fw, fh;
+  RowLanding(const SplatMap& map, int j, int w, int h)
+      : base(map.row_base(j)),
+        step(map.step),
+        o(map.offset),
+        mx(map.mx),
+        my(map.my),
+        fx(map.fx),
+        fy(map.fy),
+        fw(float(w)),
+        fh(float(h)) {}
+  // Real pixel i at depth z: new-image position (x, y), depth qz, and
+  // whether it lands in the image. No branches; z = +inf (sky) makes q
+  // infinite or NaN, so every test fails.
+  bool land(float z, int i, float& x, float& y, float& qz) const {
+    const float fi = float(i);
+    const float qx = z * (base.x + fi * step.x) + o.x, qy = z * (base.y + fi * step.y) + o.y;
+    qz = z * (base.z + fi * step.z) + o.z;
+    const float inv = 1.0f / std::max(qz, 1e-3f);
+    x = mx + fx * qx * inv;
+    y = my - fy * qy * inv;
+    return (z < Frame::kSky) & (qz > 1e-3f) & (x >= 0.f) & (y >= 0.f) & (x < fw) & (y < fh);
+  }
+};
+
+// Where real pixels [i0, i1) of row j land: the output pixel index (or
+// kNowhere: sky, behind the eye or outside) and depth. No branches, so the
+// loop vectorises; the depth test is the caller's.
 TS_CLONES_AVX2
 void land_span(const SplatMap& map, const float* __restrict depth, int i0, int i1, int j, int w,
                int h, std::uint32_t* __restrict target, float* __restrict zt) {
-  const glm::vec3 base = map.row_base(j), step = map.step, o = map.offset;
-  const float mx = map.mx, my = map.my, fx = map.fx, fy = map.fy, fw = float(w), fh = float(h);
+  const RowLanding row(map, j, w, h);
   for (int i = i0; i < i1; ++i) {
-    const float z = depth[i], fi = float(i);
-    const float qx = z * (base.x + fi * step.x) + o.x, qy = z * (base.y + fi * step.y) + o.y;
-    const float qz = z * (base.z + fi * step.z) + o.z;
-    const float inv = 1.0f / std::max(qz, 1e-3f);
-    const float x = mx + fx * qx * inv, y = my - fy * qy * inv;
-    // z = +inf (sky) makes q infinite or NaN: every test below fails.
-    const bool in =
-        (z < Frame::kSky) & (qz > 1e-3f) & (x >= 0.f) & (y >= 0.f) & (x < fw) & (y < fh);
+    float x, y, qz;
+    const bool in = row.land(depth[i], i, x, y, qz);
     const int xi = int(in ? x : 0.f), yi = int(in ? y : 0.f);
     target[i - i0] = in ? std::uint32_t(yi * w + xi) : kNowhere;
     zt[i - i0] = qz;
@@ -47,20 +69,13 @@ void land_span(const SplatMap& map, const float* __restrict depth, int i0, int i
 TS_CLONES_AVX2
 void span_rows(const SplatMap& map, const float* __restrict depth, int i0, int i1, int j, int w,
                int h, int& lo, int& hi) {
-  const glm::vec3 base = map.row_base(j), step = map.step, o = map.offset;
-  const float mx = map.mx, my = map.my, fx = map.fx, fy = map.fy, fw = float(w), fh = float(h);
+  const RowLanding row(map, j, w, h);
   int a = h, b = -1;
   for (int i = i0; i < i1; ++i) {
-    const float z = depth[i], fi = float(i);
-    const float qx = z * (base.x + fi * step.x) + o.x, qy = z * (base.y + fi * step.y) + o.y;
-    const float qz = z * (base.z + fi * step.z) + o.z;
-    const float inv = 1.0f / std::max(qz, 1e-3f);
-    const float x = mx + fx * qx * inv, y = my - fy * qy * inv;
-    const bool in =
-        (z < Frame::kSky) & (qz > 1e-3f) & (x >= 0.f) & (y >= 0.f) & (x < fw) & (y < fh);
+    float x, y, qz;
+    const bool in = row.land(depth[i], i, x, y, qz);
     // Out-of-image rows pushed past the ends, so min and max skip them.
-    const float ylo = in ? y : fh, yhi = in ? y : -1.f;
-    const int lo_i = int(ylo), hi_i = int(yhi);
+    const int lo_i = int(in ? y : row.fh), hi_i = int(in ? y : -1.f);
     a = a < lo_i ? a : lo_i;
     b = b > hi_i ? b : hi_i;
   }

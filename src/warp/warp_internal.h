@@ -14,7 +14,9 @@ namespace terrasprite {
 
 /// Per-Warper scratch the depth warp reuses between calls.
 struct Warper::Scratch {
-  std::vector<std::uint32_t> win;  ///< splat winners (real-pixel keys), one per output pixel
+  std::vector<std::uint32_t> win;       ///< splat winners (real-pixel keys), one per output pixel
+  std::vector<float> win_depth;         ///< their new-camera depths (where win holds a key)
+  std::vector<std::int32_t> span_rows;  ///< per real-frame span: output rows it lands in
 };
 
 namespace warp {

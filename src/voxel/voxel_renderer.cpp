@@ -109,10 +109,23 @@ std::string VoxelRenderer::name() const {
 
 Frame VoxelRenderer::draw(const Camera& camera) {
   Frame out;
-  out.color = Image(s_->w, s_->h);
-  out.depth.assign(static_cast<std::size_t>(s_->w) * s_->h, Frame::kSky);
+  draw_into(camera, out);
+  return out;
+}
+
+void VoxelRenderer::draw_into(const Camera& camera, Frame& out) {
+  const std::size_t n = std::size_t(s_->w) * s_->h;
+  // Both passes write every pixel: a buffer of the right size is reused as
+  // it is (no clear), a fresh one sized once.
+  if (out.color.width != s_->w || out.color.height != s_->h || out.color.rgba.size() != n * 4)
+    out.color = Image(s_->w, s_->h);
+  out.color.geo.reset();
+  if (out.depth.size() != n) out.depth.assign(n, Frame::kSky);
   out.cls = "voxel";
   out.camera = camera;
+  out.gpu_ms = -1.0;
+  out.triangles = 0;
+  out.width_px = out.height_px = 0;
   const auto start = std::chrono::steady_clock::now();
   s_->arena.execute([&] {
     if (s_->options.variant == VoxelVariant::kNaive)
@@ -122,7 +135,6 @@ Frame VoxelRenderer::draw(const Camera& camera) {
   });
   out.ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  return out;
 }
 
 void VoxelRenderer::State::naive(const Camera& cam, Frame& out) {

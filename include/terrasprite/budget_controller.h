@@ -12,8 +12,20 @@ struct BudgetControllerOptions {
   double target_ms = 100;
   double kp = 0.1;   ///< proportional gain on the relative error (target - measured) / target
   double ki = 0.05;  ///< integral gain (per frame)
-  /// measured / predicted is smoothed with this weight for the newest frame.
+  /// measured / predicted is smoothed with at most this weight for the
+  /// newest frame (see `drift`).
   double ratio_smoothing = 0.6;
+  /// How far the true measured / predicted ratio moves per frame (log
+  /// domain, standard deviation): the weight of the newest frame is the
+  /// steady-state gain of a Kalman filter following such a random walk
+  /// through the frames' own noise (the robust spread of the residuals
+  /// below, once 8 are in), capped at `ratio_smoothing`. At 2% noise the
+  /// cap holds (a step in load is followed within 4 frames); at the quiet
+  /// walkthrough's 25% the weight is about 0.2: at 0.6 the budget followed
+  /// the noise (a fast frame raised the next budget, which made it slow;
+  /// budgets moved 14% frame to frame and checkpoints fell on budgets half
+  /// the median's).
+  double drift = 0.05;
   /// A frame whose measured/predicted ratio is this many times over (or
   /// under) the smoothed one is a one-off surprise: it neither moves the
   /// ratio nor the integral. Only one frame in a row: the second such frame
@@ -56,6 +68,8 @@ class BudgetController {
   /// representations and what the frame took.
   void update(double predicted_ms, double measured_ms);
   double ratio() const { return ratio_; }
+  /// The weight the next frame's ratio gets in the smoothing (see `drift`).
+  double gain() const;
   /// Whether the last frame was set aside as a one-off surprise.
   bool last_was_surprise() const { return surprise_; }
   /// The frame time the loop currently aims at (see `z`), ms.

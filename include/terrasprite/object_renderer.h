@@ -72,6 +72,17 @@ class GlModel {
   void draw(const Representation& rep, std::span<const ObjectInstance> instances,
             const Camera& camera);
 
+  /// One representation and the instances drawn with it.
+  struct Group {
+    Representation rep;
+    std::span<const ObjectInstance> instances;
+  };
+  /// Draws every group as `draw` does, their instances written to the GPU
+  /// in one upload first. Writing the instance buffer while a queued draw
+  /// reads it makes llvmpipe drain its pipeline: one group at a time, every
+  /// group after a model's first waited for the previous one to finish.
+  void draw(std::span<const Group> groups, const Camera& camera);
+
   struct Impl;
 
  private:

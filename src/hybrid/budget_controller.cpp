@@ -30,9 +30,8 @@ void BudgetController::update(double predicted_ms, double measured_ms) {
     if (!first_) changes_.push_back(std::abs(std::log(r) - last_log_ratio_));
     while (int(changes_.size()) > std::max(1, o_.spread_window)) changes_.pop_front();
     last_log_ratio_ = std::log(r);
-    ratio_ = first_ ? r
-                    : std::exp((1 - o_.ratio_smoothing) * std::log(ratio_) +
-                               o_.ratio_smoothing * std::log(r));
+    const double w = gain();
+    ratio_ = first_ ? r : std::exp((1 - w) * std::log(ratio_) + w * std::log(r));
     first_ = false;
     const double setpoint = setpoint_ms();
     const double error = std::clamp((setpoint - measured_ms) / o_.target_ms, -1.0, 1.0);
@@ -40,6 +39,22 @@ void BudgetController::update(double predicted_ms, double measured_ms) {
     const double correction = std::max(0.1, 1.0 + o_.kp * error + integral_);
     budget_ms_ = setpoint / ratio_ * correction;
   }
+}
+
+double BudgetController::gain() const {
+  if (residuals_.size() < 8 || !(o_.drift > 0)) return o_.ratio_smoothing;
+  // Robust spread of the residuals: their median absolute deviation.
+  std::vector<double> e(residuals_.begin(), residuals_.end());
+  const auto mid = e.begin() + std::ptrdiff_t(e.size() / 2);
+  std::nth_element(e.begin(), mid, e.end());
+  const double m = *mid;
+  for (double& x : e) x = std::abs(x - m);
+  std::nth_element(e.begin(), mid, e.end());
+  const double r = std::max(1e-8, std::pow(*mid / 0.6745, 2)), q = o_.drift * o_.drift;
+  // The steady-state Kalman gain for x' = x + N(0, q) seen as x + N(0, r):
+  // the prior variance M solves M^2 = q M + q r, gain M / (M + r).
+  const double k = (-q + std::sqrt(q * q + 4 * q * r)) / (2 * r);
+  return std::min(o_.ratio_smoothing, k);
 }
 
 double BudgetController::noise() const {
@@ -69,7 +84,7 @@ double BudgetController::setpoint_ms() const {
   // Too few frames yet: the budget follows the smoothed ratio, which carries
   // w / (2 - w) of the frames' noise variance into the next frame: the
   // spread to cover is the frame's own and the budget's together.
-  const double w = o_.ratio_smoothing;
+  const double w = gain();
   const double sigma = noise() * std::sqrt(1 + w / (2 - w));
   return clamped(o_.tolerance * std::exp(-o_.z * sigma));
 }

@@ -216,7 +216,16 @@ long long HybridObjects::draw(const Camera& camera) {
   st.predicted_ms = s.cost.predict(s.load);
   s.draw_gap_ms = std::max(0.0, st.predicted_ms - s.cost.frame_ms() - sel.cost_ms);
   st.draw_gap_ms = s.draw_gap_ms;
-  for (auto& [key, g] : groups) s.set.model(std::get<0>(key)).draw(g.first, g.second, camera);
+  // Per model, all its groups at once: one upload of their instances.
+  std::vector<GlModel::Group> batch;
+  for (auto it = groups.begin(); it != groups.end(); ++it) {
+    batch.push_back({it->second.first, it->second.second});
+    const auto next = std::next(it);
+    if (next == groups.end() || std::get<0>(next->first) != std::get<0>(it->first)) {
+      s.set.model(std::get<0>(it->first)).draw(batch, camera);
+      batch.clear();
+    }
+  }
   last_ = st;
   return st.triangles;
 }

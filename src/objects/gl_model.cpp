@@ -184,7 +184,7 @@ void GlModel::Impl::attach_instance_attributes(GLuint vao) {
   glVertexArrayBindingDivisor(vao, 1, 1);
 }
 
-void GlModel::Impl::upload_instances(std::span<const ObjectInstance> instances, GLuint vao) {
+void GlModel::Impl::upload_instances(std::span<const ObjectInstance> instances) {
   std::vector<objects::GpuInstance> data(instances.size());
   for (std::size_t i = 0; i < instances.size(); ++i) {
     const ObjectInstance& s = instances[i];
@@ -209,10 +209,18 @@ void GlModel::Impl::upload_instances(std::span<const ObjectInstance> instances, 
     uploaded.assign(reinterpret_cast<const std::uint8_t*>(data.data()),
                     reinterpret_cast<const std::uint8_t*>(data.data()) + bytes);
   }
+}
+
+void GlModel::Impl::bind_instances(GLuint vao) {
   glVertexArrayVertexBuffer(vao, 1, instance_buffer->id(), 0, sizeof(objects::GpuInstance));
 }
 
-void GlModel::Impl::draw_level_parts(int level, GLuint p, GLsizei count) {
+void GlModel::Impl::upload_instances(std::span<const ObjectInstance> instances, GLuint vao) {
+  upload_instances(instances);
+  bind_instances(vao);
+}
+
+void GlModel::Impl::draw_level_parts(int level, GLuint p, GLsizei count, GLuint first) {
   const objects::GpuLevel& g = levels[level];
   glBindVertexArray(g.vao.id());
   for (const MeshPart& part : g.parts) {
@@ -221,9 +229,9 @@ void GlModel::Impl::draw_level_parts(int level, GLuint p, GLsizei count) {
     glUniform1i(glGetUniformLocation(p, "u_textured"), mat.texture >= 0 ? 1 : 0);
     glUniform1i(glGetUniformLocation(p, "u_texture"), 0);
     if (mat.texture >= 0) glBindTextureUnit(0, textures[mat.texture].id());
-    glDrawElementsInstanced(GL_TRIANGLES, GLsizei(part.index_count), GL_UNSIGNED_INT,
-                            reinterpret_cast<const void*>(std::uintptr_t(part.first_index) * 4),
-                            count);
+    glDrawElementsInstancedBaseInstance(
+        GL_TRIANGLES, GLsizei(part.index_count), GL_UNSIGNED_INT,
+        reinterpret_cast<const void*>(std::uintptr_t(part.first_index) * 4), count, first);
   }
 }
 
@@ -261,28 +269,45 @@ std::size_t GlModel::bytes(const Representation& rep) {
 
 void GlModel::draw(const Representation& rep, std::span<const ObjectInstance> instances,
                    const Camera& camera) {
-  if (instances.empty()) return;
-  check_representation(rep, *impl_);
+  const Group group{rep, instances};
+  draw(std::span(&group, 1), camera);
+}
+
+void GlModel::draw(std::span<const Group> groups, const Camera& camera) {
   Impl& m = *impl_;
-  const GLsizei count = GLsizei(instances.size());
-  if (rep.kind == ObjectKind::kMesh) {
-    m.upload_instances(instances, m.levels[rep.level].vao.id());
-    const GLuint p = m.mesh_program.id();
-    glUseProgram(p);
-    const glm::mat4 vp(gl::view_projection_reversed_z(camera));
-    glUniformMatrix4fv(glGetUniformLocation(p, "u_vp"), 1, GL_FALSE, glm::value_ptr(vp));
-    m.draw_level_parts(rep.level, p, count);
-    return;
+  std::vector<ObjectInstance> all;
+  for (const Group& g : groups) {
+    check_representation(g.rep, m);
+    all.insert(all.end(), g.instances.begin(), g.instances.end());
   }
-  if (rep.kind == ObjectKind::kRelief) {
-    const objects::ReliefImpostor& r = m.relief_impostor(rep.resolution);
-    m.upload_instances(instances, m.instance_vao.id());
-    m.draw_relief(r, count, camera);
-    return;
+  if (all.empty()) return;
+  // Impostors first built here would capture between draws.
+  for (const Group& g : groups) {
+    if (g.rep.kind == ObjectKind::kRelief) m.relief_impostor(g.rep.resolution);
+    if (g.rep.kind == ObjectKind::kOctahedral) m.octahedral_impostor(g.rep.resolution, g.rep.views);
   }
-  const objects::OctahedralImpostor& o = m.octahedral_impostor(rep.resolution, rep.views);
-  m.upload_instances(instances, m.instance_vao.id());
-  m.draw_octahedral(o, count, camera);
+  m.upload_instances(all);
+  GLuint first = 0;
+  for (const Group& g : groups) {
+    const GLsizei count = GLsizei(g.instances.size());
+    if (count == 0) continue;
+    if (g.rep.kind == ObjectKind::kMesh) {
+      m.bind_instances(m.levels[g.rep.level].vao.id());
+      const GLuint p = m.mesh_program.id();
+      glUseProgram(p);
+      const glm::mat4 vp(gl::view_projection_reversed_z(camera));
+      glUniformMatrix4fv(glGetUniformLocation(p, "u_vp"), 1, GL_FALSE, glm::value_ptr(vp));
+      m.draw_level_parts(g.rep.level, p, count, first);
+    } else {
+      m.bind_instances(m.instance_vao.id());
+      if (g.rep.kind == ObjectKind::kRelief)
+        m.draw_relief(m.relief_impostor(g.rep.resolution), count, first, camera);
+      else
+        m.draw_octahedral(m.octahedral_impostor(g.rep.resolution, g.rep.views), count, first,
+                          camera);
+    }
+    first += GLuint(count);
+  }
 }
 
 }  // namespace terrasprite

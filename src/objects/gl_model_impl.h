@@ -72,17 +72,23 @@ struct GlModel::Impl {
   std::map<int, objects::ReliefImpostor> relief;
   std::map<std::pair<int, int>, objects::OctahedralImpostor> octahedral;
 
+  /// Uploads the instances (skipped when the buffer holds them already).
+  void upload_instances(std::span<const ObjectInstance> instances);
   /// Uploads the instances; binds the buffer to `vao`'s binding 1.
   void upload_instances(std::span<const ObjectInstance> instances, GLuint vao);
+  void bind_instances(GLuint vao);
   void attach_instance_attributes(GLuint vao);
   /// Draws level `level` with `program` (its u_vp set by the caller): one
-  /// instanced draw per part, material colour and texture bound.
-  void draw_level_parts(int level, GLuint program, GLsizei count);
+  /// instanced draw per part, material colour and texture bound. Instances
+  /// `first` to `first + count - 1` of the bound instance buffer.
+  void draw_level_parts(int level, GLuint program, GLsizei count, GLuint first = 0);
 
   objects::ReliefImpostor& relief_impostor(int resolution);
   objects::OctahedralImpostor& octahedral_impostor(int resolution, int views);
-  void draw_relief(const objects::ReliefImpostor& r, GLsizei count, const Camera& camera);
-  void draw_octahedral(const objects::OctahedralImpostor& o, GLsizei count, const Camera& camera);
+  void draw_relief(const objects::ReliefImpostor& r, GLsizei count, GLuint first,
+                   const Camera& camera);
+  void draw_octahedral(const objects::OctahedralImpostor& o, GLsizei count, GLuint first,
+                       const Camera& camera);
 };
 
 namespace objects {

@@ -268,7 +268,7 @@ objects::OctahedralImpostor& GlModel::Impl::octahedral_impostor(int res, int vie
 }
 
 void GlModel::Impl::draw_octahedral(const objects::OctahedralImpostor& o, GLsizei count,
-                                    const Camera& camera) {
+                                    GLuint first, const Camera& camera) {
   const GLuint p = octahedral_program.id();
   glUseProgram(p);
   const glm::mat4 vp(gl::view_projection_reversed_z(camera));
@@ -289,7 +289,7 @@ void GlModel::Impl::draw_octahedral(const objects::OctahedralImpostor& o, GLsize
   glBindTextureUnit(0, o.albedo.id());
   glBindTextureUnit(1, o.geometry.id());
   glBindVertexArray(instance_vao.id());
-  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count);
+  glDrawArraysInstancedBaseInstance(GL_TRIANGLE_STRIP, 0, 4, count, first);
 }
 
 }  // namespace terrasprite

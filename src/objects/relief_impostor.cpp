@@ -211,7 +211,7 @@ objects::ReliefImpostor& GlModel::Impl::relief_impostor(int res) {
   return r;
 }
 
-void GlModel::Impl::draw_relief(const objects::ReliefImpostor& r, GLsizei count,
+void GlModel::Impl::draw_relief(const objects::ReliefImpostor& r, GLsizei count, GLuint first,
                                 const Camera& camera) {
   const GLuint p = relief_program.id();
   glUseProgram(p);
@@ -232,7 +232,7 @@ void GlModel::Impl::draw_relief(const objects::ReliefImpostor& r, GLsizei count,
   glBindTextureUnit(0, r.albedo.id());
   glBindTextureUnit(1, r.geometry.id());
   glBindVertexArray(instance_vao.id());
-  glDrawArraysInstanced(GL_TRIANGLES, 0, 36, count);
+  glDrawArraysInstancedBaseInstance(GL_TRIANGLES, 0, 36, count, first);
 }
 
 }  // namespace terrasprite

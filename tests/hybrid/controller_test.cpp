@@ -128,6 +128,41 @@ TEST(BudgetController, ABuildBesideItDoesNotStarveTheFrames) {
   EXPECT_NEAR(c.setpoint_ms(), 5.0, 1e-9);
 }
 
+TEST(BudgetController, NoisyFramesDoNotSwingTheBudget) {
+  // 25% noise (log-normal), nothing to follow: the ratio's weight falls to
+  // about 0.2 and the budget moves half as much frame to frame as with a
+  // fixed 0.6, with the 95th percentile of the frames no higher.
+  auto run = [](double drift, double& budget_change, double& p95) {
+    BudgetController c({.target_ms = 10, .drift = drift});
+    std::mt19937 rng{3};
+    std::vector<double> changes, ms;
+    double last = c.budget_ms();
+    for (int f = 0; f < 600; ++f) {
+      const double predicted = std::clamp(c.budget_ms(), 1.0, 100.0);
+      const double measured = predicted * std::exp(std::normal_distribution<double>(0, 0.25)(rng));
+      c.update(predicted, measured);
+      if (f < 40) continue;
+      changes.push_back(std::abs(std::log(c.budget_ms() / last)));
+      ms.push_back(measured);
+      last = c.budget_ms();
+    }
+    std::sort(changes.begin(), changes.end());
+    std::sort(ms.begin(), ms.end());
+    budget_change = changes[changes.size() / 2];
+    p95 = ms[std::size_t(0.95 * double(ms.size()))];
+    return c.gain();
+  };
+  double fixed_change = 0, fixed_p95 = 0, kalman_change = 0, kalman_p95 = 0;
+  EXPECT_DOUBLE_EQ(run(0, fixed_change, fixed_p95), 0.6);
+  const double gain = run(0.05, kalman_change, kalman_p95);
+  std::printf("25%% noise: gain %.2f; budget change %.3f (fixed 0.6: %.3f), p95 %.2f (%.2f)\n",
+              gain, kalman_change, fixed_change, kalman_p95, fixed_p95);
+  EXPECT_GT(gain, 0.1);
+  EXPECT_LT(gain, 0.3);
+  EXPECT_LT(kalman_change, 0.6 * fixed_change);
+  EXPECT_LT(kalman_p95, 1.05 * fixed_p95);
+}
+
 TEST(BudgetController, OneSurpriseFrameDoesNotThrowTheRestOff) {
   BudgetController c({.target_ms = 50});
   for (int f = 0; f < 20; ++f) c.update(c.budget_ms(), c.budget_ms());

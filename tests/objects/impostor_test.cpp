@@ -121,3 +121,30 @@ TEST_F(ImpostorTest, HalfHiddenBehindAWall) {
   const Shot b = shoot(target, cam, scene(relief), "wall_relief");
   EXPECT_GT(ts::quality::ssim(a.color.view(), b.color.view()).ssim, 0.99);
 }
+
+TEST_F(ImpostorTest, GroupsDrawnAtOnceMatchGroupsDrawnOneByOne) {
+  // Three boxes, each its own representation: one upload, three draws at
+  // their offsets in the instance buffer, as three separate draws would.
+  const ts::Camera cam = tstest::orbit({0, 0, 0.5}, 7.0, 20, 15);
+  const ts::Representation mesh{ts::ObjectKind::kMesh}, relief{ts::ObjectKind::kRelief, 0, 64},
+      oct{ts::ObjectKind::kOctahedral, 0, 64, 8};
+  gl_box.prepare(relief);
+  gl_box.prepare(oct);
+  target.bind_and_clear();  // prepare binds its own framebuffer
+  const ts::ObjectInstance left{{-1.6, 0, 0}, 30, 1}, mid{{0, 0, 0}, 0, 0.8},
+      right{{1.6, 0, 0}, -20, 1.2};
+  const std::vector<ts::GlModel::Group> groups = {
+      {mesh, std::span(&left, 1)}, {relief, std::span(&mid, 1)}, {oct, std::span(&right, 1)}};
+  const Shot one_by_one = shoot(
+      target, cam,
+      [&] {
+        for (const auto& g : groups) gl_box.draw(g.rep, g.instances, cam);
+      },
+      "groups_one_by_one");
+  const Shot at_once = shoot(
+      target, cam, [&] { gl_box.draw(groups, cam); }, "groups_at_once");
+  EXPECT_EQ(one_by_one.color.rgba, at_once.color.rgba);
+  int covered = 0;
+  for (float d : at_once.depth) covered += std::isfinite(d);
+  EXPECT_GT(covered, kSize * kSize / 20);
+}

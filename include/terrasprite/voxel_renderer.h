@@ -80,6 +80,10 @@ class VoxelRenderer : public Renderer {
   ~VoxelRenderer() override;
   /// Draws colour and depth straight into the returned Frame (CPU memory).
   Frame draw(const Camera& camera) override;
+  /// As draw(), into `target`: its colour and depth buffers are kept when
+  /// they already hold width x height pixels (every pixel is overwritten, so
+  /// nothing is cleared), else replaced.
+  void draw_into(const Camera& camera, Frame& target) override;
   /// Nothing to copy: draw() already filled colour and depth.
   void read_back(Frame&, ReadBack) override {}
   std::string name() const override;

@@ -77,6 +77,11 @@ class Warper {
                           const WarpOptions& options = {}, const Frame* second = nullptr);
   /// Moves the last result out (the next warp allocates again).
   WarpedFrame take();
+  /// Swaps the last result's frame with `frame`: the caller gets the warped
+  /// frame, and this Warper keeps `frame`'s buffers for the next warp (reused
+  /// when their size fits). Handing back the previous output frame each time
+  /// keeps a flythrough's warps free of allocation and page faults.
+  void exchange(Frame& frame);
   struct Scratch;  ///< the methods' working buffers (src/warp)
 
  private:

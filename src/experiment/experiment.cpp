@@ -128,16 +128,21 @@ ExperimentResult Experiment::run(CameraSource& cameras, const ExperimentOptions&
     }
 
   const int total = cameras.frames();
+  // One frame per participant, drawn into again each time (draw_into): a CPU
+  // renderer reuses its buffers instead of allocating a frame per draw. The
+  // reference's frame is frames[0], read by the others' scorers.
+  std::vector<Frame> frames(std::max<std::size_t>(1, all.size()));
   for (int i = 0;; ++i) {
     std::optional<Camera> camera = cameras.camera(i);
     if (!camera) break;
     const bool scored = reference_ && i % score_every == 0;
-    Frame ref;
+    const Frame& ref = frames[0];
     for (std::size_t k = 0; k < all.size(); ++k) {
       Participant& p = *all[k];
       const bool is_ref = reference_ && k == 0;
       if (is_ref ? !scored : i % std::max(1, p.every) != 0) continue;
-      Frame f = p.renderer->draw(p.camera_for ? p.camera_for(i, *camera) : *camera);
+      Frame& f = frames[k];
+      p.renderer->draw_into(p.camera_for ? p.camera_for(i, *camera) : *camera, f);
       FrameResult r = result_of(i, f);
       if (p.annotate) p.annotate(f, r);
       const bool score = !is_ref && scored && p.score;
@@ -148,7 +153,6 @@ ExperimentResult Experiment::run(CameraSource& cameras, const ExperimentOptions&
       if (o.on_frame) o.on_frame(i, p.name, f);
       if (o.on_result) o.on_result(p.name, r);
       if (o.keep_frames) result.runs[k].frames.push_back(std::move(r));
-      if (is_ref) ref = std::move(f);
     }
     result.frames = i + 1;
     if (o.progress) o.progress(i + 1, total);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "terrasprite/error.h"
 #include "warp/warp_internal.h"
@@ -96,6 +97,10 @@ const WarpedFrame& Warper::warp(const Frame& real, const Camera& target, int wid
 
 WarpedFrame Warper::take() {
   return std::move(result_);
+}
+
+void Warper::exchange(Frame& frame) {
+  std::swap(result_.frame, frame);
 }
 
 WarpedFrame warp_frame(const Frame& real, const Camera& target, int width, int height,

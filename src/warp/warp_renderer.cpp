@@ -3,6 +3,11 @@
 #include "terrasprite/warp_renderer.h"
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cstring>
 
 #include "terrasprite/error.h"
 
@@ -25,34 +30,68 @@ std::string WarpScheduler::name() const {
   return fmt::format("{}+warp-{}-every-{}", real_.name(), to_string(o_.warp.method), o_.real_every);
 }
 
+namespace {
+
+// The central w x h pixels of `src` (colour and depth) into `out`, whose
+// buffers are kept when their size fits: what warping the margin frame back
+// to its own camera returns, without the warp's fit and bilinear reads.
+void crop(const Frame& src, int x0, int y0, int w, int h, Frame& out) {
+  const std::size_t n = std::size_t(w) * h;
+  if (out.color.width != w || out.color.height != h || out.color.rgba.size() != n * 4)
+    out.color = Image(w, h);
+  out.color.geo.reset();
+  out.depth.resize(n);
+  const int sw = src.color.width;
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 32), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      std::memcpy(out.color.px(0, y), src.color.rgba.data() + (std::size_t(y + y0) * sw + x0) * 4,
+                  std::size_t(w) * 4);
+      std::memcpy(out.depth.data() + std::size_t(y) * w,
+                  src.depth.data() + std::size_t(y + y0) * sw + x0, std::size_t(w) * sizeof(float));
+    }
+  });
+}
+
+}  // namespace
+
 Frame WarpScheduler::draw(const Camera& camera) {
+  Frame out;
+  draw_into(camera, out);
+  return out;
+}
+
+void WarpScheduler::draw_into(const Camera& camera, Frame& target) {
   const bool real = count_++ % o_.real_every == 0;
   if (real) {
-    Frame f =
-        real_.render(with_margin(camera, w_, h_, o_.margin_x, o_.margin_y), ReadBack::kColorDepth);
-    if (f.width() != w_ + 2 * o_.margin_x || f.height() != h_ + 2 * o_.margin_y)
-      throw InputError(fmt::format("warp: real renderer gave {}x{}, expected {}x{}", f.width(),
-                                   f.height(), w_ + 2 * o_.margin_x, h_ + 2 * o_.margin_y));
+    // The frame two real frames back is no longer read: its buffers take the
+    // new one.
+    std::unique_ptr<Frame> f = previous_ ? std::move(previous_) : std::make_unique<Frame>();
+    real_.draw_into(with_margin(camera, w_, h_, o_.margin_x, o_.margin_y), *f);
+    real_.read_back(*f, ReadBack::kColorDepth);
+    if (f->width() != w_ + 2 * o_.margin_x || f->height() != h_ + 2 * o_.margin_y ||
+        f->depth.size() != std::size_t(f->width()) * f->height())
+      throw InputError(fmt::format("warp: real renderer gave {}x{}, expected {}x{} with depth",
+                                   f->width(), f->height(), w_ + 2 * o_.margin_x,
+                                   h_ + 2 * o_.margin_y));
     previous_ = std::move(last_);
-    last_ = std::make_unique<Frame>(std::move(f));
-    // The same camera: the warp returns the central pixels exactly.
-    WarpOptions crop = o_.warp;
-    crop.method = WarpMethod::kPoly2;
-    crop.keep_sources = false;
-    warper_.warp(*last_, camera, w_, h_, crop);
-    WarpedFrame out = warper_.take();
-    out.frame.cls = last_->cls;
-    out.frame.ms += last_->ms;
-    out.frame.gpu_ms = last_->gpu_ms;
-    out.frame.triangles = last_->triangles;
+    last_ = std::move(f);
+    // The same camera: the central pixels.
+    const auto start = std::chrono::steady_clock::now();
+    crop(*last_, o_.margin_x, o_.margin_y, w_, h_, target);
+    target.ms =
+        last_->ms +
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    target.cls = last_->cls;
+    target.camera = camera;
+    target.gpu_ms = last_->gpu_ms;
+    target.triangles = last_->triangles;
+    target.width_px = target.height_px = 0;
     last_holes_ = 0;
-    return std::move(out.frame);
+    return;
   }
   const Frame* second = o_.second_reference ? previous_.get() : nullptr;
-  warper_.warp(*last_, camera, w_, h_, o_.warp, second);
-  WarpedFrame out = warper_.take();
-  last_holes_ = out.hole_fraction;
-  return std::move(out.frame);
+  last_holes_ = warper_.warp(*last_, camera, w_, h_, o_.warp, second).hole_fraction;
+  warper_.exchange(target);
 }
 
 }  // namespace terrasprite

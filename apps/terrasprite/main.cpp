@@ -22,15 +22,15 @@ std::string one_line(std::string s) {
   return s;
 }
 
-// Frames are allocated per draw: a 1080p colour + depth frame is 16 MB, and a
-// real frame with its warp margin more. By default glibc maps blocks that large
-// afresh (mmap) and returns freed heap tops to the system, so every frame
-// page-faults all its buffers again: about 30 us a page on our VM, 50-60 ms a
-// 1080p frame, which was most of a warped frame's time. Keep blocks up to 32 MB
-// (glibc's ceiling for this setting) on the heap and keep up to 128 MB of freed
-// heap instead of trimming it. Measured on `render --mode voxel --warp poly2
-// --real-every 4 --size 1920x1080 --path paper`: 20.1 -> 16.0 ms per output frame,
-// 142 MB peak resident.
+// Renderers that allocate a frame per draw (the GL ones' read-back, the
+// reference ray caster; the voxel flythrough and its warps reuse theirs, see
+// Renderer::draw_into) hand glibc blocks of megabytes: by default it maps them
+// afresh (mmap) and returns freed heap tops to the system, so each such frame
+// page-faults all its buffers again, about 30 us a page on our VM. Keep blocks
+// up to 32 MB (glibc's ceiling for this setting) on the heap and up to 128 MB
+// of freed heap. Measured before frames were reused, on `render --mode voxel
+// --warp poly2 --real-every 4 --size 1920x1080 --path paper`: 20.1 -> 16.0 ms
+// per output frame (the first warps had taken 56 ms instead of 3), 142 MB peak.
 void keep_frame_buffers_resident() {
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 128 << 20);

@@ -43,6 +43,22 @@ struct Frame {
   static constexpr float kSky = std::numeric_limits<float>::infinity();
   int width() const { return width_px > 0 ? width_px : color.width; }
   int height() const { return height_px > 0 ? height_px : color.height; }
+
+  /// Readies this frame for a writer of every colour and depth pixel at
+  /// `w` x `h`: buffers that already hold that many pixels are kept as they
+  /// are (not cleared: reusing them spares a flythrough an allocation and
+  /// its page faults each frame), others are replaced. Clears the colour's
+  /// georeference and the GL-only fields (gpu_ms, triangles, width_px,
+  /// height_px); cls, camera and ms are the writer's to set.
+  void prepare_for_overwrite(int w, int h) {
+    const std::size_t n = static_cast<std::size_t>(w) * h;
+    if (color.width != w || color.height != h || color.rgba.size() != n * 4) color = Image(w, h);
+    color.geo.reset();
+    depth.resize(n);
+    gpu_ms = -1.0;
+    triangles = 0;
+    width_px = height_px = 0;
+  }
 };
 
 }  // namespace terrasprite

@@ -127,18 +127,9 @@ Frame VoxelRenderer::draw(const Camera& camera) {
 }
 
 void VoxelRenderer::draw_into(const Camera& camera, Frame& out) {
-  const std::size_t n = std::size_t(s_->w) * s_->h;
-  // Both passes write every pixel: a buffer of the right size is reused as
-  // it is (no clear), a fresh one sized once.
-  if (out.color.width != s_->w || out.color.height != s_->h || out.color.rgba.size() != n * 4)
-    out.color = Image(s_->w, s_->h);
-  out.color.geo.reset();
-  if (out.depth.size() != n) out.depth.assign(n, Frame::kSky);
+  out.prepare_for_overwrite(s_->w, s_->h);  // both passes write every pixel
   out.cls = "voxel";
   out.camera = camera;
-  out.gpu_ms = -1.0;
-  out.triangles = 0;
-  out.width_px = out.height_px = 0;
   const auto start = std::chrono::steady_clock::now();
   s_->arena.execute([&] {
     if (s_->options.variant == VoxelVariant::kNaive)

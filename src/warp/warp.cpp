@@ -67,19 +67,12 @@ const WarpedFrame& Warper::warp(const Frame& real, const Camera& target, int wid
   const auto start = std::chrono::steady_clock::now();
   WarpedFrame& r = result_;
   const std::size_t n = std::size_t(width) * height;
-  // Sized once; the methods write every pixel, so nothing is cleared.
-  if (r.frame.color.width != width || r.frame.color.height != height ||
-      r.frame.color.rgba.size() != n * 4)
-    r.frame.color = Image(width, height);
-  r.frame.depth.resize(n);
+  r.frame.prepare_for_overwrite(width, height);  // the methods write every pixel
   r.holes.resize(n);
   r.source_x.resize(options.keep_sources ? n : 0);
   r.source_y.resize(options.keep_sources ? n : 0);
   r.frame.cls = "warp";
   r.frame.camera = target;
-  r.frame.gpu_ms = -1.0;
-  r.frame.triangles = 0;
-  r.frame.width_px = r.frame.height_px = 0;
   const warp::Reference ref(real);
   const warp::Pinhole out(target, width, height);
   if (options.method == WarpMethod::kPoly2) {

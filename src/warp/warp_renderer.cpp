@@ -36,11 +36,7 @@ namespace {
 // buffers are kept when their size fits: what warping the margin frame back
 // to its own camera returns, without the warp's fit and bilinear reads.
 void crop(const Frame& src, int x0, int y0, int w, int h, Frame& out) {
-  const std::size_t n = std::size_t(w) * h;
-  if (out.color.width != w || out.color.height != h || out.color.rgba.size() != n * 4)
-    out.color = Image(w, h);
-  out.color.geo.reset();
-  out.depth.resize(n);
+  out.prepare_for_overwrite(w, h);
   const int sw = src.color.width;
   tbb::parallel_for(tbb::blocked_range<int>(0, h, 32), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
@@ -85,7 +81,6 @@ void WarpScheduler::draw_into(const Camera& camera, Frame& target) {
     target.camera = camera;
     target.gpu_ms = last_->gpu_ms;
     target.triangles = last_->triangles;
-    target.width_px = target.height_px = 0;
     last_holes_ = 0;
     return;
   }

@@ -41,15 +41,28 @@ struct BenchWarpOpts {
 
 const WarpMethod kMethods[] = {WarpMethod::kPoly2, WarpMethod::kDepth};
 
-// Scores of one warped frame against its true render.
+// Scores of one warped frame against its true render, and what the camera did
+// since the real frame (to say where a method breaks).
 struct Score {
   double psnr, ssim, flip, psnr_masked, holes;
+  int frame = 0, k = 0;
+  double turn_deg = 0;     // angle between the real and the warped view direction
+  double moved_m = 0;      // eye displacement since the real frame
+  double clearance_m = 0;  // eye height above the ground below it
 };
 
 struct MethodRun {
   std::vector<double> warp_ms;
   std::vector<std::vector<Score>> by_k;  // [k - 1]
 };
+
+// How far camera `to` has turned and moved from `from`.
+void describe_motion(const Camera& from, const Camera& to, const Heightfield& ground, Score& s) {
+  const double c = std::clamp(glm::dot(from.forward(), to.forward()), -1.0, 1.0);
+  s.turn_deg = std::acos(c) * 180.0 / 3.14159265358979323846;
+  s.moved_m = glm::length(to.position - from.position);
+  s.clearance_m = to.position.z - ground.sample(to.position.x, to.position.y);
+}
 
 struct PathRun {
   std::string path;
@@ -102,7 +115,11 @@ PathRun run_path(const BenchWarpOpts& o, const std::string& spec, const Terrain&
         const Frame* second = kMethods[m] == WarpMethod::kDepth ? previous.get() : nullptr;
         const WarpedFrame& wf = warpers[m].warp(*real, path[i], w, h, wo, second);
         run.methods[m].warp_ms.push_back(wf.frame.ms);
-        run.methods[m].by_k[std::size_t(k - 1)].push_back(score(truth, wf));
+        Score sc = score(truth, wf);
+        sc.frame = i;
+        sc.k = k;
+        describe_motion(path[std::size_t(i - k)], path[std::size_t(i)], terrain.heights, sc);
+        run.methods[m].by_k[std::size_t(k - 1)].push_back(sc);
       }
     }
     progress(i + 1, int(path.size()));
@@ -131,8 +148,24 @@ nlohmann::json method_json(const PathRun& p, std::size_t m) {
                     {"psnr_masked", avg(&Score::psnr_masked)},
                     {"hole_fraction", avg(&Score::holes)}});
   }
+  // The worst-scoring warps (lowest PSNR), with the camera's motion: where
+  // the method breaks (turns, parallax near the ground, disocclusions).
+  std::vector<Score> all;
+  for (const auto& s : r.by_k) all.insert(all.end(), s.begin(), s.end());
+  std::sort(all.begin(), all.end(), [](const Score& a, const Score& b) { return a.psnr < b.psnr; });
+  nlohmann::json worst = nlohmann::json::array();
+  for (std::size_t i = 0; i < std::min<std::size_t>(all.size(), 5); ++i)
+    worst.push_back({{"frame", all[i].frame},
+                     {"k", all[i].k},
+                     {"psnr", num(all[i].psnr)},
+                     {"psnr_masked", num(all[i].psnr_masked)},
+                     {"hole_fraction", num(all[i].holes)},
+                     {"turn_deg", all[i].turn_deg},
+                     {"moved_m", all[i].moved_m},
+                     {"clearance_m", all[i].clearance_m}});
   return {{"name", to_string(kMethods[m])},
           {"path", p.path},
+          {"worst", worst},
           {"warp_ms_median", num(warp_ms)},
           {"real_ms_median", num(real_ms)},
           {"cost_fraction", num(warp_ms / std::max(real_ms, 1e-9))},

@@ -48,13 +48,13 @@ struct HybridOptions {
   /// Budgeted policies (not `full`, not `ibr`) may leave instances whose
   /// on-screen diameter is under this many pixels undrawn: such an instance
   /// also gets not_drawn_option() (cost 0, expected SSIM 0), weighed by the
-  /// policy like its other options, so it is left out only when the budget
-  /// cannot draw every visible instance at its cheapest and the instance's
-  /// benefit per millisecond is among the lowest. 0: every visible instance
-  /// is drawn. Without it the policy's floor (every visible instance at its
+  /// policy like its other options: it is left out when drawing it gains
+  /// less per millisecond than what the budget buys elsewhere, which a
+  /// tight budget makes likely. 0: every visible instance is drawn, at its
+  /// cheapest at least. Without it the floor (every visible instance at its
   /// cheapest) was over the budget at the walkthrough's checkpoint E, where
-  /// 180 of 354 instances are under 4 px: everything was drawn at its
-  /// cheapest, the nearest instances included.
+  /// 180 of 354 instances are under 4 px: every instance was drawn at its
+  /// cheapest, the nearest ones included.
   double cull_px = 0;
   BudgetControllerOptions controller;  ///< target_ms is set from target_ms above
   QualityStepOptions quality_step;     ///< likewise
@@ -65,7 +65,7 @@ struct HybridFrameStats {
   int visible = 0;
   double selection_ms = 0;    ///< view, options and policy, CPU wall time
   double policy_ms = 0;       ///< of which the policy and hysteresis
-  double predicted_ms = 0;    ///< cost model: terrain term + chosen objects
+  double predicted_ms = 0;    ///< cost model (terrain term + chosen objects) + selection_ms
   double budget_ms = 0;       ///< whole-frame budget handed to the policy (predicted ms)
   double target_quality = 0;  ///< the paper controller's SSIM target (others: the fixed one)
   double benefit = 0;         ///< sum of weight x expected SSIM

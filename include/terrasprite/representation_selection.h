@@ -26,8 +26,8 @@ struct RepresentationOption {
 /// The mesh level that marks an option as "not drawn": the instance is left
 /// out of the frame (no triangles, no cost, expected SSIM 0, the quality of
 /// an object that is not there). HybridOptions::cull_px offers it to small
-/// instances, so that the policy may leave them out when the budget is
-/// under the cost of drawing every visible instance at its cheapest.
+/// instances, so that the policy may leave them out instead of drawing
+/// every visible instance at least at its cheapest.
 inline constexpr int kNotDrawnLevel = -1;
 inline bool is_drawn(const Representation& r) {
   return !(r.kind == ObjectKind::kMesh && r.level == kNotDrawnLevel);

@@ -65,7 +65,7 @@ struct HybridFrameStats {
   int visible = 0;
   double selection_ms = 0;    ///< view, options and policy, CPU wall time
   double policy_ms = 0;       ///< of which the policy and hysteresis
-  double predicted_ms = 0;    ///< cost model (terrain term + chosen objects) + selection_ms
+  double predicted_ms = 0;    ///< cost model: terrain term + chosen objects
   double budget_ms = 0;       ///< whole-frame budget handed to the policy (predicted ms)
   double target_quality = 0;  ///< the paper controller's SSIM target (others: the fixed one)
   double benefit = 0;         ///< sum of weight x expected SSIM

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <deque>
 #include <map>
 #include <tuple>
 
@@ -49,19 +48,6 @@ struct HybridObjects::Impl {
   /// per-instance knapsack cannot see. Taken off the next frame's budget:
   /// under a 10 ms target the frames were predicted 1.7-2.5 ms over it.
   double draw_gap_ms = 0;
-  /// The selection's own time (view, options, policy) of the last frames:
-  /// CPU time inside the measured frame that no cost term covers. Left to
-  /// the online refit, it was taken for draw time of the instances (it
-  /// grows with the visible ones): at checkpoint E the predicted floor of
-  /// every instance at its cheapest rose from 0.65 ms (as calibrated) to
-  /// 4.5 ms along the walkthrough, and was over the budget.
-  std::deque<double> selection_ms;
-  double expected_selection_ms() const {
-    if (selection_ms.empty()) return 0.0;
-    std::vector<double> v(selection_ms.begin(), selection_ms.end());
-    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
-    return v[v.size() / 2];  // the median: a preempted frame's spike is not the next one's
-  }
 
   Impl(ObjectSet& s, const DrawCostModel& c, const HybridOptions& o)
       : set(s),
@@ -206,8 +192,7 @@ long long HybridObjects::draw(const Camera& camera) {
   st.budget_ms = budget;
   st.target_quality = po.target_ssim;
   const SelectionPolicy policy = scenario_.full ? SelectionPolicy::kStatic : scenario_.policy;
-  const double objects_budget =
-      budget - s.cost.frame_ms() - s.draw_gap_ms - s.expected_selection_ms();
+  const double objects_budget = budget - s.cost.frame_ms() - s.draw_gap_ms;
   FrameSelection sel = select_representations(policy, frame, objects_budget, po);
   if (o.use_hysteresis && !scenario_.full)
     st.switches = s.hysteresis.apply(frame, sel, objects_budget);
@@ -240,11 +225,8 @@ long long HybridObjects::draw(const Camera& camera) {
     st.instances_by_kind[std::size_t(r.kind)] += 1;
   }
   for (const auto& [key, g] : groups) s.load.kinds[std::size_t(std::get<1>(key))].draws += 1;
-  const double draw_ms = s.cost.predict(s.load);
-  st.predicted_ms = draw_ms + st.selection_ms;
-  s.draw_gap_ms = std::max(0.0, draw_ms - s.cost.frame_ms() - sel.cost_ms);
-  s.selection_ms.push_back(st.selection_ms);
-  if (s.selection_ms.size() > 9) s.selection_ms.pop_front();
+  st.predicted_ms = s.cost.predict(s.load);
+  s.draw_gap_ms = std::max(0.0, st.predicted_ms - s.cost.frame_ms() - sel.cost_ms);
   st.draw_gap_ms = s.draw_gap_ms;
   // Per model, all its groups at once: one upload of their instances.
   std::vector<GlModel::Group> batch;
@@ -268,7 +250,6 @@ void HybridObjects::forget_feedback() {
   s.quality_step = QualityStepController(s.options.quality_step);
   s.load = {};
   s.draw_gap_ms = 0;
-  s.selection_ms.clear();
 }
 
 void HybridObjects::feedback(double measured_ms) {
@@ -276,9 +257,7 @@ void HybridObjects::feedback(double measured_ms) {
   s.controller.update(last_.predicted_ms, measured_ms);
   s.quality_step.update(measured_ms);
   // A one-off surprise (an impostor build, a stall) says nothing about the terms.
-  // The selection's own time is known: the draw terms explain the rest.
-  const double draw_ms = measured_ms - last_.selection_ms;
-  if (!s.controller.last_was_surprise() && draw_ms > 0) s.cost.observe(s.load, draw_ms);
+  if (!s.controller.last_was_surprise()) s.cost.observe(s.load, measured_ms);
 }
 
 }  // namespace terrasprite

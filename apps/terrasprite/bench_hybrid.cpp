@@ -36,6 +36,7 @@ struct HybridArgs {
   std::string target = "auto";
   double full_over_target = 5;
   int frames = 160, score_every = 2, instances = 0, terrain_quads = 64;
+  double cull_px = 4;
   std::string table_sizes = "200,50,16", relief_resolutions = "32,64,128,256",
               octahedral_resolutions = "32,64,128";
   double table_angle_step = 45;
@@ -205,67 +206,13 @@ void annotate(const HybridObjects& objects, FrameResult& r) {
                 {"triangles_max", double(s.triangles_max)},
                 {"n_mesh", s.instances_by_kind[0]},
                 {"n_relief", s.instances_by_kind[1]},
-                {"n_octahedral", s.instances_by_kind[2]}};
+                {"n_octahedral", s.instances_by_kind[2]},
+                {"not_drawn", s.not_drawn},
+                {"floor_ms", s.floor_ms}};
   if (s.objective_greedy >= 0) {
     r.counters["objective_greedy"] = s.objective_greedy;
     r.counters["objective_optimal"] = s.objective_optimal;
   }
-}
-
-HybridScenarioResult summarise(const RendererRun& run, double target_ms,
-                               const std::vector<PathCheckpoint>& checkpoints) {
-  HybridScenarioResult s;
-  s.name = run.name;
-  s.frames = run.frames;
-  s.ms = run.ms();
-  int within = 0;
-  for (const FrameResult& f : run.frames) within += f.ms <= 1.1 * target_ms;
-  s.within_10pct = run.frames.empty() ? 0 : double(within) / double(run.frames.size());
-  const Summary q = run.quality("ssim"), qo = run.quality("ssim_objects");
-  s.mean_ssim = q.count ? q.mean : 1.0;
-  s.mean_ssim_objects = qo.count ? qo.mean : 1.0;
-  const Summary sw = run.counter("switches");
-  s.switches_per_frame = sw.count ? sw.mean : 0.0;
-  for (const PathCheckpoint& c : checkpoints) {
-    HybridCheckpoint hc{c.name, c.frame};
-    for (const FrameResult& f : run.frames)
-      if (f.frame == c.frame && f.quality) {
-        hc.ssim = f.quality->ssim;
-        hc.psnr = f.quality->psnr;
-        hc.flip = std::max(0.0, f.quality->flip);
-        const auto it = f.quality->figures.find("ssim_objects");
-        hc.ssim_objects = it != f.quality->figures.end() ? it->second : 1.0;
-      }
-    s.checkpoints.push_back(hc);
-  }
-  return s;
-}
-
-SelectionFigures selection_figures(const RendererRun& run) {
-  SelectionFigures f;
-  std::vector<double> ms;
-  double g = 0, o = 0;
-  for (const FrameResult& r : run.frames) {
-    ms.push_back(r.counters.at("selection_ms"));
-    const auto gi = r.counters.find("objective_greedy");
-    if (gi == r.counters.end()) continue;
-    const double og = gi->second, oo = r.counters.at("objective_optimal");
-    g += og;
-    o += oo;
-    const double gain = og > 0 ? (oo - og) / og : 0.0;
-    f.gain_mean += gain;
-    f.gain_max = std::max(f.gain_max, gain);
-    ++f.frames;
-  }
-  const Summary s = summarize(ms);
-  f.ms_per_frame = s.median;
-  f.ms_p95 = s.p95;
-  if (f.frames) {
-    f.objective_greedy = g / f.frames;
-    f.objective_optimal = o / f.frames;
-    f.gain_mean /= f.frames;
-  }
-  return f;
 }
 
 /// Checkpoints moved onto the nearest scored frame.
@@ -348,6 +295,7 @@ void run_bench(const HybridArgs& a) {
   HybridOptions ho;
   ho.width = w;
   ho.height = h;
+  ho.cull_px = a.cull_px;
   for (const TableOptions& o : table_sampling)
     for (int px : o.sizes_px) ho.max_impostor_size_px = std::max(ho.max_impostor_size_px, 2.0 * px);
   const std::vector<QualityTable> tables_as_measured = tables;
@@ -562,6 +510,11 @@ void add_bench_hybrid(CLI::App& bench) {
                   "auto target: full geometry's time over the target")
       ->capture_default_str();
   cmd->add_option("--size", a->size, "image size WxH")->capture_default_str();
+  cmd->add_option("--cull-px", a->cull_px,
+                  "budgeted scenarios may leave instances under this on-screen diameter (px) "
+                  "undrawn when the budget cannot draw every one at its cheapest (0: never)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--frames", a->frames, "frames along the path")
       ->capture_default_str()
       ->check(CLI::Range(2, 100000));

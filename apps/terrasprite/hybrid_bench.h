@@ -61,6 +61,14 @@ struct HybridBenchResult {
   std::vector<std::pair<std::string, Image>> figure6;
 };
 
+/// One scenario's run summarised (frame time against `target_ms`, quality
+/// at `checkpoints`: a checkpoint not scored keeps SSIM 1) (hybrid_summary.cpp).
+HybridScenarioResult summarise(const RendererRun& run, double target_ms,
+                               const std::vector<PathCheckpoint>& checkpoints);
+/// The selection's time per frame and the optimal policy's objective against
+/// greedy's over the frames that carry both (counters of `run`).
+SelectionFigures selection_figures(const RendererRun& run);
+
 nlohmann::json hybrid_json(const HybridBenchResult& r);
 /// Writes the .dat files, figures (gnuplot; a failure is a note), the Figure
 /// 6 images and index.html into `out`.

@@ -16,6 +16,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <tuple>
 
 #include "gl/render_target.h"
 #include "hybrid_bench.h"
@@ -389,18 +390,25 @@ nlohmann::json quality_budget_sweep(const BudgetSweepInput& in) {
     HybridObjects full(in.set, in.tables, in.cost, full_scenario, o);
     const Shot ref = shooter.shoot(full, cam, 3);
     const double full_predicted = full.last().predicted_ms;
-    std::vector<std::pair<HybridScenario, const std::vector<QualityTable>*>> runs;
+    // Each scenario as configured; from the tables as measured too; and,
+    // when small instances may be left out, with every instance drawn.
+    std::vector<std::tuple<HybridScenario, const std::vector<QualityTable>*, double>> runs;
     for (HybridScenario sc : in.scenarios) {
       sc.control = HybridScenario::Control::kFixed;
-      runs.push_back({sc, &in.tables});
+      runs.push_back({sc, &in.tables, in.options.cull_px});
+      if (in.options.cull_px > 0)
+        runs.push_back({{sc.name + " (all drawn)", sc.kinds, sc.policy, sc.full, sc.control},
+                        &in.tables,
+                        0.0});
       if (in.raw_tables) {
         sc.name += " (tables as measured)";
-        runs.push_back({sc, in.raw_tables});
+        runs.push_back({sc, in.raw_tables, in.options.cull_px});
       }
     }
     for (double f : in.fractions)
-      for (const auto& [sc, tables] : runs) {
+      for (const auto& [sc, tables, cull_px] : runs) {
         o.target_ms = f * full_predicted;
+        o.cull_px = cull_px;
         HybridObjects objects(in.set, *tables, in.cost, sc, o);
         objects.prepare();
         const Shot test = shooter.shoot(objects, cam, 3);

@@ -25,16 +25,22 @@ std::string dat_name(const std::string& scenario) {
 void write_frames(const HybridScenarioResult& s, OutputDir& out) {
   std::ostringstream f;
   f << "frame ms triangles triangles_min triangles_max predicted_ms budget_ms switches "
-       "selection_ms ssim\n";
+       "selection_ms ssim floor_ms not_drawn ssim_objects\n";
   for (const FrameResult& r : s.frames) {
     auto c = [&](const char* k) {
       const auto it = r.counters.find(k);
       return it == r.counters.end() ? std::string("NaN") : fmt::format("{}", it->second);
     };
-    f << fmt::format("{} {} {} {} {} {} {} {} {} {}\n", r.frame, r.ms, r.triangles,
+    auto figure = [&](const char* k) {
+      if (!r.quality) return std::string("NaN");
+      const auto it = r.quality->figures.find(k);
+      return it == r.quality->figures.end() ? std::string("NaN") : fmt::format("{}", it->second);
+    };
+    f << fmt::format("{} {} {} {} {} {} {} {} {} {} {} {} {}\n", r.frame, r.ms, r.triangles,
                      c("triangles_min"), c("triangles_max"), c("predicted_ms"), c("budget_ms"),
                      c("switches"), c("selection_ms"),
-                     r.quality ? fmt::format("{}", r.quality->ssim) : "NaN");
+                     r.quality ? fmt::format("{}", r.quality->ssim) : "NaN", c("floor_ms"),
+                     c("not_drawn"), figure("ssim_objects"));
   }
   write_text(out.file(dat_name(s.name)), f.str());
 }

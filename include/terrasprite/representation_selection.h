@@ -23,6 +23,19 @@ struct RepresentationOption {
   double error_px = 0;      ///< LOD level's geometric error on screen (meshes; 0 otherwise)
 };
 
+/// The mesh level that marks an option as "not drawn": the instance is left
+/// out of the frame (no triangles, no cost, expected SSIM 0, the quality of
+/// an object that is not there). HybridOptions::cull_px offers it to small
+/// instances, so that the policy may leave them out instead of drawing
+/// every visible instance at least at its cheapest.
+inline constexpr int kNotDrawnLevel = -1;
+inline bool is_drawn(const Representation& r) {
+  return !(r.kind == ObjectKind::kMesh && r.level == kNotDrawnLevel);
+}
+inline RepresentationOption not_drawn_option() {
+  return {Representation{ObjectKind::kMesh, kNotDrawnLevel, 0, 0}, 0.0, 0.0, 0.0, 0, 0.0};
+}
+
 /// One visible instance and its options (at least one).
 struct InstanceOptions {
   int instance = 0;    ///< caller's id, stable across frames (hysteresis keys on it)

@@ -142,6 +142,9 @@ long long HybridObjects::draw(const Camera& camera) {
                                 s.cost.instance_ms(f.rep, double(f.triangles), pixels, int(m)),
                                 q.ssim, q.psnr, f.triangles, err_px});
       }
+      if (o.cull_px > 0 && v.size_px < o.cull_px && !scenario_.full &&
+          scenario_.policy != SelectionPolicy::kImpostorOnly)
+        inst.options.push_back(not_drawn_option());
       long long lo = inst.options.front().triangles;
       for (const auto& opt : inst.options) lo = std::min(lo, opt.triangles);
       st.triangles_min += lo;
@@ -154,9 +157,14 @@ long long HybridObjects::draw(const Camera& camera) {
     // fixed cost: each visible instance of the model carries its share of it
     // (at most one call per representation for all of them).
     const double visible = double(frame.size() - first);
-    for (std::size_t k = first; k < frame.size(); ++k)
-      for (RepresentationOption& opt : frame[k].options)
-        opt.cost_ms += s.cost.terms(opt.rep.kind).per_draw_ms / visible;
+    for (std::size_t k = first; k < frame.size(); ++k) {
+      double cheapest = INFINITY;
+      for (RepresentationOption& opt : frame[k].options) {
+        if (is_drawn(opt.rep)) opt.cost_ms += s.cost.terms(opt.rep.kind).per_draw_ms / visible;
+        cheapest = std::min(cheapest, opt.cost_ms);
+      }
+      st.floor_ms += cheapest;
+    }
   }
   st.visible = int(frame.size());
   const auto t1 = std::chrono::steady_clock::now();
@@ -205,6 +213,10 @@ long long HybridObjects::draw(const Camera& camera) {
     const RepresentationOption& opt = frame[k].options[std::size_t(sel.option[k])];
     const auto [m, i] = where[k];
     const Representation& r = opt.rep;
+    if (!is_drawn(r)) {
+      ++st.not_drawn;
+      continue;
+    }
     auto& g = groups[{m, int(r.kind), r.level, r.resolution}];
     g.first = r;
     g.second.push_back(s.set.instances(m)[i]);

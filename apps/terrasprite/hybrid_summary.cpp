@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: MIT
+// A walkthrough scenario's run summarised: frame time against the target,
+// quality at the checkpoints, switches; the optimal policy's figures.
+#include <algorithm>
+
+#include "hybrid_bench.h"
+
+namespace terrasprite::cli {
+
+HybridScenarioResult summarise(const RendererRun& run, double target_ms,
+                               const std::vector<PathCheckpoint>& checkpoints) {
+  HybridScenarioResult s;
+  s.name = run.name;
+  s.frames = run.frames;
+  s.ms = run.ms();
+  int within = 0;
+  for (const FrameResult& f : run.frames) within += f.ms <= 1.1 * target_ms;
+  s.within_10pct = run.frames.empty() ? 0 : double(within) / double(run.frames.size());
+  const Summary q = run.quality("ssim"), qo = run.quality("ssim_objects");
+  s.mean_ssim = q.count ? q.mean : 1.0;
+  s.mean_ssim_objects = qo.count ? qo.mean : 1.0;
+  const Summary sw = run.counter("switches");
+  s.switches_per_frame = sw.count ? sw.mean : 0.0;
+  for (const PathCheckpoint& c : checkpoints) {
+    HybridCheckpoint hc{c.name, c.frame};
+    for (const FrameResult& f : run.frames)
+      if (f.frame == c.frame && f.quality) {
+        hc.ssim = f.quality->ssim;
+        hc.psnr = f.quality->psnr;
+        hc.flip = std::max(0.0, f.quality->flip);
+        const auto it = f.quality->figures.find("ssim_objects");
+        hc.ssim_objects = it != f.quality->figures.end() ? it->second : 1.0;
+      }
+    s.checkpoints.push_back(hc);
+  }
+  return s;
+}
+
+SelectionFigures selection_figures(const RendererRun& run) {
+  SelectionFigures f;
+  std::vector<double> ms;
+  double g = 0, o = 0;
+  for (const FrameResult& r : run.frames) {
+    ms.push_back(r.counters.at("selection_ms"));
+    const auto gi = r.counters.find("objective_greedy");
+    if (gi == r.counters.end()) continue;
+    const double og = gi->second, oo = r.counters.at("objective_optimal");
+    g += og;
+    o += oo;
+    const double gain = og > 0 ? (oo - og) / og : 0.0;
+    f.gain_mean += gain;
+    f.gain_max = std::max(f.gain_max, gain);
+    ++f.frames;
+  }
+  const Summary s = summarize(ms);
+  f.ms_per_frame = s.median;
+  f.ms_p95 = s.p95;
+  if (f.frames) {
+    f.objective_greedy = g / f.frames;
+    f.objective_optimal = o / f.frames;
+    f.gain_mean /= f.frames;
+  }
+  return f;
+}
+
+}  // namespace terrasprite::cli

@@ -226,7 +226,7 @@ namespace {
 
 // Full resolution on one frame in 3 only: sprite and LOD frames all drawn and
 // timed, the reference's per-frame figures null between, its total the drawn
-// frames' mean x frames, sweeps scored on reference frames. CI cost: ~2 s.
+// frames' mean x frames, sweeps scored on reference frames. CI cost: ~1 s.
 TEST(BenchLodsprite, ReferenceOnEveryNthFrame) {
   tstest::TempDir tmp;
   const std::string json = (tmp.path / "r.json").string(), out = (tmp.path / "report").string();
@@ -262,7 +262,7 @@ TEST(BenchLodsprite, ReferenceOnEveryNthFrame) {
   EXPECT_NE(html.find("one frame in 3"), std::string::npos);
 }
 
-// A bad --reference-every: one line, status 2, before any work.
+// A bad --reference-every: one line, status 2, no report. CI cost: ~1 s.
 TEST(BenchLodsprite, BadReferenceEveryExitsWithStatus2) {
   tstest::TempDir tmp;
   const std::string log = (tmp.path / "e.txt").string();

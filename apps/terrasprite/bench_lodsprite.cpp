@@ -128,6 +128,10 @@ void add_bench_lodsprite(CLI::App& bench) {
                   "coarse-mesh sweep at the chosen threshold (default 8,16,32,64)");
   cmd->add_option("--sweep-score-every", o->config.sweep_score_every,
                   "sweeps score SSIM on every n-th frame (default 1)");
+  cmd->add_option("--reference-every", o->config.reference_every,
+                  "draw, time and score full resolution (and score plain LOD and the sprite) on "
+                  "every n-th frame only (default 1); the full-resolution total is estimated as "
+                  "their mean x frames; sprite and LOD frames are all drawn and timed");
   cmd->add_option("--out", o->out, "report directory (default out/lodsprite)");
   cmd->add_option("--json", o->json, "also write the JSON here");
   cmd->callback([o] {

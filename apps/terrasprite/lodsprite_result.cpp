@@ -20,6 +20,11 @@ nlohmann::json sweep_json(const SweepPass& p) {
           {"measured_in", p.measured_in}};
 }
 
+// NaN (not measured on this frame) as null.
+nlohmann::json number(double v) {
+  return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
+}
+
 nlohmann::json score_json(const QualityScore& q) {
   return {{"psnr", q.psnr}, {"ssim", q.ssim}, {"flip", q.flip}};
 }
@@ -29,7 +34,8 @@ nlohmann::json frame_json(const LodspriteFrame& f) {
           {"class", f.key ? "key" : "sprite"},
           {"ms", f.ms},
           {"gpu_ms", f.gpu_ms},
-          {"full_ms", f.full_ms},
+          {"reference", f.reference},
+          {"full_ms", number(f.full_ms)},
           {"lod_ms", f.lod_ms},
           {"error_px", f.error_px},
           {"error_px_exact", f.error_px_exact},
@@ -41,12 +47,12 @@ nlohmann::json frame_json(const LodspriteFrame& f) {
           {"decision_cpu_ms", f.decision_cpu_ms},
           {"trigger", f.trigger},
           {"keyframe", f.keyframe},
-          {"psnr", f.sprite.psnr},
-          {"ssim", f.sprite.ssim},
-          {"flip", f.sprite.flip},
-          {"lod_psnr", f.lod.psnr},
-          {"lod_ssim", f.lod.ssim},
-          {"lod_flip", f.lod.flip}};
+          {"psnr", number(f.sprite.psnr)},
+          {"ssim", number(f.sprite.ssim)},
+          {"flip", number(f.sprite.flip)},
+          {"lod_psnr", number(f.lod.psnr)},
+          {"lod_ssim", number(f.lod.ssim)},
+          {"lod_flip", number(f.lod.flip)}};
 }
 
 }  // namespace
@@ -105,7 +111,15 @@ nlohmann::json to_json(const LodspriteResult& r) {
       {"async", r.async.has_value()},
       {"mesh", r.mesh},
       {"mesh_triangles", r.mesh_triangles},
-      {"full", {{"total_ms", r.full_total_ms}, {"median_ms", r.full_median_ms}}},
+      {"full",
+       {{"total_ms", r.full_total_ms},
+        {"median_ms", r.full_median_ms},
+        {"frames", r.reference_frames},
+        {"total_ms_method", r.reference_frames == r.frames
+                                ? "measured: the sum over every frame"
+                                : "estimated: the mean of the drawn frames x frames"}}},
+      {"reference_every", r.reference_every},
+      {"reference_frames", r.reference_frames},
       {"lod",
        {{"total_ms", l.total_ms},
         {"median_ms", l.median_ms},

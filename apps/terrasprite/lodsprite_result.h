@@ -23,6 +23,9 @@ namespace terrasprite::cli {
 struct LodspriteFrame {
   int frame = 0;
   bool key = false;  ///< a keyframe (class "key"), else a sprite frame
+  /// Full resolution drawn, timed and scored on this frame (every frame unless
+  /// --reference-every); when false full_ms and the scores are NaN.
+  bool reference = true;
   double ms = 0, gpu_ms = 0, full_ms = 0, lod_ms = 0;
   double error_px = 0, error_px_exact = 0;  ///< paper metric / exact reprojection, pixels
   int error_samples = 0;
@@ -151,7 +154,11 @@ struct LodspriteResult {
   bool anisotropic_scale = false;  ///< the scale trigger reads the worst axis
   double scale_per_drape_px = 0;   ///< SpriteOptions::scale_per_drape_px
   bool there_and_back = false;
-  int sweep_score_every = 1;
+  int sweep_score_every = 1;  ///< the one used: a multiple of reference_every
+  /// Full resolution drawn (and the others scored) on every n-th frame;
+  /// reference_frames of them. With n > 1 full_total_ms is their mean x frames
+  /// and every quality figure is over those frames.
+  int reference_every = 1, reference_frames = 0;
   std::string video;  ///< file name inside the output directory; empty: none
   // ---- what it measured ----
   double full_total_ms = 0, full_median_ms = 0;

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numeric>
 
 #include "cli_common.h"
@@ -73,6 +74,9 @@ void validate(const LodspriteConfig& c) {
   if (c.sweep_score_every < 1)
     throw InputError(
         fmt::format("--sweep-score-every {}: must be at least 1", c.sweep_score_every));
+  if (c.reference_every < 1 || c.reference_every > 1000000)
+    throw InputError(
+        fmt::format("--reference-every {}: must be between 1 and 1000000", c.reference_every));
 }
 
 }  // namespace
@@ -97,7 +101,9 @@ CachePolicy parse_cache_policy(const std::string& text) {
 LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain, OutputDir& out,
                               const std::string& label) {
   validate(cfg);
-  const int w = cfg.width, h = cfg.height, every = cfg.sweep_score_every;
+  const int w = cfg.width, h = cfg.height, ref_every = cfg.reference_every;
+  // Sweeps score only on frames that have a full-resolution reference.
+  const int every = std::lcm(cfg.sweep_score_every, ref_every);
   const double aspect = double(w) / h;
   std::vector<Camera> path = make_path(cfg.path, terrain.heights, cfg.frames, aspect);
   if (cfg.there_and_back) path.insert(path.end(), path.rbegin(), path.rend());
@@ -152,6 +158,7 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   ExperimentOptions eo;
   eo.warmup_draws = 2;  // the sprite's first draw is a keyframe, its second a sprite frame
   eo.scorer = default_scorer(cfg.flip);
+  eo.score_every = ref_every;  // the reference (and scoring) on every ref_every-th frame
   eo.on_frame = [&](int i, const std::string& name, const Frame& f) {
     if (name == "full" && i % every == 0) refs.push_back(f.color);
     if (name == "sprite" && cfg.on_sprite_frame) cfg.on_sprite_frame(i, f);
@@ -186,20 +193,30 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   res.scale_per_drape_px = cfg.scale_per_drape_px;
   res.there_and_back = cfg.there_and_back;
   res.sweep_score_every = every;
+  res.reference_every = ref_every;
   res.video = cfg.video;
 
-  std::vector<double> full_ms(n), lod_ms(n), sprite_ms(n), key_ms, spr_ms, decision_ms;
+  // Per frame; the reference's figures (full_ms, scores) only on reference
+  // frames, the others' NaN in the *_at vectors indexed by frame.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> full_ms, lod_ms(n), sprite_ms(n), key_ms, spr_ms, decision_ms;
   std::vector<double> lod_psnr, lod_ssim, lod_flip, sp_psnr, sp_ssim, sp_flip, sp_psnr_sprite_only,
       lod_psnr_sprite_only;
-  int keyframes = 0, current_key = 0, ssim_above = 0, ssim_above_sprite_frames = 0;
+  std::vector<double> sp_ssim_at(n, nan), sp_psnr_at(n, nan);
+  int keyframes = 0, current_key = 0, ssim_above = 0, ssim_above_sprite_frames = 0,
+      scored_sprite_frames = 0;
+  std::size_t next_ref = 0;
   for (int i = 0; i < n; ++i) {
-    const FrameResult &a = full_run.frames[i], &b = lod_run.frames[i], &c = sprite_run.frames[i];
+    const FrameResult &b = lod_run.frames[i], &c = sprite_run.frames[i];
+    const bool has_ref = next_ref < full_run.frames.size() && full_run.frames[next_ref].frame == i;
+    const FrameResult* a = has_ref ? &full_run.frames[next_ref++] : nullptr;
     LodspriteFrame row;
     row.frame = i;
     row.key = c.cls == "key";
+    row.reference = has_ref;
     row.ms = sprite_ms[i] = c.ms;
     row.gpu_ms = c.gpu_ms;
-    row.full_ms = full_ms[i] = a.ms;
+    row.full_ms = a ? a->ms : nan;
     row.lod_ms = lod_ms[i] = b.ms;
     row.error_px = c.counters.at("error_px");
     row.error_px_exact = c.counters.at("error_px_exact");
@@ -219,25 +236,36 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
       spr_ms.push_back(c.ms);
     }
     row.keyframe = current_key;
-    row.lod = *b.quality;
-    row.sprite = *c.quality;
-    const QualityScore &ls = row.lod, &ss = row.sprite;
-    lod_psnr.push_back(ls.psnr);
-    lod_ssim.push_back(ls.ssim);
-    lod_flip.push_back(ls.flip);
-    sp_psnr.push_back(ss.psnr);
-    sp_ssim.push_back(ss.ssim);
-    sp_flip.push_back(ss.flip);
-    if (!row.key) {
-      sp_psnr_sprite_only.push_back(ss.psnr);
-      lod_psnr_sprite_only.push_back(ls.psnr);
+    if (a) {
+      full_ms.push_back(a->ms);
+      row.lod = *b.quality;
+      row.sprite = *c.quality;
+      const QualityScore &ls = row.lod, &ss = row.sprite;
+      lod_psnr.push_back(ls.psnr);
+      lod_ssim.push_back(ls.ssim);
+      lod_flip.push_back(ls.flip);
+      sp_psnr.push_back(sp_psnr_at[i] = ss.psnr);
+      sp_ssim.push_back(sp_ssim_at[i] = ss.ssim);
+      sp_flip.push_back(ss.flip);
+      if (!row.key) {
+        sp_psnr_sprite_only.push_back(ss.psnr);
+        lod_psnr_sprite_only.push_back(ls.psnr);
+        ++scored_sprite_frames;
+      }
+      ssim_above += ss.ssim > ls.ssim;
+      ssim_above_sprite_frames += !row.key && ss.ssim > ls.ssim;
+    } else {
+      row.lod = row.sprite = {.psnr = nan, .ssim = nan, .flip = nan};
     }
-    ssim_above += ss.ssim > ls.ssim;
-    ssim_above_sprite_frames += !row.key && ss.ssim > ls.ssim;
     res.per_frame.push_back(std::move(row));
   }
+  const int scored = int(full_ms.size());
+  res.reference_frames = scored;
 
-  const double full_total = sum(full_ms), sprite_total = sum(sprite_ms);
+  // Every frame's reference drawn: the measured total; else the sampled
+  // frames' mean x n (an estimate, the JSON says which).
+  const double full_total = scored == n ? sum(full_ms) : mean(full_ms) * n;
+  const double sprite_total = sum(sprite_ms);
   const double full_median = median(full_ms);
   const double key_median = median(key_ms), spr_median = median(spr_ms);
   auto mean_every = [&](const std::vector<double>& v) {
@@ -254,23 +282,24 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
              .mean_ssim = mean(lod_ssim),
              .min_ssim = *std::min_element(lod_ssim.begin(), lod_ssim.end()),
              .mean_flip = mean(lod_flip)};
-  res.sprite = {.total_ms = sprite_total,
-                .median_ms = median(sprite_ms),
-                .p99_ms = percentile(sprite_ms, 99),
-                .decision_cpu_median_ms = median(decision_ms),
-                .decision_cpu_p99_ms = percentile(decision_ms, 99),
-                .keyframes = keyframes,
-                .sprite_frames = sprite_run.count("sprite"),
-                .key_median_ms = key_median,
-                .sprite_median_ms = spr_median,
-                .mean_psnr = mean(sp_psnr),
-                .mean_psnr_sprite_frames = mean(sp_psnr_sprite_only),
-                .mean_ssim = mean(sp_ssim),
-                .min_ssim = *std::min_element(sp_ssim.begin(), sp_ssim.end()),
-                .mean_flip = mean(sp_flip),
-                .ssim_above_lod_fraction = double(ssim_above) / n,
-                .ssim_above_lod_fraction_sprite_frames =
-                    n > keyframes ? double(ssim_above_sprite_frames) / (n - keyframes) : 1.0};
+  res.sprite = {
+      .total_ms = sprite_total,
+      .median_ms = median(sprite_ms),
+      .p99_ms = percentile(sprite_ms, 99),
+      .decision_cpu_median_ms = median(decision_ms),
+      .decision_cpu_p99_ms = percentile(decision_ms, 99),
+      .keyframes = keyframes,
+      .sprite_frames = sprite_run.count("sprite"),
+      .key_median_ms = key_median,
+      .sprite_median_ms = spr_median,
+      .mean_psnr = mean(sp_psnr),
+      .mean_psnr_sprite_frames = mean(sp_psnr_sprite_only),
+      .mean_ssim = mean(sp_ssim),
+      .min_ssim = *std::min_element(sp_ssim.begin(), sp_ssim.end()),
+      .mean_flip = mean(sp_flip),
+      .ssim_above_lod_fraction = double(ssim_above) / scored,
+      .ssim_above_lod_fraction_sprite_frames =
+          scored_sprite_frames > 0 ? double(ssim_above_sprite_frames) / scored_sprite_frames : 1.0};
   res.speedup = full_total / std::max(sprite_total, 1e-9);
   res.speedup_from_medians = median_speedup(n, keyframes, full_median, key_median, spr_median);
   {
@@ -293,11 +322,11 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   if (cfg.async) {
     AsyncComparison& ac = res.async.emplace(
         run_async_display(gl, scene, path, w, h, so, refs, every, cfg.display_hz));
-    ac.main_run_mean_ssim = mean_every(sp_ssim);
-    ac.main_run_mean_psnr = mean_every(sp_psnr);
+    ac.main_run_mean_ssim = mean_every(sp_ssim_at);
+    ac.main_run_mean_psnr = mean_every(sp_psnr_at);
     std::vector<double> sprite_ssim;
     for (int i = 0; i < n; i += every)
-      if (!res.per_frame[i].key) sprite_ssim.push_back(sp_ssim[i]);
+      if (!res.per_frame[i].key) sprite_ssim.push_back(sp_ssim_at[i]);
     ac.main_run_mean_ssim_sprite_frames = mean(sprite_ssim);
   }
 
@@ -318,7 +347,8 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
                      .mean_ssim = p.mean_ssim,
                      .measured_in = method};
   };
-  const PassResult main_pass{keyframes, sprite_total, key_median, spr_median, mean_every(sp_ssim)};
+  const PassResult main_pass{keyframes, sprite_total, key_median, spr_median,
+                             mean_every(sp_ssim_at)};
   // One sweep point: the main run's figures at the main setting, else a separate timed pass.
   auto sweep_point = [&](bool is_main, auto&& set) {
     if (is_main) return sweep_entry(main_pass, "main run");
@@ -359,7 +389,7 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
         .keyframes_without_cache = without.keyframes,
         .hits = hits,
         .saving = without.keyframes > 0 ? 1.0 - double(keyframes) / without.keyframes : 0.0,
-        .mean_ssim = mean_every(sp_ssim),
+        .mean_ssim = mean_every(sp_ssim_at),
         .mean_ssim_without_cache = without.mean_ssim,
         .total_ms = sprite_total,
         .total_ms_without_cache = without.total_ms};

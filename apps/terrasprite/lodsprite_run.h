@@ -52,6 +52,12 @@ struct LodspriteConfig {
   double display_hz = 60;
   double async_lead = 0.6;    ///< SpriteOptions::async_lead
   int sweep_score_every = 1;  ///< sweeps score SSIM on every n-th frame
+  /// The main run draws, times and scores the full-resolution reference (and
+  /// scores plain LOD and the sprite) on every n-th frame only, from frame 0;
+  /// the full-resolution total is then their mean x frames. Sprite and LOD
+  /// frames are all drawn and timed. 1 = every frame. Sweeps score on frames
+  /// that have a reference: every lcm(sweep_score_every, reference_every)-th.
+  int reference_every = 1;
   /// Also compare the keyframe trigger with the other kind at the same
   /// keyframe count (compare_triggers(); JSON `trigger_comparison`); not with the cache.
   bool compare_trigger = false;

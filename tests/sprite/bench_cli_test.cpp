@@ -221,3 +221,62 @@ TEST(BenchLodsprite, CompareTriggerAndRichShading) {
 }
 
 }  // namespace
+
+namespace {
+
+// Full resolution on one frame in 3 only: sprite and LOD frames all drawn and
+// timed, the reference's per-frame figures null between, its total the drawn
+// frames' mean x frames, sweeps scored on reference frames. CI cost: ~1 s.
+TEST(BenchLodsprite, ReferenceOnEveryNthFrame) {
+  tstest::TempDir tmp;
+  const std::string json = (tmp.path / "r.json").string(), out = (tmp.path / "report").string();
+  ASSERT_EQ(
+      run("bench lodsprite --synthetic-size 65 --resample 65 --frames 8 --size 64x64 --lod-quads 4 "
+          "--reference-every 3 --sweep-score-every 2 --thresholds 0.5,1 --frame-counts 8 "
+          "--lod-sweep 4 --json " +
+          json + " --out " + out),
+      0);
+  std::ifstream f(json);
+  const nlohmann::json d = nlohmann::json::parse(f);
+  EXPECT_EQ(d["reference_every"], 3);
+  EXPECT_EQ(d["reference_frames"], 3);   // frames 0, 3, 6
+  EXPECT_EQ(d["sweep_score_every"], 6);  // lcm(2, 3): sweeps need a reference
+  EXPECT_EQ(d["full"]["frames"], 3);
+  ASSERT_EQ(d["per_frame"].size(), 8u);
+  double full_sum = 0;
+  for (const auto& p : d["per_frame"]) {
+    const bool ref = int(p["frame"]) % 3 == 0;
+    EXPECT_EQ(p["reference"], ref) << p["frame"];
+    EXPECT_TRUE(p["ms"].is_number()) << "every sprite frame is timed";
+    EXPECT_TRUE(p["lod_ms"].is_number()) << "every LOD frame is timed";
+    EXPECT_EQ(p["ssim"].is_number(), ref) << p["frame"];
+    EXPECT_EQ(p["lod_ssim"].is_number(), ref) << p["frame"];
+    EXPECT_EQ(p["full_ms"].is_number(), ref) << p["frame"];
+    if (ref) full_sum += double(p["full_ms"]);
+  }
+  EXPECT_NEAR(double(d["full"]["total_ms"]), full_sum / 3 * 8, 1e-6 * full_sum + 1e-9);
+  EXPECT_EQ(d["full"]["total_ms_method"].get<std::string>().rfind("estimated", 0), 0u);
+  EXPECT_EQ(d["sprite"]["keyframes"].get<int>() + d["sprite"]["sprite_frames"].get<int>(), 8);
+  std::ifstream report(fs::path(out) / "index.html");
+  const std::string html((std::istreambuf_iterator<char>(report)), {});
+  EXPECT_NE(html.find("one frame in 3"), std::string::npos);
+}
+
+// A bad --reference-every: one line, status 2, no report. CI cost: ~1 s.
+TEST(BenchLodsprite, BadReferenceEveryExitsWithStatus2) {
+  tstest::TempDir tmp;
+  const std::string log = (tmp.path / "e.txt").string();
+  for (const char* bad : {"0", "-4", "x"}) {
+    const int rc = std::system((std::string(TS_CLI) + " bench lodsprite --reference-every " + bad +
+                                " --out " + (tmp.path / "o").string() + " >" + log + " 2>&1")
+                                   .c_str());
+    EXPECT_EQ(WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, 2) << bad;
+    std::ifstream f(log);
+    int lines = 0;
+    for (std::string line; std::getline(f, line);) ++lines;
+    EXPECT_EQ(lines, 1) << bad;
+  }
+  EXPECT_FALSE(fs::exists(tmp.path / "o" / "lodsprite.json"));
+}
+
+}  // namespace

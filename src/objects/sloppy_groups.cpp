@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <tuple>
 
 namespace terrasprite::detail {
 namespace {
@@ -63,17 +64,27 @@ std::vector<std::uint32_t> colour_regions(const std::vector<glm::vec2>& uvs,
   }
   // Islands of one material where one's uv centre lies in the other's bounds
   // share a colour region (a sweep over u; boxes that merely touch stay apart).
+  // Islands with the same bounds (many on one swatch point; a model without
+  // uvs) are united first and swept once, so the sweep stays short.
+  const auto key = [&](std::size_t i) {
+    const Island& is = islands[i];
+    return std::make_tuple(is.material, is.lo.x, is.lo.y, is.hi.x, is.hi.y);
+  };
   std::vector<std::size_t> order(islands.size());
   std::iota(order.begin(), order.end(), std::size_t(0));
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    if (islands[a].material != islands[b].material)
-      return islands[a].material < islands[b].material;
-    return islands[a].lo.x < islands[b].lo.x;
-  });
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const Island& a = islands[order[i]];
-    for (std::size_t j = i + 1; j < order.size(); ++j) {
-      const Island& b = islands[order[j]];
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
+  std::vector<std::size_t> unique;
+  for (std::size_t i : order) {
+    if (!unique.empty() && key(unique.back()) == key(i))
+      uf.unite(islands[unique.back()].root, islands[i].root);
+    else
+      unique.push_back(i);
+  }
+  for (std::size_t i = 0; i < unique.size(); ++i) {
+    const Island& a = islands[unique[i]];
+    for (std::size_t j = i + 1; j < unique.size(); ++j) {
+      const Island& b = islands[unique[j]];
       if (b.material != a.material || b.lo.x > a.hi.x) break;
       if (a.holds_centre_of(b) || b.holds_centre_of(a)) uf.unite(a.root, b.root);
     }

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -63,6 +64,9 @@ inline CliResult run_cli_in(const std::string& dir, const std::string& args) {
 
 /// ../shared/data beside the repository, or "" when it is absent.
 inline std::string shared_data() {
+  // TS_SHARED_DATA overrides (a worktree whose parent holds no shared/).
+  if (const char* env = std::getenv("TS_SHARED_DATA"); env && std::filesystem::is_directory(env))
+    return env;
   std::filesystem::path p = std::filesystem::path(TS_SOURCE_DIR).parent_path() / "shared" / "data";
   return std::filesystem::is_directory(p) ? p.string() : std::string();
 }

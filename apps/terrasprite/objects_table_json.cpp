@@ -15,7 +15,9 @@
 namespace terrasprite::cli {
 namespace {
 
-constexpr const char* kFormat = "terrasprite-objects-table-2";
+// 3: the LOD chain's sloppy levels keep their colours (other levels, other
+// measurements), so tables of format 2 are measured again.
+constexpr const char* kFormat = "terrasprite-objects-table-3";
 
 // Infinite PSNR (identical images) is written as the string "inf": JSON has no infinity.
 nlohmann::json number(double v) {

@@ -45,7 +45,11 @@ struct LodOptions {
 /// and an error at least as large. Levels come from meshopt_simplify with the
 /// mesh's open borders locked, on the mesh welded by (position, uv, material)
 /// so per-face split normals do not lock every edge; when it stalls above
-/// 1.5x its target (locked borders, seams) meshopt_simplifySloppy takes over.
+/// 1.5x its target (locked borders, seams) meshopt_simplifySloppy takes over,
+/// run on each colour region on its own (UV islands, merged per material where
+/// their uv bounds share a centre: one swatch of a palette atlas) with the
+/// target shared in proportion, so a triangle never takes a uv of another
+/// swatch; a small region may vanish on a coarse level.
 std::vector<LodLevel> build_lod_chain(const Model& model, const LodOptions& options = {});
 
 }  // namespace terrasprite

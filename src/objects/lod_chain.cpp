@@ -11,6 +11,8 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "sloppy_groups.h"
+
 namespace terrasprite {
 namespace {
 
@@ -245,6 +247,7 @@ std::vector<LodLevel> build_lod_chain(const Model& model, const LodOptions& o) {
   double error_m = 0.0;
   bool sloppy = false;
   std::vector<glm::dvec3> probe;
+  std::vector<std::uint32_t> region;  // colour region per welded vertex, for sloppy steps
   while (current.size() / 3 > floor_tris) {
     const std::size_t target_tris = std::max(floor_tris, std::size_t(current.size() / 3 * o.ratio));
     std::vector<std::uint32_t> next(current.size());
@@ -256,13 +259,17 @@ std::vector<LodLevel> build_lod_chain(const Model& model, const LodOptions& o) {
                                meshopt_SimplifyLockBorder, &err);
       sloppy = count > target_tris * 3 * 3 / 2;
     }
-    if (sloppy)
-      count =
-          meshopt_simplifySloppy(next.data(), current.data(), current.size(), &w.positions[0].x,
-                                 w.positions.size(), sizeof(glm::vec3), target_tris * 3, 1.f, &err);
+    double step_m = double(err) * scale;
+    if (sloppy) {
+      // Per colour region, so no triangle takes a vertex (uv) of another
+      // swatch or island (meshopt_simplifySloppy keeps one vertex per cell).
+      if (region.empty()) region = detail::colour_regions(w.uvs, w.material, w.indices);
+      next = detail::simplify_sloppy_by_region(w.positions, region, current, target_tris, step_m);
+      count = next.size();
+    }
     if (count == 0 || count >= current.size()) break;  // cannot shrink further
     next.resize(count);
-    error_m += double(err) * scale;
+    error_m += step_m;
     LodLevel lv = make_level(w, next, model.normals_from_file, o.crease_deg);
     // meshoptimizer's quadric error misses dropped protrusions (sloppy levels
     // most of all): coarse levels also measure their deviation.

@@ -16,12 +16,12 @@
 #include "bench_commands.h"
 #include "cli_common.h"
 #include "plot.h"
-#include "terrasprite/stats.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/error.h"
 #include "terrasprite/experiment.h"
 #include "terrasprite/output_dir.h"
 #include "terrasprite/quality.h"
+#include "terrasprite/stats.h"
 #include "terrasprite/terrain_gen.h"
 #include "terrasprite/voxel_renderer.h"
 
@@ -43,10 +43,6 @@ struct BenchVoxelOpts {
   std::string json;
   std::string out;
 };
-
-nlohmann::json num_or_null(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
 
 // A static view over the terrain for the pitch sweep: south of the centre,
 // high enough to see the whole terrain at -90 and a horizon at -10.
@@ -234,7 +230,7 @@ void run(const BenchVoxelOpts& o) {
                   {"p95_ms", percentile(ms[v][ti_max], 95)},
                   {"ns_per_pixel", med * 1e6 / (double(w) * h)},
                   {"speedup_vs_naive", naive_scored / std::max(median(scored_ms[v]), 1e-9)},
-                  {"scaling_2v1", num_or_null(scaling(v))},
+                  {"scaling_2v1", number_or_null(scaling(v))},
                   {"median_ms_by_threads",
                    [&] {
                      nlohmann::json m = nlohmann::json::object();
@@ -338,7 +334,7 @@ void run(const BenchVoxelOpts& o) {
       {"threads", threads},
       {"default_variant", "multires"},
       {"variants", jv},
-      {"scaling_2v1", num_or_null(default_scaling)},
+      {"scaling_2v1", number_or_null(default_scaling)},
       {"pitch_table", pitch_table},
       {"terrain_size_sweep", sweep},
       {"per_frame", per_frame}};

@@ -49,6 +49,10 @@ void check_outputs(const std::string& out_dir, std::initializer_list<std::string
 /// Throws InputError naming the file on failure.
 void write_json(nlohmann::json j, const std::string& path);
 
+/// A measured figure for a JSON report: `v`, or null where it is NaN or
+/// infinite (not measured on this frame, no samples).
+nlohmann::json number_or_null(double v);
+
 /// What a report says of a terrain (a copy: it outlives the Terrain).
 struct TerrainInfo {
   std::string name, texture;

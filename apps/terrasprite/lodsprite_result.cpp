@@ -20,11 +20,6 @@ nlohmann::json sweep_json(const SweepPass& p) {
           {"measured_in", p.measured_in}};
 }
 
-// NaN (not measured on this frame) as null.
-nlohmann::json number(double v) {
-  return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
-}
-
 nlohmann::json score_json(const QualityScore& q) {
   return {{"psnr", q.psnr}, {"ssim", q.ssim}, {"flip", q.flip}};
 }
@@ -35,7 +30,7 @@ nlohmann::json frame_json(const LodspriteFrame& f) {
           {"ms", f.ms},
           {"gpu_ms", f.gpu_ms},
           {"reference", f.reference},
-          {"full_ms", number(f.full_ms)},
+          {"full_ms", number_or_null(f.full_ms)},
           {"lod_ms", f.lod_ms},
           {"error_px", f.error_px},
           {"error_px_exact", f.error_px_exact},
@@ -47,12 +42,12 @@ nlohmann::json frame_json(const LodspriteFrame& f) {
           {"decision_cpu_ms", f.decision_cpu_ms},
           {"trigger", f.trigger},
           {"keyframe", f.keyframe},
-          {"psnr", number(f.sprite.psnr)},
-          {"ssim", number(f.sprite.ssim)},
-          {"flip", number(f.sprite.flip)},
-          {"lod_psnr", number(f.lod.psnr)},
-          {"lod_ssim", number(f.lod.ssim)},
-          {"lod_flip", number(f.lod.flip)}};
+          {"psnr", number_or_null(f.sprite.psnr)},
+          {"ssim", number_or_null(f.sprite.ssim)},
+          {"flip", number_or_null(f.sprite.flip)},
+          {"lod_psnr", number_or_null(f.lod.psnr)},
+          {"lod_ssim", number_or_null(f.lod.ssim)},
+          {"lod_flip", number_or_null(f.lod.flip)}};
 }
 
 }  // namespace

@@ -59,7 +59,7 @@ struct MethodRun {
 // How far camera `to` has turned and moved from `from`.
 void describe_motion(const Camera& from, const Camera& to, const Heightfield& ground, Score& s) {
   const double c = std::clamp(glm::dot(from.forward(), to.forward()), -1.0, 1.0);
-  s.turn_deg = std::acos(c) * 180.0 / 3.14159265358979323846;
+  s.turn_deg = glm::degrees(std::acos(c));
   s.moved_m = glm::length(to.position - from.position);
   s.clearance_m = to.position.z - ground.sample(to.position.x, to.position.y);
 }
@@ -72,10 +72,6 @@ struct PathRun {
 
 double mean_of(const std::vector<double>& v) {
   return v.empty() ? NAN : mean(v);
-}
-
-nlohmann::json num(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
 
 Score score(const Frame& truth, const WarpedFrame& w) {
@@ -138,7 +134,7 @@ nlohmann::json method_json(const PathRun& p, std::size_t m) {
       std::vector<double> v;
       for (const Score& x : s)
         if (std::isfinite(x.*f)) v.push_back(x.*f);
-      return num(mean_of(v));
+      return number_or_null(mean_of(v));
     };
     by_k.push_back({{"k", k + 1},
                     {"samples", s.size()},
@@ -152,23 +148,25 @@ nlohmann::json method_json(const PathRun& p, std::size_t m) {
   // the method breaks (turns, parallax near the ground, disocclusions).
   std::vector<Score> all;
   for (const auto& s : r.by_k) all.insert(all.end(), s.begin(), s.end());
-  std::sort(all.begin(), all.end(), [](const Score& a, const Score& b) { return a.psnr < b.psnr; });
+  const std::size_t shown = std::min<std::size_t>(all.size(), 5);
+  std::partial_sort(all.begin(), all.begin() + std::ptrdiff_t(shown), all.end(),
+                    [](const Score& a, const Score& b) { return a.psnr < b.psnr; });
   nlohmann::json worst = nlohmann::json::array();
-  for (std::size_t i = 0; i < std::min<std::size_t>(all.size(), 5); ++i)
+  for (std::size_t i = 0; i < shown; ++i)
     worst.push_back({{"frame", all[i].frame},
                      {"k", all[i].k},
-                     {"psnr", num(all[i].psnr)},
-                     {"psnr_masked", num(all[i].psnr_masked)},
-                     {"hole_fraction", num(all[i].holes)},
+                     {"psnr", number_or_null(all[i].psnr)},
+                     {"psnr_masked", number_or_null(all[i].psnr_masked)},
+                     {"hole_fraction", number_or_null(all[i].holes)},
                      {"turn_deg", all[i].turn_deg},
                      {"moved_m", all[i].moved_m},
                      {"clearance_m", all[i].clearance_m}});
   return {{"name", to_string(kMethods[m])},
           {"path", p.path},
           {"worst", worst},
-          {"warp_ms_median", num(warp_ms)},
-          {"real_ms_median", num(real_ms)},
-          {"cost_fraction", num(warp_ms / std::max(real_ms, 1e-9))},
+          {"warp_ms_median", number_or_null(warp_ms)},
+          {"real_ms_median", number_or_null(real_ms)},
+          {"cost_fraction", number_or_null(warp_ms / std::max(real_ms, 1e-9))},
           {"by_k", by_k}};
 }
 
@@ -179,10 +177,10 @@ nlohmann::json flythrough_json(const PathRun& p, std::size_t m, int K) {
   return {{"path", p.path},
           {"method", to_string(kMethods[m])},
           {"real_every", K},
-          {"real_ms_mean", num(real)},
-          {"real_ms_p99", num(percentile(p.real_ms, 99))},
-          {"warp_ms_mean", num(warp)},
-          {"mean_ms_per_output_frame", num((real + (K - 1) * warp) / K)},
+          {"real_ms_mean", number_or_null(real)},
+          {"real_ms_p99", number_or_null(percentile(p.real_ms, 99))},
+          {"warp_ms_mean", number_or_null(warp)},
+          {"mean_ms_per_output_frame", number_or_null((real + (K - 1) * warp) / K)},
           {"meets_60hz", (real + (K - 1) * warp) / K <= 1000.0 / 60.0}};
 }
 

@@ -196,13 +196,12 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   res.reference_every = ref_every;
   res.video = cfg.video;
 
-  // Per frame; the reference's figures (full_ms, scores) only on reference
-  // frames, the others' NaN in the *_at vectors indexed by frame.
+  // The reference's figures (full_ms, scores) only on reference frames; the
+  // per-frame rows carry NaN on the others.
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> full_ms, lod_ms(n), sprite_ms(n), key_ms, spr_ms, decision_ms;
   std::vector<double> lod_psnr, lod_ssim, lod_flip, sp_psnr, sp_ssim, sp_flip, sp_psnr_sprite_only,
       lod_psnr_sprite_only;
-  std::vector<double> sp_ssim_at(n, nan), sp_psnr_at(n, nan);
   int keyframes = 0, current_key = 0, ssim_above = 0, ssim_above_sprite_frames = 0,
       scored_sprite_frames = 0;
   std::size_t next_ref = 0;
@@ -244,8 +243,8 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
       lod_psnr.push_back(ls.psnr);
       lod_ssim.push_back(ls.ssim);
       lod_flip.push_back(ls.flip);
-      sp_psnr.push_back(sp_psnr_at[i] = ss.psnr);
-      sp_ssim.push_back(sp_ssim_at[i] = ss.ssim);
+      sp_psnr.push_back(ss.psnr);
+      sp_ssim.push_back(ss.ssim);
       sp_flip.push_back(ss.flip);
       if (!row.key) {
         sp_psnr_sprite_only.push_back(ss.psnr);
@@ -268,9 +267,11 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   const double sprite_total = sum(sprite_ms);
   const double full_median = median(full_ms);
   const double key_median = median(key_ms), spr_median = median(spr_ms);
-  auto mean_every = [&](const std::vector<double>& v) {
+  // The sprite's mean score over the frames the sweeps score (every
+  // `every`-th: all reference frames).
+  auto mean_every = [&](double QualityScore::*figure) {
     std::vector<double> s;
-    for (int i = 0; i < n; i += every) s.push_back(v[i]);
+    for (int i = 0; i < n; i += every) s.push_back(res.per_frame[std::size_t(i)].sprite.*figure);
     return mean(s);
   };
   res.full_total_ms = full_total;
@@ -322,11 +323,11 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
   if (cfg.async) {
     AsyncComparison& ac = res.async.emplace(
         run_async_display(gl, scene, path, w, h, so, refs, every, cfg.display_hz));
-    ac.main_run_mean_ssim = mean_every(sp_ssim_at);
-    ac.main_run_mean_psnr = mean_every(sp_psnr_at);
+    ac.main_run_mean_ssim = mean_every(&QualityScore::ssim);
+    ac.main_run_mean_psnr = mean_every(&QualityScore::psnr);
     std::vector<double> sprite_ssim;
     for (int i = 0; i < n; i += every)
-      if (!res.per_frame[i].key) sprite_ssim.push_back(sp_ssim_at[i]);
+      if (!res.per_frame[i].key) sprite_ssim.push_back(res.per_frame[i].sprite.ssim);
     ac.main_run_mean_ssim_sprite_frames = mean(sprite_ssim);
   }
 
@@ -348,7 +349,7 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
                      .measured_in = method};
   };
   const PassResult main_pass{keyframes, sprite_total, key_median, spr_median,
-                             mean_every(sp_ssim_at)};
+                             mean_every(&QualityScore::ssim)};
   // One sweep point: the main run's figures at the main setting, else a separate timed pass.
   auto sweep_point = [&](bool is_main, auto&& set) {
     if (is_main) return sweep_entry(main_pass, "main run");
@@ -389,7 +390,7 @@ LodspriteResult run_lodsprite(const LodspriteConfig& cfg, const Terrain& terrain
         .keyframes_without_cache = without.keyframes,
         .hits = hits,
         .saving = without.keyframes > 0 ? 1.0 - double(keyframes) / without.keyframes : 0.0,
-        .mean_ssim = mean_every(sp_ssim_at),
+        .mean_ssim = mean_every(&QualityScore::ssim),
         .mean_ssim_without_cache = without.mean_ssim,
         .total_ms = sprite_total,
         .total_ms_without_cache = without.total_ms};

@@ -396,10 +396,11 @@ nlohmann::json quality_budget_sweep(const BudgetSweepInput& in) {
     for (HybridScenario sc : in.scenarios) {
       sc.control = HybridScenario::Control::kFixed;
       runs.push_back({sc, &in.tables, in.options.cull_px});
-      if (in.options.cull_px > 0)
-        runs.push_back({{sc.name + " (all drawn)", sc.kinds, sc.policy, sc.full, sc.control},
-                        &in.tables,
-                        0.0});
+      if (in.options.cull_px > 0) {
+        HybridScenario all_drawn = sc;
+        all_drawn.name += " (all drawn)";
+        runs.push_back({all_drawn, &in.tables, 0.0});
+      }
       if (in.raw_tables) {
         sc.name += " (tables as measured)";
         runs.push_back({sc, in.raw_tables, in.options.cull_px});

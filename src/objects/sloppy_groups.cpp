@@ -110,10 +110,11 @@ std::vector<std::uint32_t> simplify_sloppy_by_region(const std::vector<glm::vec3
   std::uint32_t regions = 0;
   for (std::uint32_t r : region) regions = std::max(regions, r + 1);
   std::vector<std::vector<std::uint32_t>> by_region(regions);
-  for (std::size_t t = 0; t < tris; ++t)
-    by_region[region[indices[3 * t]]].insert(by_region[region[indices[3 * t]]].end(),
-                                             indices.begin() + std::ptrdiff_t(3 * t),
-                                             indices.begin() + std::ptrdiff_t(3 * t + 3));
+  for (std::size_t t = 0; t < tris; ++t) {
+    std::vector<std::uint32_t>& to = by_region[region[indices[3 * t]]];
+    to.insert(to.end(), indices.begin() + std::ptrdiff_t(3 * t),
+              indices.begin() + std::ptrdiff_t(3 * t + 3));
+  }
   // Each region simplified on its own vertices (so the sloppy grid spans the
   // region): its triangles and error, or unchanged when its share is all.
   struct Result {

@@ -13,8 +13,8 @@ namespace terrasprite::detail {
 
 /// The colour region of each vertex of an indexed mesh whose vertices are
 /// welded by (position, uv, material): triangles connected through shared
-/// vertices form a UV island; islands of one material whose uv bounding boxes
-/// overlap (one swatch of an atlas) are one region. Vertices no triangle uses
+/// vertices form a UV island; islands of one material where one's uv bounding
+/// box holds the other's centre (one swatch of an atlas) are one region. Vertices no triangle uses
 /// get their own region. `uvs` and `material` have one entry per vertex;
 /// indices must be in range (not checked). Regions are numbered 0..n-1.
 std::vector<std::uint32_t> colour_regions(const std::vector<glm::vec2>& uvs,

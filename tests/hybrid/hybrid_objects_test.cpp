@@ -8,7 +8,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <string>
 
 #include "gl/render_target.h"
@@ -34,17 +33,13 @@ struct World {
     ts::TerrainOptions o;
     o.synthetic_size = 65;
     terrain = ts::load_terrain(o);
-    std::ofstream(dir / "tower.obj") << "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 3 0\n"
-                                        "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\nf 1 3 2\nf 1 4 3\n";
     // The near tower at the origin (30 m); the tiny ones 3 cm tall around it.
     std::string instances = R"([{"model": "t", "position": [0, 0]})";
     for (int i = 0; i < kTiny; ++i)
       instances += R"(, {"model": "t", "scale": 0.001, "position": [)" +
                    std::to_string(-30 + 5 * i) + ", " + std::to_string(20 - 3 * i) + "]}";
-    objects = ts::parse_object_scene(R"({"models": [{"name": "t", "file": "tower.obj", )"
-                                     R"("height_m": 30, "color": [1, 0, 0]}], "instances": )" +
-                                         instances + "]}",
-                                     "scene", dir.path.string(), terrain.heights);
+    objects =
+        tstest::tower_scene(dir, terrain, R"("height_m": 30, "color": [1, 0, 0])", instances + "]");
   }
 };
 

@@ -2,11 +2,29 @@
 // Models and views made in code for the object tests.
 #pragma once
 #include <cmath>
+#include <fstream>
+#include <string>
 
 #include "terrasprite/camera.h"
 #include "terrasprite/model.h"
+#include "terrasprite/object_scene.h"
+#include "terrasprite/terrain.h"
+#include "test_util.h"
 
 namespace tstest {
+
+/// A square pyramid (a 6-triangle "tower", model "t") written into `dir`, in
+/// a scene with the given model keys (height, colour) and instances (a JSON
+/// array), placed on `terrain`.
+inline terrasprite::ObjectScene tower_scene(const TempDir& dir, const terrasprite::Terrain& terrain,
+                                            const std::string& model_keys,
+                                            const std::string& instances) {
+  std::ofstream(dir / "tower.obj") << "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 3 0\n"
+                                      "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\nf 1 3 2\nf 1 4 3\n";
+  return terrasprite::parse_object_scene(R"({"models": [{"name": "t", "file": "tower.obj", )" +
+                                             model_keys + R"(}], "instances": )" + instances + "}",
+                                         "scene", dir.path.string(), terrain.heights);
+}
 
 /// An axis-aligned box [-sx/2, sx/2] x [-sy/2, sy/2] x [0, sz], each face its
 /// own flat colour (+x red, -x green, +y blue, -y yellow, +z white, -z magenta).

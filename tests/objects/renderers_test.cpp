@@ -19,6 +19,7 @@
 #include "test_util.h"
 
 namespace ts = terrasprite;
+using tstest::tower_scene;
 
 namespace {
 
@@ -27,17 +28,6 @@ int differing_pixels(const ts::Image& a, const ts::Image& b) {
   for (std::size_t i = 0; i < a.rgba.size(); i += 4)
     n += a.rgba[i] != b.rgba[i] || a.rgba[i + 1] != b.rgba[i + 1] || a.rgba[i + 2] != b.rgba[i + 2];
   return n;
-}
-
-// A square pyramid ("tower", model "t") written into `dir`, in a scene with
-// the given model keys (height, colour) and instances.
-ts::ObjectScene tower_scene(const tstest::TempDir& dir, const ts::Terrain& terrain,
-                            const std::string& model_keys, const std::string& instances) {
-  std::ofstream(dir / "tower.obj") << "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 3 0\n"
-                                      "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\nf 1 3 2\nf 1 4 3\n";
-  return ts::parse_object_scene(R"({"models": [{"name": "t", "file": "tower.obj", )" + model_keys +
-                                    R"(}], "instances": )" + instances + "}",
-                                "scene", dir.path.string(), terrain.heights);
 }
 
 struct World {

@@ -3,7 +3,7 @@
 // contract, the report files, and bad options exiting with status 2.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -15,8 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 int run(const std::string& args) {
-  const int rc = std::system((std::string(TS_CLI) + " " + args + " >/dev/null 2>&1").c_str());
-  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  return tstest::run_cli(args).status;
 }
 
 TEST(BenchLodsprite, WritesTheJsonContractAndTheReport) {
@@ -265,16 +264,11 @@ TEST(BenchLodsprite, ReferenceOnEveryNthFrame) {
 // A bad --reference-every: one line, status 2, no report. CI cost: ~1 s.
 TEST(BenchLodsprite, BadReferenceEveryExitsWithStatus2) {
   tstest::TempDir tmp;
-  const std::string log = (tmp.path / "e.txt").string();
   for (const char* bad : {"0", "-4", "x"}) {
-    const int rc = std::system((std::string(TS_CLI) + " bench lodsprite --reference-every " + bad +
-                                " --out " + (tmp.path / "o").string() + " >" + log + " 2>&1")
-                                   .c_str());
-    EXPECT_EQ(WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, 2) << bad;
-    std::ifstream f(log);
-    int lines = 0;
-    for (std::string line; std::getline(f, line);) ++lines;
-    EXPECT_EQ(lines, 1) << bad;
+    const tstest::CliResult r = tstest::run_cli(std::string("bench lodsprite --reference-every ") +
+                                                bad + " --out " + (tmp.path / "o").string());
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << bad << ": " << r.output;
   }
   EXPECT_FALSE(fs::exists(tmp.path / "o" / "lodsprite.json"));
 }

@@ -4,7 +4,6 @@
 // options exiting with status 2.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -16,8 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 int run(const std::string& args) {
-  const int rc = std::system((std::string(TS_CLI) + " " + args + " >/dev/null 2>&1").c_str());
-  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  return tstest::run_cli(args).status;
 }
 
 TEST(BenchWarp, WritesTheContractAndNamesTheWorstWarps) {

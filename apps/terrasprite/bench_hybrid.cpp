@@ -98,7 +98,7 @@ QualityTable model_table(ObjectSet& set, std::size_t i, const std::vector<TableO
   const SceneModel& sm = set.scene_model(i);
   QualityTable merged;
   for (const TableOptions& o : options) {
-    const auto file = table_cache_file(cache, sm.file, sm.options, o);
+    const auto file = table_cache_file(cache, sm.file, sm.options, o, lod_chain_key(set.lod()));
     std::optional<QualityTable> t = read_table_cache(file);
     if (!t) {
       fmt::print(stderr, "measuring the quality table of {} ({})\n", sm.name,
@@ -208,7 +208,8 @@ void annotate(const HybridObjects& objects, FrameResult& r) {
                 {"n_relief", s.instances_by_kind[1]},
                 {"n_octahedral", s.instances_by_kind[2]},
                 {"not_drawn", s.not_drawn},
-                {"floor_ms", s.floor_ms}};
+                {"floor_ms", s.floor_ms},
+                {"draw_gap_ms", s.draw_gap_ms}};
   if (s.objective_greedy >= 0) {
     r.counters["objective_greedy"] = s.objective_greedy;
     r.counters["objective_optimal"] = s.objective_optimal;

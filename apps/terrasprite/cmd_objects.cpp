@@ -152,7 +152,8 @@ void add_objects_table(CLI::App& objects) {
     check_outputs(out_dir, {a->json});
     const Model model = load_model(a->model.file, mo);
     OutputDir out(out_dir, output_policy());
-    const std::filesystem::path cache_file = table_cache_file(a->cache, a->model.file, mo, o);
+    const std::filesystem::path cache_file =
+        table_cache_file(a->cache, a->model.file, mo, o, lod_chain_key(LodOptions{}));
     std::optional<QualityTable> t = a->no_cache ? std::nullopt : read_table_cache(cache_file);
     const bool cached = t.has_value();
     const RepresentationCache reps =

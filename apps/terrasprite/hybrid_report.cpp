@@ -25,7 +25,9 @@ std::string dat_name(const std::string& scenario) {
 void write_frames(const HybridScenarioResult& s, OutputDir& out) {
   std::ostringstream f;
   f << "frame ms triangles triangles_min triangles_max predicted_ms budget_ms switches "
-       "selection_ms ssim floor_ms not_drawn ssim_objects\n";
+       "selection_ms ssim floor_ms not_drawn ssim_objects expected_ssim n_mesh n_relief "
+       "n_octahedral "
+       "draw_gap_ms\n";
   for (const FrameResult& r : s.frames) {
     auto c = [&](const char* k) {
       const auto it = r.counters.find(k);
@@ -36,11 +38,12 @@ void write_frames(const HybridScenarioResult& s, OutputDir& out) {
       const auto it = r.quality->figures.find(k);
       return it == r.quality->figures.end() ? std::string("NaN") : fmt::format("{}", it->second);
     };
-    f << fmt::format("{} {} {} {} {} {} {} {} {} {} {} {} {}\n", r.frame, r.ms, r.triangles,
-                     c("triangles_min"), c("triangles_max"), c("predicted_ms"), c("budget_ms"),
-                     c("switches"), c("selection_ms"),
+    f << fmt::format("{} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {}\n", r.frame, r.ms,
+                     r.triangles, c("triangles_min"), c("triangles_max"), c("predicted_ms"),
+                     c("budget_ms"), c("switches"), c("selection_ms"),
                      r.quality ? fmt::format("{}", r.quality->ssim) : "NaN", c("floor_ms"),
-                     c("not_drawn"), figure("ssim_objects"));
+                     c("not_drawn"), figure("ssim_objects"), c("expected_ssim"), c("n_mesh"),
+                     c("n_relief"), c("n_octahedral"), c("draw_gap_ms"));
   }
   write_text(out.file(dat_name(s.name)), f.str());
 }

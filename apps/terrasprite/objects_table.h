@@ -22,12 +22,14 @@ nlohmann::json table_json(const QualityTable& t, const TableOptions& o);
 QualityTable table_from_json(const nlohmann::json& j);
 
 /// Cache key of a table: the model file's bytes (and its texture's), the
-/// model and table options, and the format version, as 32 hex digits.
+/// model and table options, the LOD chain's key (lod_chain_key: levels built
+/// otherwise make another table) and the format version, as 32 hex digits.
 std::string table_cache_key(const std::string& model_file, const ModelOptions& m,
-                            const TableOptions& o);
+                            const TableOptions& o, const std::string& chain);
 /// The cache file of a model's table in `cache_dir` (empty: default_cache_dir()).
 std::filesystem::path table_cache_file(const std::string& cache_dir, const std::string& model_file,
-                                       const ModelOptions& m, const TableOptions& o);
+                                       const ModelOptions& m, const TableOptions& o,
+                                       const std::string& chain);
 /// The cached table in `file`, if one is there and readable (an unreadable
 /// one is reported on stderr and ignored).
 std::optional<QualityTable> read_table_cache(const std::filesystem::path& file);

@@ -37,10 +37,11 @@ nlohmann::json cache_stats_json(const RepresentationCacheStats& s) {
 }
 
 std::filesystem::path table_cache_file(const std::string& cache_dir, const std::string& model_file,
-                                       const ModelOptions& m, const TableOptions& o) {
+                                       const ModelOptions& m, const TableOptions& o,
+                                       const std::string& chain) {
   return std::filesystem::path(cache_dir.empty() ? default_cache_dir() : cache_dir) /
          (std::filesystem::path(model_file).stem().string() + "-" +
-          table_cache_key(model_file, m, o) + ".json");
+          table_cache_key(model_file, m, o, chain) + ".json");
 }
 
 }  // namespace terrasprite::cli

@@ -123,8 +123,9 @@ QualityTable table_from_json(const nlohmann::json& j) {
 }
 
 std::string table_cache_key(const std::string& model_file, const ModelOptions& m,
-                            const TableOptions& o) {
-  std::string params = fmt::format("{}|up{}|h{}|tex{}|", kFormat, int(m.up), m.height_m, m.texture);
+                            const TableOptions& o, const std::string& chain) {
+  std::string params =
+      fmt::format("{}|up{}|h{}|tex{}|{}|", kFormat, int(m.up), m.height_m, m.texture, chain);
   for (ObjectKind k : o.kinds) params += object_kind_name(k) + std::string(",");
   params += fmt::format("|r{}|s{}|a{}|fs{}|v{}|n{}|t{}|{}", fmt::join(o.resolutions, ","),
                         fmt::join(o.sizes_px, ","), o.angle_step_deg, o.full_sphere, o.views,

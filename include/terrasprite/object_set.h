@@ -27,6 +27,8 @@ class ObjectSet : public SceneObjects {
 
   std::size_t model_count() const;
   const SceneModel& scene_model(std::size_t i) const;
+  /// The options the models' LOD chains were built with.
+  const LodOptions& lod() const;
   GlModel& model(std::size_t i);
   std::span<const ObjectInstance> instances(std::size_t i) const;
   std::size_t instance_count() const;

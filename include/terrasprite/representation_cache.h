@@ -92,6 +92,11 @@ std::string serialize_lod_chain(const std::vector<LodLevel>& chain);
 std::optional<std::vector<LodLevel>> deserialize_lod_chain(std::string_view bytes,
                                                            std::size_t materials);
 
+/// The cache entry name of the chain build_lod_chain makes with `options` (and
+/// the algorithm's version): what cached_lod_chain reads and writes, and part
+/// of the key of a quality table measured on that chain.
+std::string lod_chain_key(const LodOptions& options);
+
 /// build_lod_chain(model, options), read from `cache` when an entry for these
 /// options is there, else built and stored.
 std::vector<LodLevel> cached_lod_chain(const Model& model, const LodOptions& options,

@@ -188,6 +188,13 @@ std::string calibration_report(const DrawCostModel& model,
     }
     if (any) s += line + "\n";
   }
+  s += "  terms (ms): kind, per draw call, per instance, per triangle x 1e6, per pixel x 1e6\n";
+  for (int k = 0; k < 3; ++k) {
+    const DrawCostTerms& t = model.terms(ObjectKind(k));
+    s += fmt::format("  {:<10} {:8.4f} {:8.4f} {:8.3f} {:8.3f}\n", object_kind_name(ObjectKind(k)),
+                     t.per_draw_ms, t.per_instance_ms, 1e6 * t.per_triangle_ms,
+                     1e6 * t.per_pixel_ms);
+  }
   return s;
 }
 

@@ -13,11 +13,13 @@ struct ObjectSet::Impl {
   std::vector<SceneModel> scene_models;
   std::vector<std::unique_ptr<GlModel>> models;
   std::vector<std::vector<ObjectInstance>> instances;
+  LodOptions lod;
 };
 
 ObjectSet::ObjectSet(const ObjectScene& scene, const LodOptions& lod, const std::string& cache_dir)
     : impl_(std::make_unique<Impl>()) {
   impl_->scene_models = scene.models;
+  impl_->lod = lod;
   impl_->instances.resize(scene.models.size());
   for (const PlacedInstance& p : scene.instances) impl_->instances[p.model].push_back(p.instance);
   for (const SceneModel& m : scene.models) {
@@ -29,6 +31,10 @@ ObjectSet::ObjectSet(const ObjectScene& scene, const LodOptions& lod, const std:
     std::vector<LodLevel> chain = cached_lod_chain(model, lod, cache);
     impl_->models.push_back(std::make_unique<GlModel>(model, std::move(chain), cache));
   }
+}
+
+const LodOptions& ObjectSet::lod() const {
+  return impl_->lod;
 }
 
 RepresentationCacheStats ObjectSet::cache_stats() const {

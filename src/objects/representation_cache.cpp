@@ -239,13 +239,17 @@ std::optional<std::vector<LodLevel>> deserialize_lod_chain(std::string_view byte
   return chain;
 }
 
-std::vector<LodLevel> cached_lod_chain(const Model& model, const LodOptions& o,
-                                       const RepresentationCache& cache) {
+std::string lod_chain_key(const LodOptions& o) {
   // kLodAlgorithm: bumped whenever build_lod_chain makes other levels from the
   // same options (2: sloppy steps per colour region), so older chains miss.
   constexpr int kLodAlgorithm = 2;
-  const std::string what = fmt::format("lod-a{}-r{}-f{}-t{}-c{}", kLodAlgorithm, o.ratio,
-                                       o.min_fraction, o.min_triangles, o.crease_deg);
+  return fmt::format("lod-a{}-r{}-f{}-t{}-c{}", kLodAlgorithm, o.ratio, o.min_fraction,
+                     o.min_triangles, o.crease_deg);
+}
+
+std::vector<LodLevel> cached_lod_chain(const Model& model, const LodOptions& o,
+                                       const RepresentationCache& cache) {
+  const std::string what = lod_chain_key(o);
   std::optional<std::vector<LodLevel>> chain;
   cache.read(what, [&](std::string_view bytes) -> const char* {
     chain = deserialize_lod_chain(bytes, model.materials.size());

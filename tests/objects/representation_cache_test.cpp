@@ -83,6 +83,16 @@ TEST_F(RepresentationCacheTest, SecondModelReadsEverythingAndDrawsTheSamePixels)
   EXPECT_EQ(third.stats().misses, 1) << "another LOD ratio must be another entry";
 }
 
+TEST(LodChainKey, EveryOptionThatChangesTheLevelsChangesTheKey) {
+  // Quality tables key on it too: a table measured on other levels is stale.
+  const std::string base = ts::lod_chain_key({});
+  EXPECT_EQ(ts::lod_chain_key({}), base);
+  EXPECT_NE(ts::lod_chain_key({.ratio = 0.7}), base);
+  EXPECT_NE(ts::lod_chain_key({.min_fraction = 0.02}), base);
+  EXPECT_NE(ts::lod_chain_key({.min_triangles = 8}), base);
+  EXPECT_NE(ts::lod_chain_key({.crease_deg = 30}), base);
+}
+
 TEST_F(RepresentationCacheTest, DamagedEntryIsRebuiltAndReplaced) {
   const ts::Image built = draw(cache(), relief);
   const fs::path file = cache().file("relief-32");

@@ -38,6 +38,9 @@ struct CalibrationDraw {
   /// Instances in the draw (on one spot): 1, or a batch at the smallest size
   /// that splits the draw call's time from the instances' (ms: the whole draw).
   int instances = 1;
+  /// Draw calls: 1, or `instances` separate calls of one instance each (the
+  /// batch call by call: what one more call costs inside a frame).
+  int draws = 1;
 };
 
 /// Draws each (model, representation) in `reps[model]` alone at each size,
@@ -47,8 +50,10 @@ std::vector<CalibrationDraw> measure_draw_costs(
     ObjectSet& set, const std::vector<std::vector<Representation>>& reps,
     const CostCalibrationOptions& options);
 
-/// Fits `model` to the draws: per kind the draw call (one instance against
-/// a batch at the smallest size), meshes by kind (per-instance,
+/// Fits `model` to the draws: per kind the draw call (a batch drawn call by
+/// call against the same batch in one call) and a timed draw's overhead
+/// (one instance against the batch: the flush, once a frame, so in no
+/// term: taken off each fitted constant), meshes by kind (per-instance,
 /// per-triangle, per-pixel over every model's levels: the fallback) and per
 /// (model, level), impostors per kind and resolution (fixed + per-pixel over
 /// the models timed), each less its draw call.

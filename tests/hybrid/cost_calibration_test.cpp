@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+// fit_draw_costs on draws made up from known costs: a timed draw's overhead
+// (the flush at glFinish, once a frame) stays out of every term, the draw
+// call is what one more costs inside a frame, an instance its own work.
+// No GL; well under 1 ms.
+#include "terrasprite/cost_calibration.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace terrasprite {
+namespace {
+
+TEST(CostCalibration, TheFlushIsNeitherADrawCallNorAnInstance) {
+  const double flush = 0.08, call = 0.002, per_triangle = 1e-4, per_pixel = 2e-6;
+  const int n = 8;
+  std::vector<CalibrationDraw> draws;
+  for (int level = 0; level < 4; ++level) {
+    const Representation rep{ObjectKind::kMesh, level};
+    const double tris = 4000.0 / (1 << level);
+    auto instance = [&](double px) { return per_triangle * tris + per_pixel * px; };
+    const double small = 380, large = 45000;
+    // One instance at two sizes; at the small size a batch of n in one call
+    // and the same n call by call.
+    draws.push_back({0, rep, 22, tris, small, flush + call + instance(small)});
+    draws.push_back({0, rep, 360, tris, large, flush + call + instance(large)});
+    draws.push_back({0, rep, 22, tris, small, flush + call + n * instance(small), n});
+    draws.push_back({0, rep, 22, tris, small, flush + n * call + n * instance(small), n, n});
+  }
+  DrawCostModel model;
+  fit_draw_costs(model, draws);
+  EXPECT_NEAR(model.terms(ObjectKind::kMesh).per_draw_ms, call, 1e-9);
+  for (int level = 0; level < 4; ++level) {
+    const double tris = 4000.0 / (1 << level);
+    for (double px : {0.0, 380.0, 45000.0})
+      EXPECT_NEAR(model.instance_ms({ObjectKind::kMesh, level}, tris, px, 0),
+                  per_triangle * tris + per_pixel * px, 1e-9)
+          << "level " << level << ", " << px << " px";
+  }
+}
+
+}  // namespace
+}  // namespace terrasprite

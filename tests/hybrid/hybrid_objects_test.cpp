@@ -16,7 +16,6 @@
 #include "terrasprite/instance_view.h"
 #include "terrasprite/object_scene.h"
 #include "terrasprite/object_set.h"
-#include "terrasprite/terrain_gen.h"
 #include "test_util.h"
 
 namespace ts = terrasprite;
@@ -25,22 +24,17 @@ namespace {
 
 constexpr int kW = 160, kH = 90, kTiny = 12;
 
-struct World {
-  tstest::TempDir dir;
-  ts::Terrain terrain;
-  ts::ObjectScene objects;
-  World() {
-    ts::TerrainOptions o;
-    o.synthetic_size = 65;
-    terrain = ts::load_terrain(o);
-    // The near tower at the origin (30 m); the tiny ones 3 cm tall around it.
-    std::string instances = R"([{"model": "t", "position": [0, 0]})";
-    for (int i = 0; i < kTiny; ++i)
-      instances += R"(, {"model": "t", "scale": 0.001, "position": [)" +
-                   std::to_string(-30 + 5 * i) + ", " + std::to_string(20 - 3 * i) + "]}";
-    objects =
-        tstest::tower_scene(dir, terrain, R"("height_m": 30, "color": [1, 0, 0])", instances + "]");
-  }
+// The near tower at the origin (30 m); the tiny ones 3 cm tall around it.
+std::string tower_instances() {
+  std::string instances = R"([{"model": "t", "position": [0, 0]})";
+  for (int i = 0; i < kTiny; ++i)
+    instances += R"(, {"model": "t", "scale": 0.001, "position": [)" + std::to_string(-30 + 5 * i) +
+                 ", " + std::to_string(20 - 3 * i) + "]}";
+  return instances + "]";
+}
+
+struct World : tstest::TowerWorld {
+  World() : TowerWorld(R"("height_m": 30, "color": [1, 0, 0])", tower_instances()) {}
 };
 
 ts::Camera view(const ts::Terrain& t) {

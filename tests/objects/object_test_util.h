@@ -26,6 +26,20 @@ inline terrasprite::ObjectScene tower_scene(const TempDir& dir, const terrasprit
                                          "scene", dir.path.string(), terrain.heights);
 }
 
+/// The 65 x 65 synthetic terrain with towers on it (tower_scene's arguments),
+/// the scene's files in its own temporary directory.
+struct TowerWorld {
+  TempDir dir;
+  terrasprite::Terrain terrain;
+  terrasprite::ObjectScene objects;
+  TowerWorld(const std::string& model_keys, const std::string& instances) {
+    terrasprite::TerrainOptions o;
+    o.synthetic_size = 65;
+    terrain = terrasprite::load_terrain(o);
+    objects = tower_scene(dir, terrain, model_keys, instances);
+  }
+};
+
 /// An axis-aligned box [-sx/2, sx/2] x [-sy/2, sy/2] x [0, sz], each face its
 /// own flat colour (+x red, -x green, +y blue, -y yellow, +z white, -z magenta).
 inline terrasprite::Model colored_box(float sx = 1.f, float sy = 1.f, float sz = 1.f) {

@@ -30,18 +30,11 @@ int differing_pixels(const ts::Image& a, const ts::Image& b) {
   return n;
 }
 
-struct World {
-  tstest::TempDir dir;
-  ts::Terrain terrain;
-  ts::ObjectScene objects;
-  World() {
-    ts::TerrainOptions o;
-    o.synthetic_size = 65;
-    terrain = ts::load_terrain(o);
-    objects = tower_scene(
-        dir, terrain, R"("height_m": 150, "color": [1, 0, 0])",
-        R"([{"model": "t", "position": [0, 0]}, {"model": "t", "position": [300, 200]}])");
-  }
+struct World : tstest::TowerWorld {
+  World()
+      : TowerWorld(
+            R"("height_m": 150, "color": [1, 0, 0])",
+            R"([{"model": "t", "position": [0, 0]}, {"model": "t", "position": [300, 200]}])") {}
 };
 
 ts::Camera view(const ts::Terrain& t) {

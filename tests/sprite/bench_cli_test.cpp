@@ -27,8 +27,7 @@ TEST(BenchLodsprite, WritesTheJsonContractAndTheReport) {
           "--thresholds 0.5,1 --frame-counts 6,12 --lod-sweep 4,8 --json " +
           json + " --out " + out),
       0);
-  std::ifstream f(json);
-  const nlohmann::json d = nlohmann::json::parse(f);
+  const nlohmann::json d = nlohmann::json::parse(std::ifstream(json));
   for (const char* k :
        {"gl_renderer", "terrain", "size", "frames", "threshold_px", "full", "lod", "sprite",
         "speedup", "per_frame", "threshold_sweep", "frame_count_sweep", "lod_sweep", "bound"})
@@ -70,8 +69,7 @@ TEST(BenchLodsprite, CacheThereAndBackReportsTheSaving) {
           "--there-and-back --cache --thresholds 1 --frame-counts 8 --lod-sweep 4 --json " +
           json + " --out " + out),
       0);
-  std::ifstream f(json);
-  const nlohmann::json d = nlohmann::json::parse(f);
+  const nlohmann::json d = nlohmann::json::parse(std::ifstream(json));
   EXPECT_EQ(d["per_frame"].size(), 16u);
   EXPECT_EQ(d["there_and_back"], true);
   ASSERT_TRUE(d.contains("cache"));
@@ -105,8 +103,7 @@ TEST(BenchLodsprite, AdaptiveMeshIsRecorded) {
           "--mesh adaptive --thresholds 1 --frame-counts 6 --lod-sweep 4 --json " +
           json + " --out " + out),
       0);
-  std::ifstream f(json);
-  const nlohmann::json d = nlohmann::json::parse(f);
+  const nlohmann::json d = nlohmann::json::parse(std::ifstream(json));
   EXPECT_EQ(d["mesh"], "adaptive");
   EXPECT_EQ(d["mesh_triangles"], 32);  // the uniform 4 x 4 grid's, what plain LOD draws
 }
@@ -122,8 +119,7 @@ TEST(BenchLodsprite, KeyFramingIsRecorded) {
           "--frame-counts 6 --lod-sweep 4 --json " +
           json + " --out " + out),
       0);
-  std::ifstream f(json);
-  const nlohmann::json d = nlohmann::json::parse(f);
+  const nlohmann::json d = nlohmann::json::parse(std::ifstream(json));
   EXPECT_EQ(d["key_margin"], 0.125);
   EXPECT_EQ(d["key_supersample"], 1.25);
   EXPECT_EQ(d["scale_per_drape_px"], 0.0625);
@@ -139,8 +135,7 @@ TEST(BenchLodsprite, AsyncReportsBothDisplays) {
                 "--async --thresholds 1 --frame-counts 12 --lod-sweep 4 --json " +
                 json + " --out " + out),
             0);
-  std::ifstream f(json);
-  const nlohmann::json d = nlohmann::json::parse(f);
+  const nlohmann::json d = nlohmann::json::parse(std::ifstream(json));
   EXPECT_EQ(d["async"], true);
   ASSERT_TRUE(d.contains("async_run"));
   const nlohmann::json& a = d["async_run"];
@@ -178,10 +173,7 @@ TEST(BenchLodsprite, CompareTriggerAndRichShading) {
   const std::string common =
       "bench lodsprite --synthetic-size 65 --resample 65 --frames 16 --size 64x64 --lod-quads 4 "
       "--thresholds 1 --frame-counts 16 --lod-sweep 4 ";
-  auto load = [](const fs::path& p) {
-    std::ifstream f(p);
-    return nlohmann::json::parse(f);
-  };
+  auto load = [](const fs::path& p) { return nlohmann::json::parse(std::ifstream(p)); };
   ASSERT_EQ(run(common + "--compare-trigger --shading rich --threshold 0.3 --json " +
                 (dir / "a.json").string() + " --out " + (dir / "a").string()),
             0);
@@ -235,8 +227,7 @@ TEST(BenchLodsprite, ReferenceOnEveryNthFrame) {
           "--lod-sweep 4 --json " +
           json + " --out " + out),
       0);
-  std::ifstream f(json);
-  const nlohmann::json d = nlohmann::json::parse(f);
+  const nlohmann::json d = nlohmann::json::parse(std::ifstream(json));
   EXPECT_EQ(d["reference_every"], 3);
   EXPECT_EQ(d["reference_frames"], 3);   // frames 0, 3, 6
   EXPECT_EQ(d["sweep_score_every"], 6);  // lcm(2, 3): sweeps need a reference

@@ -25,8 +25,7 @@ TEST(BenchWarp, WritesTheContractAndNamesTheWorstWarps) {
                 "--json " +
                 json + " --out " + out),
             0);
-  std::ifstream f(json);
-  const nlohmann::json d = nlohmann::json::parse(f);
+  const nlohmann::json d = nlohmann::json::parse(std::ifstream(json));
   for (const char* k : {"size", "renderer", "path", "methods", "flythrough"})
     EXPECT_TRUE(d.contains(k)) << k;
   ASSERT_EQ(d["methods"].size(), 2u);  // poly2 and depth on the one path

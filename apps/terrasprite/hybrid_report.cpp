@@ -8,6 +8,8 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <string_view>
+#include <vector>
 
 #include "hybrid_bench.h"
 #include "plot.h"
@@ -21,29 +23,33 @@ std::string dat_name(const std::string& scenario) {
   return "frames_" + scenario + ".dat";
 }
 
-/// One .dat per scenario: frame, ms, triangles and the selection's counters.
+/// One .dat per scenario, a row per frame: the frame's own figures, then the
+/// selection's counters and the quality figures (NaN where a frame has none).
 void write_frames(const HybridScenarioResult& s, OutputDir& out) {
+  static constexpr std::string_view kColumns[] = {
+      "frame",        "ms",           "triangles",    "triangles_min", "triangles_max",
+      "predicted_ms", "budget_ms",    "switches",     "selection_ms",  "ssim",
+      "floor_ms",     "not_drawn",    "ssim_objects", "expected_ssim", "n_mesh",
+      "n_relief",     "n_octahedral", "draw_gap_ms"};
   std::ostringstream f;
-  f << "frame ms triangles triangles_min triangles_max predicted_ms budget_ms switches "
-       "selection_ms ssim floor_ms not_drawn ssim_objects expected_ssim n_mesh n_relief "
-       "n_octahedral "
-       "draw_gap_ms\n";
+  f << fmt::format("{}\n", fmt::join(kColumns, " "));
   for (const FrameResult& r : s.frames) {
-    auto c = [&](const char* k) {
-      const auto it = r.counters.find(k);
-      return it == r.counters.end() ? std::string("NaN") : fmt::format("{}", it->second);
+    auto value = [&](std::string_view k) -> std::string {
+      if (k == "frame") return fmt::format("{}", r.frame);
+      if (k == "ms") return fmt::format("{}", r.ms);
+      if (k == "triangles") return fmt::format("{}", r.triangles);
+      if (k == "ssim") return r.quality ? fmt::format("{}", r.quality->ssim) : "NaN";
+      if (k == "ssim_objects") {
+        if (!r.quality) return "NaN";
+        const auto it = r.quality->figures.find(std::string(k));
+        return it == r.quality->figures.end() ? "NaN" : fmt::format("{}", it->second);
+      }
+      const auto it = r.counters.find(std::string(k));
+      return it == r.counters.end() ? "NaN" : fmt::format("{}", it->second);
     };
-    auto figure = [&](const char* k) {
-      if (!r.quality) return std::string("NaN");
-      const auto it = r.quality->figures.find(k);
-      return it == r.quality->figures.end() ? std::string("NaN") : fmt::format("{}", it->second);
-    };
-    f << fmt::format("{} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {} {}\n", r.frame, r.ms,
-                     r.triangles, c("triangles_min"), c("triangles_max"), c("predicted_ms"),
-                     c("budget_ms"), c("switches"), c("selection_ms"),
-                     r.quality ? fmt::format("{}", r.quality->ssim) : "NaN", c("floor_ms"),
-                     c("not_drawn"), figure("ssim_objects"), c("expected_ssim"), c("n_mesh"),
-                     c("n_relief"), c("n_octahedral"), c("draw_gap_ms"));
+    std::vector<std::string> row;
+    for (std::string_view k : kColumns) row.push_back(value(k));
+    f << fmt::format("{}\n", fmt::join(row, " "));
   }
   write_text(out.file(dat_name(s.name)), f.str());
 }

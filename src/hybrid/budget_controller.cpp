@@ -25,6 +25,16 @@ void BudgetController::update(double predicted_ms, double measured_ms) {
     residuals_.push_back(std::log(r / ratio_));
     while (int(residuals_.size()) > std::max(1, o_.quantile_window)) residuals_.pop_front();
   }
+  // The spread: the frame h back, less the median of the 2h + 1 around it.
+  const std::size_t h = std::size_t(std::max(0, o_.centre_half_width));
+  log_ratios_.push_back(std::log(r));
+  while (log_ratios_.size() > 2 * h + 1) log_ratios_.pop_front();
+  if (log_ratios_.size() == 2 * h + 1) {
+    std::vector<double> w(log_ratios_.begin(), log_ratios_.end());
+    std::nth_element(w.begin(), w.begin() + std::ptrdiff_t(h), w.end());
+    spread_.push_back(log_ratios_[h] - w[h]);
+    while (int(spread_.size()) > std::max(1, o_.quantile_window)) spread_.pop_front();
+  }
   if (!surprise_) {
     // Log-domain smoothing: a ratio of 2 and one of 0.5 weigh alike.
     if (!first_) changes_.push_back(std::abs(std::log(r) - last_log_ratio_));
@@ -66,21 +76,46 @@ double BudgetController::noise() const {
 }
 
 double BudgetController::tail() const {
-  const std::size_t n = residuals_.size();
+  const std::size_t n = spread_.size();
   if (n == 0 || int(n) < std::max(1, o_.quantile_window / 4)) return NAN;
-  std::vector<double> e(residuals_.begin(), residuals_.end());
+  std::vector<double> e(spread_.begin(), spread_.end());
   const std::size_t k =
       std::min(n - 1, std::size_t(std::max(0.0, std::ceil(o_.quantile * double(n)) - 1)));
   std::nth_element(e.begin(), e.begin() + std::ptrdiff_t(k), e.end());
   return e[k];
 }
 
+double BudgetController::tail_error() const {
+  const std::size_t n = spread_.size();
+  const double q = o_.quantile;
+  if (!std::isfinite(tail()) || !(q > 0 && q < 1)) return 0.0;
+  // Robust sigma of the spread (median absolute deviation / 0.6745)...
+  std::vector<double> e(spread_.begin(), spread_.end());
+  const auto mid = e.begin() + std::ptrdiff_t(n / 2);
+  std::nth_element(e.begin(), mid, e.end());
+  const double m = *mid;
+  for (double& x : e) x = std::abs(x - m);
+  std::nth_element(e.begin(), mid, e.end());
+  const double sigma = *mid / 0.6745;
+  // ...and a normal's sample q-quantile's standard error, sqrt(q (1 - q) /
+  // n) / pdf(z_q) sigma; z_q by bisection on the normal's cdf.
+  double lo = -10, hi = 10;
+  for (int i = 0; i < 60; ++i) {
+    const double z = 0.5 * (lo + hi);
+    (0.5 * std::erfc(-z / std::sqrt(2.0)) < q ? lo : hi) = z;
+  }
+  const double z = 0.5 * (lo + hi);
+  const double pdf = std::exp(-0.5 * z * z) / std::sqrt(2 * M_PI);
+  return std::sqrt(q * (1 - q) / double(n)) / pdf * sigma;
+}
+
 double BudgetController::setpoint_ms() const {
-  // Measured against what the budget assumed (the smoothed ratio), the
-  // frames' own tail is the spread to cover.
+  // The frames' own tail about their local pace is the spread to cover,
+  // with a margin for how little 40 frames say about a 95th percentile.
   const double q = tail();
   auto clamped = [&](double f) { return o_.target_ms * std::clamp(f, o_.min_setpoint, 1.0); };
-  if (std::isfinite(q)) return clamped(o_.tolerance * std::exp(-q));
+  if (std::isfinite(q))
+    return clamped(o_.tolerance * std::exp(-q - o_.quantile_margin * tail_error()));
   // Too few frames yet: the budget follows the smoothed ratio, which carries
   // w / (2 - w) of the frames' noise variance into the next frame: the
   // spread to cover is the frame's own and the budget's together.

@@ -91,6 +91,44 @@ TEST(BudgetController, NoisyMachineIsHeldByItsP95) {
   EXPECT_LT(p95, 1.15 * target);
 }
 
+TEST(BudgetController, WalkthroughLengthRunsHoldTheirP95) {
+  // The bench's case: 160 frames, the p95 over them against +10%, on a
+  // machine like this one: 20% log-normal noise a frame, one stall in 15
+  // (1.5x), and a pace that wanders (a random walk, 3% a frame). Aimed at
+  // exactly +10%, a 40-frame quantile is low as often as high and a low one
+  // costs more than a high one earns: 1 of these 20 runs held +10% (the
+  // replayed walkthroughs agree: 3% of 94). The margin holds 19 of them,
+  // without starving the frames.
+  const double target = 10;
+  int held = 0;
+  double median_sum = 0;
+  const int runs = 20;
+  for (int seed = 0; seed < runs; ++seed) {
+    BudgetController c({.target_ms = target});
+    std::mt19937 rng(std::uint32_t(100 + seed));
+    std::normal_distribution<double> noise(0, 0.2), walk(0, 0.03);
+    std::uniform_real_distribution<double> u(0, 1);
+    double pace = 0;
+    std::vector<double> ms;
+    for (int f = 0; f < 160; ++f) {
+      pace = std::clamp(pace + walk(rng), -0.5, 0.5);
+      const double predicted = std::clamp(c.budget_ms(), 1.0, 100.0);
+      const double stall = u(rng) < 1.0 / 15 ? 1.5 : 1.0;
+      const double measured = stall * predicted * std::exp(pace + noise(rng));
+      c.update(predicted, measured);
+      ms.push_back(measured);
+    }
+    std::sort(ms.begin(), ms.end());
+    held += ms[std::size_t(std::ceil(0.95 * double(ms.size()))) - 1] <= 1.1 * target;
+    median_sum += ms[ms.size() / 2];
+  }
+  std::printf(
+      "walkthrough-length runs: %d of %d held p95 <= +10%%, mean median %.2f (target %.0f)\n", held,
+      runs, median_sum / runs, target);
+  EXPECT_GE(held, 17);
+  EXPECT_GT(median_sum / runs, 0.55 * target);
+}
+
 TEST(BudgetController, HeavyTailedFramesAreHeldByTheirP95) {
   // A walkthrough's frames: 5% noise, and one frame in twelve 1.6x slow (a
   // stall the cost model cannot see, under the surprise factor). The

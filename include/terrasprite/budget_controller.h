@@ -65,7 +65,7 @@ struct BudgetControllerOptions {
   /// in object quality where the budget was already short (issue 11's note).
   double quantile = 0.95;
   int quantile_window = 40;
-  int centre_half_width = 3;
+  int centre_half_width = 3;     ///< at least 1 (0 is taken as 1)
   double quantile_margin = 2.0;  ///< standard errors of the sample quantile
   /// Neither setpoint goes under this fraction of the target: on a machine
   /// shared with builds (frames 5x their expected time, one in ten) no

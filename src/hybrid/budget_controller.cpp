@@ -26,7 +26,7 @@ void BudgetController::update(double predicted_ms, double measured_ms) {
     while (int(residuals_.size()) > std::max(1, o_.quantile_window)) residuals_.pop_front();
   }
   // The spread: the frame h back, less the median of the 2h + 1 around it.
-  const std::size_t h = std::size_t(std::max(0, o_.centre_half_width));
+  const std::size_t h = std::size_t(std::max(1, o_.centre_half_width));
   log_ratios_.push_back(std::log(r));
   while (log_ratios_.size() > 2 * h + 1) log_ratios_.pop_front();
   if (log_ratios_.size() == 2 * h + 1) {

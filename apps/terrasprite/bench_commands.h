@@ -17,5 +17,7 @@ void add_bench_warp(CLI::App& bench);
 void add_bench_stream(CLI::App& bench);
 /// bench hybrid: objects under a frame-time budget, the hybrid-objects walkthrough.
 void add_bench_hybrid(CLI::App& bench);
+/// bench replay-controller: the budget controller replayed on recorded bench hybrid runs.
+void add_bench_replay_controller(CLI::App& bench);
 
 }  // namespace terrasprite::cli

@@ -14,6 +14,7 @@ void add_bench(CLI::App& app) {
   add_bench_warp(*bench);
   add_bench_stream(*bench);
   add_bench_hybrid(*bench);
+  add_bench_replay_controller(*bench);
 }
 
 }  // namespace terrasprite::cli

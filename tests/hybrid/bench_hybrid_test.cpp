@@ -74,6 +74,41 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
   EXPECT_TRUE(std::filesystem::exists(dir / "h/index.html"));
   EXPECT_TRUE(std::filesystem::exists(dir / "h/table2.md"));
   EXPECT_TRUE(std::filesystem::exists(dir / "h/fig6_mixed-optimal.png"));
+
+  // The controller replayed on this run's frames (well under a second).
+  const tstest::CliResult rp = tstest::run_cli("bench replay-controller " + (dir / "h") +
+                                               " --margin 0 --json " + (dir / "r.json"));
+  ASSERT_EQ(rp.status, 0) << rp.output;
+  const nlohmann::json rj = nlohmann::json::parse(std::ifstream(dir / "r.json"));
+  ASSERT_EQ(rj["series"].size(), 2u);  // pm, mixed-optimal
+  for (const auto& s : rj["series"]) {
+    EXPECT_EQ(s["frames"].get<int>(), 10);
+    EXPECT_GT(s["replayed_p95_over_target"].get<double>(), 0.0);
+    EXPECT_GT(s["replayed_budget_over_target"].get<double>(), 0.0);
+  }
+  EXPECT_EQ(rj["controller"]["quantile_margin"].get<double>(), 0.0);
+}
+
+TEST(BenchReplayController, BadRunsExitTwoNamingTheFile) {
+  tstest::TempDir dir;
+  std::filesystem::create_directories(dir.path / "run");
+  std::ofstream(dir / "run/hybrid.json") << R"({"target_ms": 10})";
+  std::ofstream(dir / "run/frames_pm.dat") << "frame ms predicted_ms budget_ms\n0 9 8 8\n1 9 x 8\n";
+  std::ofstream(dir / "run/frames_mixed-optimal.dat") << "frame ms\n0 9\n";
+  struct Case {
+    std::string args, names;
+  };
+  for (const Case& c :
+       std::vector<Case>{{dir / "nothing", "hybrid.json"},
+                         {dir / "run" + " --scenarios pm", "line 3: 'x' is not a number"},
+                         {dir / "run" + " --scenarios mixed-optimal", "no 'predicted_ms' column"},
+                         {dir / "run" + " --scenarios ibr", "frames_ibr.dat: cannot read"}}) {
+    const tstest::CliResult r =
+        tstest::run_cli("bench replay-controller " + c.args + " --json " + (dir / "r.json"));
+    EXPECT_EQ(r.status, 2) << c.args << ": " << r.output;
+    EXPECT_NE(r.output.find(c.names), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "r.json")) << c.args;
+  }
 }
 
 TEST(BenchHybrid, BadInputExitsTwoWithoutOutput) {

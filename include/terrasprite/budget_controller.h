@@ -57,12 +57,13 @@ struct BudgetControllerOptions {
   /// late), so a step in the machine's pace is followed by the ratio and not
   /// taken as spread for the next 40 frames. The margin is there because a
   /// 40-frame quantile is a noisy estimate and a low one costs more than a
-  /// high one earns: aimed at exactly +10% (no margin, tolerance 1.1), 94
-  /// recorded walkthrough series replayed through the loop landed their p95
-  /// at a median +15%, and only 3% of them within +10%; with this margin
-  /// and tolerance, 90% of them, at 12% less budget. Live, 11 of 12 pm and
-  /// mixed-optimal walkthroughs held +10% (1 of 12 before), and paid for it
-  /// in object quality where the budget was already short (issue 11's note).
+  /// high one earns. `bench replay-controller` on 136 recorded walkthrough
+  /// series: aimed at exactly +10% (tolerance 1.1, no margin), 4% of them
+  /// held +10% (p95 median +17%; the loop before this spread: 3% of 94);
+  /// with this margin and tolerance 76% (median +5%), for 14% less budget.
+  /// Live, 15 of 18 pm and mixed-optimal walkthroughs held +10% (1 of 18
+  /// before), and paid for it in object quality where the budget was
+  /// already short (issue 11's note).
   double quantile = 0.95;
   int quantile_window = 40;
   int centre_half_width = 3;     ///< at least 1 (0 is taken as 1)

@@ -61,7 +61,7 @@ struct BudgetControllerOptions {
   /// series: aimed at exactly +10% (tolerance 1.1, no margin), 4% of them
   /// held +10% (p95 median +17%; the loop before this spread: 3% of 94);
   /// with this margin and tolerance 76% (median +5%), for 14% less budget.
-  /// Live, 15 of 18 pm and mixed-optimal walkthroughs held +10% (1 of 18
+  /// Live, 18 of 22 pm and mixed-optimal walkthroughs held +10% (1 of 22
   /// before), and paid for it in object quality where the budget was
   /// already short (issue 11's note).
   double quantile = 0.95;

@@ -9,6 +9,22 @@
 
 namespace terrasprite {
 
+namespace {
+
+/// A normal's sigma from a sample, robustly: median absolute deviation / 0.6745.
+double robust_sigma(const std::deque<double>& sample) {
+  std::vector<double> e(sample.begin(), sample.end());
+  if (e.empty()) return 0.0;
+  const auto mid = e.begin() + std::ptrdiff_t(e.size() / 2);
+  std::nth_element(e.begin(), mid, e.end());
+  const double m = *mid;
+  for (double& x : e) x = std::abs(x - m);
+  std::nth_element(e.begin(), mid, e.end());
+  return *mid / 0.6745;
+}
+
+}  // namespace
+
 BudgetController::BudgetController(const BudgetControllerOptions& options)
     : o_(options), budget_ms_(options.target_ms) {}
 
@@ -53,14 +69,7 @@ void BudgetController::update(double predicted_ms, double measured_ms) {
 
 double BudgetController::gain() const {
   if (residuals_.size() < 8 || !(o_.drift > 0)) return o_.ratio_smoothing;
-  // Robust spread of the residuals: their median absolute deviation.
-  std::vector<double> e(residuals_.begin(), residuals_.end());
-  const auto mid = e.begin() + std::ptrdiff_t(e.size() / 2);
-  std::nth_element(e.begin(), mid, e.end());
-  const double m = *mid;
-  for (double& x : e) x = std::abs(x - m);
-  std::nth_element(e.begin(), mid, e.end());
-  const double r = std::max(1e-8, std::pow(*mid / 0.6745, 2)), q = o_.drift * o_.drift;
+  const double r = std::max(1e-8, std::pow(robust_sigma(residuals_), 2)), q = o_.drift * o_.drift;
   // The steady-state Kalman gain for x' = x + N(0, q) seen as x + N(0, r):
   // the prior variance M solves M^2 = q M + q r, gain M / (M + r).
   const double k = (-q + std::sqrt(q * q + 4 * q * r)) / (2 * r);
@@ -89,16 +98,10 @@ double BudgetController::tail_error() const {
   const std::size_t n = spread_.size();
   const double q = o_.quantile;
   if (!std::isfinite(tail()) || !(q > 0 && q < 1)) return 0.0;
-  // Robust sigma of the spread (median absolute deviation / 0.6745)...
-  std::vector<double> e(spread_.begin(), spread_.end());
-  const auto mid = e.begin() + std::ptrdiff_t(n / 2);
-  std::nth_element(e.begin(), mid, e.end());
-  const double m = *mid;
-  for (double& x : e) x = std::abs(x - m);
-  std::nth_element(e.begin(), mid, e.end());
-  const double sigma = *mid / 0.6745;
-  // ...and a normal's sample q-quantile's standard error, sqrt(q (1 - q) /
-  // n) / pdf(z_q) sigma; z_q by bisection on the normal's cdf.
+  // A normal's sample q-quantile's standard error, sqrt(q (1 - q) / n) /
+  // pdf(z_q) sigma, sigma the spread's robust one; z_q by bisection on the
+  // normal's cdf.
+  const double sigma = robust_sigma(spread_);
   double lo = -10, hi = 10;
   for (int i = 0; i < 60; ++i) {
     const double z = 0.5 * (lo + hi);

@@ -43,6 +43,10 @@ struct BudgetControllerOptions {
   double z = 1.645;  ///< one-sided 95%
   double tolerance = 1.05;
   int spread_window = 15;
+  /// Until `prior_changes` successive changes are in, sigma is taken as
+  /// `prior_noise` (this machine's walkthroughs: 0.17-0.30).
+  double prior_noise = 0.25;
+  int prior_changes = 3;
   /// Once `quantile_window / 4` frames are in, the setpoint comes from the
   /// frames themselves instead of sigma: setpoint = target x min(1,
   /// tolerance x exp(-(q + quantile_margin x se))), q the `quantile` of the
@@ -60,14 +64,16 @@ struct BudgetControllerOptions {
   /// high one earns. `bench replay-controller` on 136 recorded walkthrough
   /// series: aimed at exactly +10% (tolerance 1.1, no margin), 4% of them
   /// held +10% (p95 median +17%; the loop before this spread: 3% of 94);
-  /// with this margin and tolerance 76% (median +5%), for 14% less budget.
-  /// Live, 18 of 22 pm and mixed-optimal walkthroughs held +10% (1 of 22
-  /// before), and paid for it in object quality where the budget was
-  /// already short (issue 11's note).
+  /// with margin 2 and tolerance 1.05, 76% (median +5%) for 14% less
+  /// budget; with `prior_noise` as well, margin 1.5 holds 82% (median +4%)
+  /// for 13% less, and margin 2 86%. Live, margin 2 without the prior held
+  /// 18 of 22 pm and mixed-optimal walkthroughs (1 of 22 before), and paid
+  /// for it in object quality where the budget was already short (issue
+  /// 11's note).
   double quantile = 0.95;
   int quantile_window = 40;
   int centre_half_width = 3;     ///< at least 1 (0 is taken as 1)
-  double quantile_margin = 2.0;  ///< standard errors of the sample quantile
+  double quantile_margin = 1.5;  ///< standard errors of the sample quantile
   /// Neither setpoint goes under this fraction of the target: on a machine
   /// shared with builds (frames 5x their expected time, one in ten) no
   /// selection holds the p95, and aiming for it starves every frame.
@@ -90,7 +96,8 @@ class BudgetController {
   bool last_was_surprise() const { return surprise_; }
   /// The frame time the loop currently aims at (see `z`), ms.
   double setpoint_ms() const;
-  /// The measured noise sigma (log domain; see `spread_window`).
+  /// The measured noise sigma (log domain; see `spread_window`), or
+  /// `prior_noise` while too few frames are in.
   double noise() const;
   /// The `quantile` of the frames' spread (see `centre_half_width`) over
   /// the window, or NaN while fewer than `quantile_window / 4` frames are in.

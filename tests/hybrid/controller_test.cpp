@@ -202,15 +202,22 @@ TEST(BudgetController, NoisyFramesDoNotSwingTheBudget) {
 }
 
 TEST(BudgetController, OneSurpriseFrameDoesNotThrowTheRestOff) {
-  BudgetController c({.target_ms = 50});
-  for (int f = 0; f < 20; ++f) c.update(c.budget_ms(), c.budget_ms());
+  // A twin fed the same frames without the surprises: the loop may still be
+  // settling (the first frames assume noise), so the check is "as if the
+  // surprise had not happened", not "unchanged".
+  BudgetController c({.target_ms = 50}), twin({.target_ms = 50});
+  for (int f = 0; f < 20; ++f) {
+    c.update(c.budget_ms(), c.budget_ms());
+    twin.update(twin.budget_ms(), twin.budget_ms());
+  }
   const double before = c.budget_ms();
   c.update(before, 10 * before);  // a keyframe, an impostor build
-  EXPECT_NEAR(c.budget_ms(), before, 1e-9);
+  EXPECT_NEAR(c.budget_ms(), twin.budget_ms(), 1e-9);
   EXPECT_TRUE(c.last_was_surprise());
   c.update(before, before);
+  twin.update(before, before);
   c.update(before, 0.1 * before);  // a glitch the other way
-  EXPECT_NEAR(c.budget_ms(), before, 1e-9);
+  EXPECT_NEAR(c.budget_ms(), twin.budget_ms(), 1e-9);
   c.update(before, before);
   // Two slow frames in a row are the machine's new pace: the budget follows.
   c.update(before, 10 * before);

@@ -136,6 +136,7 @@ void run_replay(const ReplayArgs& a) {
     write_json({{"controller",
                  {{"tolerance", a.controller.tolerance},
                   {"quantile_margin", a.controller.quantile_margin},
+                  {"prior_noise", a.controller.prior_noise},
                   {"centre_half_width", a.controller.centre_half_width},
                   {"quantile_window", a.controller.quantile_window}}},
                 {"series", series},
@@ -168,6 +169,10 @@ void add_bench_replay_controller(CLI::App& bench) {
                   "frames each side of the running median the spread is taken about")
       ->capture_default_str()
       ->check(CLI::Range(1, 50));
+  cmd->add_option("--prior-noise", a->controller.prior_noise,
+                  "frame noise (sigma, log) assumed until three frames are in")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 2.0));
   cmd->add_option("--quantile-window", a->controller.quantile_window, "frames in the p95's window")
       ->capture_default_str()
       ->check(CLI::Range(4, 10000));

@@ -27,6 +27,11 @@ struct CostCalibrationOptions {
   /// time is mostly triangles).
   bool mesh_two_sizes = true;
   int batch = 8;  ///< instances in the draw-call batch
+  /// Meshes, at the smallest size: this many instances in a grid across the
+  /// image, one draw (at most 8 for levels over 20k triangles; 0: none).
+  /// Instances on one spot share the rasteriser's tiles; a walkthrough's do
+  /// not, and there a level's instance cost up to twice as much per triangle.
+  int spread = 24;
 };
 
 /// One timed draw: model, representation, size and covered pixels, time.
@@ -41,6 +46,9 @@ struct CalibrationDraw {
   /// Draw calls: 1, or `instances` separate calls of one instance each (the
   /// batch call by call: what one more call costs inside a frame).
   int draws = 1;
+  /// The `instances` were spread in a grid over the image, not on one spot
+  /// (see CostCalibrationOptions::spread).
+  bool spread = false;
 };
 
 /// Draws each (model, representation) in `reps[model]` alone at each size,
@@ -56,7 +64,9 @@ std::vector<CalibrationDraw> measure_draw_costs(
 /// term: taken off each fitted constant), meshes by kind (per-instance,
 /// per-triangle, per-pixel over every model's levels: the fallback) and per
 /// (model, level), impostors per kind and resolution (fixed + per-pixel over
-/// the models timed), each less its draw call.
+/// the models timed), each less its draw call. A mesh level with a spread
+/// batch takes its constant from it: (batch - one alone) / (n - 1), less
+/// its pixels, free of the flush that a single draw's constant is fitted beside.
 void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& draws);
 
 /// A table of the prediction error per kind and size: measured / predicted

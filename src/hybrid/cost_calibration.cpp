@@ -40,20 +40,47 @@ double centred_pixels(int size_px, int width, int height) {
   return M_PI / 4 * std::min(size_px, width) * std::min(size_px, height);
 }
 
-/// Median time of one draw of `n` instances on one spot, pipeline drained.
-double time_draw(gl::RenderTarget& target, GlModel& model, const Representation& rep,
-                 const Camera& cam, int n, int repeats) {
-  const std::vector<ObjectInstance> same(std::size_t(std::max(n, 1)));
+/// Median time of one draw of `instances`, pipeline drained.
+double time_instances(gl::RenderTarget& target, GlModel& model, const Representation& rep,
+                      const Camera& cam, std::span<const ObjectInstance> instances, int repeats) {
   std::vector<double> ms;
   for (int k = 0; k < std::max(1, repeats); ++k) {
     target.bind_and_clear();
     glFinish();
     const auto t0 = Clock::now();
-    model.draw(rep, same, cam);
+    model.draw(rep, instances, cam);
     glFinish();
     ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
   }
   return summarize(ms).median;
+}
+
+/// Median time of one draw of `n` instances on one spot, pipeline drained.
+double time_draw(gl::RenderTarget& target, GlModel& model, const Representation& rep,
+                 const Camera& cam, int n, int repeats) {
+  const std::vector<ObjectInstance> same(std::size_t(std::max(n, 1)));
+  return time_instances(target, model, rep, cam, same, repeats);
+}
+
+/// Up to `n` instances of `m` in a grid in the plane through its centre
+/// facing `cam`, `size_px` across each and 1.6 x that apart on screen.
+std::vector<ObjectInstance> spread_instances(const Model& m, const Camera& cam,
+                                             const CostCalibrationOptions& o, int size_px, int n) {
+  const double gap_px = 1.6 * size_px;
+  const int cols = std::max(1, int(o.width / gap_px) - 1),
+            rows = std::max(1, int(o.height / gap_px) - 1);
+  const double dist = glm::length(cam.position - glm::dvec3(m.center()));
+  const double m_per_px = 2 * dist * std::tan(glm::radians(o.fov_y_deg) / 2) / o.height;
+  std::vector<ObjectInstance> out;
+  for (int j = 0; j < rows && int(out.size()) < n; ++j)
+    for (int i = 0; i < cols && int(out.size()) < n; ++i) {
+      ObjectInstance a;
+      a.position = gap_px * m_per_px *
+                   ((double(i) - (cols - 1) / 2.0) * cam.right() +
+                    (double(j) - (rows - 1) / 2.0) * cam.up());
+      out.push_back(a);
+    }
+  return out;
 }
 
 /// Median time of `n` separate draw calls of one instance each on one spot.
@@ -83,6 +110,7 @@ DrawOverheads draw_overheads(const std::vector<CalibrationDraw>& draws) {
   std::map<Key, double> single, batch, calls;
   std::map<Key, int> n_of;
   for (const CalibrationDraw& d : draws) {
+    if (d.spread) continue;
     const Key key{d.model, int(d.rep.kind), d.rep.level, d.rep.resolution, d.size_px};
     if (d.instances == 1) single[key] = d.ms;
     if (d.instances > 1) (d.draws > 1 ? calls : batch)[key] = d.ms, n_of[key] = d.instances;
@@ -138,6 +166,13 @@ std::vector<CalibrationDraw> measure_draw_costs(
           out.push_back({m, rep, size, tris, px,
                          time_calls(target, model, rep, cam, o.batch, o.repeats), o.batch,
                          o.batch});
+          if (rep.kind != ObjectKind::kMesh || o.spread < 2) continue;
+          const std::vector<ObjectInstance> grid = spread_instances(
+              model.model(), cam, o, size, tris > 20000 ? std::min(o.spread, 8) : o.spread);
+          if (grid.size() < 2) continue;
+          out.push_back({m, rep, size, tris, px,
+                         time_instances(target, model, rep, cam, grid, o.repeats), int(grid.size()),
+                         1, true});
         }
       for (const Representation& rep : timed) {
         if (rep.kind == ObjectKind::kMesh && o.mesh_two_sizes && size != smallest &&
@@ -208,6 +243,25 @@ void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& dr
     RepresentationCost c = *model.cost(rep, std::get<0>(k));
     c.fixed_ms = std::max(0.0, c.fixed_ms - overhead[std::size_t(rep.kind)]);
     model.set_cost(rep, c, std::get<0>(k));
+  }
+  // A mesh level's spread batch against one instance alone at the same size:
+  // (tn - t1) / (n - 1) is an instance's time among others spread over the
+  // image, with no flush in it. Its pixels (the level's own per-pixel
+  // slope) come off; what is left is the level's constant. Fitted beside an
+  // 80 us flush, single draws put the constant of small levels anywhere
+  // from a quarter to four times this.
+  for (const CalibrationDraw& d : draws) {
+    if (!d.spread || d.rep.kind != ObjectKind::kMesh || d.instances < 2) continue;
+    const auto one = std::find_if(draws.begin(), draws.end(), [&](const CalibrationDraw& s) {
+      return !s.spread && s.instances == 1 && s.model == d.model && s.size_px == d.size_px &&
+             s.rep.kind == d.rep.kind && s.rep.level == d.rep.level;
+    });
+    const RepresentationCost* own_cost = model.cost(d.rep, int(d.model));
+    if (one == draws.end() || !own_cost) continue;
+    RepresentationCost c = *own_cost;
+    const double instance = (d.ms - one->ms) / double(d.instances - 1);
+    c.fixed_ms = std::max(0.0, instance - c.per_pixel_ms * d.pixels);
+    model.set_cost(d.rep, c, int(d.model));
   }
 }
 

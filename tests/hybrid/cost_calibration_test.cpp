@@ -40,5 +40,42 @@ TEST(CostCalibration, TheFlushIsNeitherADrawCallNorAnInstance) {
   }
 }
 
+TEST(CostCalibration, ASpreadBatchSetsAMeshLevelsConstant) {
+  // Levels 0 and 1 also have a batch of 24 spread over the image, where an
+  // instance costs 1.5x its triangles alone (tiles not shared); 2 and 3 not.
+  const double flush = 0.08, call = 0.002, per_triangle = 1e-4, per_pixel = 2e-6;
+  const int n = 8, spread = 24;
+  const double small = 380, large = 45000;
+  std::vector<CalibrationDraw> draws;
+  for (int level = 0; level < 4; ++level) {
+    const Representation rep{ObjectKind::kMesh, level};
+    const double tris = 4000.0 / (1 << level);
+    auto instance = [&](double px) { return per_triangle * tris + per_pixel * px; };
+    draws.push_back({0, rep, 22, tris, small, flush + call + instance(small)});
+    draws.push_back({0, rep, 360, tris, large, flush + call + instance(large)});
+    draws.push_back({0, rep, 22, tris, small, flush + call + n * instance(small), n});
+    draws.push_back({0, rep, 22, tris, small, flush + n * call + n * instance(small), n, n});
+    if (level < 2)
+      draws.push_back({0, rep, 22, tris, small,
+                       flush + call + spread * (1.5 * per_triangle * tris + per_pixel * small),
+                       spread, 1, true});
+  }
+  DrawCostModel model;
+  fit_draw_costs(model, draws);
+  // The spread batch does not disturb the call or the overhead.
+  EXPECT_NEAR(model.terms(ObjectKind::kMesh).per_draw_ms, call, 1e-9);
+  for (int level = 0; level < 4; ++level) {
+    const double tris = 4000.0 / (1 << level);
+    const double alone = per_triangle * tris + per_pixel * small;
+    const double spread_one = 1.5 * per_triangle * tris + per_pixel * small;
+    // (batch - one alone) / (n - 1): the marginal spread instance.
+    const double at_small = level < 2 ? (spread * spread_one - alone) / (spread - 1) : alone;
+    for (double px : {small, large})
+      EXPECT_NEAR(model.instance_ms({ObjectKind::kMesh, level}, tris, px, 0),
+                  at_small + per_pixel * (px - small), 1e-9)
+          << "level " << level << ", " << px << " px";
+  }
+}
+
 }  // namespace
 }  // namespace terrasprite

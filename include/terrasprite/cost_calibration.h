@@ -30,7 +30,8 @@ struct CostCalibrationOptions {
   /// Meshes, at the smallest size: this many instances in a grid across the
   /// image, one draw (at most 8 for levels over 20k triangles; 0: none).
   /// Instances on one spot share the rasteriser's tiles; a walkthrough's do
-  /// not, and there a level's instance cost up to twice as much per triangle.
+  /// not, and there a level's instances cost more per triangle
+  /// (0.13-0.35 us on llvmpipe against 0.07-0.12 on one spot).
   int spread = 24;
 };
 

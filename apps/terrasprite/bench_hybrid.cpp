@@ -49,13 +49,6 @@ struct HybridArgs {
   std::string quality_diagnosis, diagnosis_conditions = "scene,sky", diagnosis_images;
 };
 
-std::vector<std::string> split_list(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  for (std::string item; std::getline(ss, item, ',');) out.push_back(item);
-  return out;
-}
-
 /// Keeps `count` instances (0: all), drawn at random (seeded) so the model mix stays.
 void subsample(ObjectScene& scene, int count) {
   if (count <= 0 || count >= int(scene.instances.size())) return;

@@ -85,11 +85,7 @@ double target_of(const std::string& run) {
 void run_replay(const ReplayArgs& a) {
   if (a.runs.empty()) throw InputError("replay-controller: name at least one run directory");
   if (!a.json.empty()) check_outputs("", {a.json});
-  std::vector<std::string> scenarios;
-  {
-    std::stringstream ss(a.scenarios);
-    for (std::string s; std::getline(ss, s, ',');) scenarios.push_back(s);
-  }
+  const std::vector<std::string> scenarios = split_list(a.scenarios);
   nlohmann::json series = nlohmann::json::array();
   std::vector<double> recorded_p95, replayed_p95, budget;
   fmt::print("{:<40} {:<14} {:>6} {:>13} {:>13} {:>10} {:>10}\n", "run", "scenario", "target",

@@ -123,6 +123,13 @@ std::vector<double> parse_list(const std::string& text, const char* option) {
   return out;
 }
 
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');) out.push_back(item);
+  return out;
+}
+
 OutputPolicy& output_policy() {
   static OutputPolicy policy;
   return policy;

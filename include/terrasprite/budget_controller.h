@@ -106,8 +106,12 @@ class BudgetController {
   double tail_error() const;
 
  private:
+  /// Whether enough spread is in for the tail (`quantile_window / 4`).
+  bool tail_ready() const;
+
   BudgetControllerOptions o_;
-  double ratio_ = 1.0;  ///< smoothed measured / predicted
+  double quantile_pdf_;  ///< the normal's density at its `quantile` (fixed by the options)
+  double ratio_ = 1.0;   ///< smoothed measured / predicted
   double integral_ = 0;
   double last_log_ratio_ = 0;
   std::deque<double> changes_;     ///< |successive change of log ratio|, newest last

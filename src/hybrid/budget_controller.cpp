@@ -23,10 +23,25 @@ double robust_sigma(const std::deque<double>& sample) {
   return *mid / 0.6745;
 }
 
+/// The standard normal's density at its q-quantile (z_q by bisection on the
+/// cdf); 0 outside (0, 1).
+double normal_pdf_at_quantile(double q) {
+  if (!(q > 0 && q < 1)) return 0.0;
+  double lo = -10, hi = 10;
+  for (int i = 0; i < 60; ++i) {
+    const double z = 0.5 * (lo + hi);
+    (0.5 * std::erfc(-z / std::sqrt(2.0)) < q ? lo : hi) = z;
+  }
+  const double z = 0.5 * (lo + hi);
+  return std::exp(-0.5 * z * z) / std::sqrt(2 * M_PI);
+}
+
 }  // namespace
 
 BudgetController::BudgetController(const BudgetControllerOptions& options)
-    : o_(options), budget_ms_(options.target_ms) {}
+    : o_(options),
+      quantile_pdf_(normal_pdf_at_quantile(options.quantile)),
+      budget_ms_(options.target_ms) {}
 
 void BudgetController::update(double predicted_ms, double measured_ms) {
   if (!(predicted_ms > 0) || !(measured_ms > 0)) return;
@@ -87,9 +102,13 @@ double BudgetController::noise() const {
   return c[c.size() / 2] / (0.6745 * std::sqrt(2.0));
 }
 
+bool BudgetController::tail_ready() const {
+  return !spread_.empty() && int(spread_.size()) >= std::max(1, o_.quantile_window / 4);
+}
+
 double BudgetController::tail() const {
   const std::size_t n = spread_.size();
-  if (n == 0 || int(n) < std::max(1, o_.quantile_window / 4)) return NAN;
+  if (!tail_ready()) return NAN;
   std::vector<double> e(spread_.begin(), spread_.end());
   const std::size_t k =
       std::min(n - 1, std::size_t(std::max(0.0, std::ceil(o_.quantile * double(n)) - 1)));
@@ -98,21 +117,11 @@ double BudgetController::tail() const {
 }
 
 double BudgetController::tail_error() const {
-  const std::size_t n = spread_.size();
   const double q = o_.quantile;
-  if (!std::isfinite(tail()) || !(q > 0 && q < 1)) return 0.0;
+  if (!tail_ready() || !(quantile_pdf_ > 0)) return 0.0;
   // A normal's sample q-quantile's standard error, sqrt(q (1 - q) / n) /
-  // pdf(z_q) sigma, sigma the spread's robust one; z_q by bisection on the
-  // normal's cdf.
-  const double sigma = robust_sigma(spread_);
-  double lo = -10, hi = 10;
-  for (int i = 0; i < 60; ++i) {
-    const double z = 0.5 * (lo + hi);
-    (0.5 * std::erfc(-z / std::sqrt(2.0)) < q ? lo : hi) = z;
-  }
-  const double z = 0.5 * (lo + hi);
-  const double pdf = std::exp(-0.5 * z * z) / std::sqrt(2 * M_PI);
-  return std::sqrt(q * (1 - q) / double(n)) / pdf * sigma;
+  // pdf(z_q) sigma, sigma the spread's robust one.
+  return std::sqrt(q * (1 - q) / double(spread_.size())) / quantile_pdf_ * robust_sigma(spread_);
 }
 
 double BudgetController::setpoint_ms() const {

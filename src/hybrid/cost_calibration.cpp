@@ -157,6 +157,11 @@ std::vector<CalibrationDraw> measure_draw_costs(
     }
     for (int size : o.sizes_px) {
       const Camera cam = calibration_camera(model.model(), o, size);
+      // The spread grid depends on the model and the camera only; big levels
+      // take its first 8.
+      const std::vector<ObjectInstance> grid =
+          size == smallest ? spread_instances(model.model(), cam, o, size, o.spread)
+                           : std::vector<ObjectInstance>{};
       if (size == smallest && o.batch > 1)
         for (const Representation& rep : timed) {
           const double tris = double(model.triangles(rep)),
@@ -166,13 +171,12 @@ std::vector<CalibrationDraw> measure_draw_costs(
           out.push_back({m, rep, size, tris, px,
                          time_calls(target, model, rep, cam, o.batch, o.repeats), o.batch,
                          o.batch});
-          if (rep.kind != ObjectKind::kMesh || o.spread < 2) continue;
-          const std::vector<ObjectInstance> grid = spread_instances(
-              model.model(), cam, o, size, tris > 20000 ? std::min(o.spread, 8) : o.spread);
-          if (grid.size() < 2) continue;
-          out.push_back({m, rep, size, tris, px,
-                         time_instances(target, model, rep, cam, grid, o.repeats), int(grid.size()),
-                         1, true});
+          const std::size_t n = std::min(grid.size(), tris > 20000 ? std::size_t(8) : grid.size());
+          if (rep.kind != ObjectKind::kMesh || n < 2) continue;
+          out.push_back(
+              {m, rep, size, tris, px,
+               time_instances(target, model, rep, cam, std::span(grid).first(n), o.repeats), int(n),
+               1, true});
         }
       for (const Representation& rep : timed) {
         if (rep.kind == ObjectKind::kMesh && o.mesh_two_sizes && size != smallest &&

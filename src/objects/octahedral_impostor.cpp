@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/render_target.h"
@@ -50,8 +51,10 @@ uniform vec3 u_center;   // model metres
 uniform float u_radius;  // model metres
 uniform mat4 u_vp;
 uniform vec3 u_eye;
+uniform float u_px_per_rad;  // viewport height / (2 tan(fov_y / 2))
 out vec3 v_world;
 flat out vec3 v_eye_local;
+flat out ivec2 v_steps;  // linear steps, bisection steps
 flat out vec4 v_ph;
 flat out float v_scale;
 void main() {
@@ -69,6 +72,12 @@ void main() {
   v_eye_local = world_to_instance(u_eye);
   v_ph = i_pos_heading;
   v_scale = i_scale.x;
+  // The march resolves the hit to a fraction of a screen pixel, not of a
+  // texel: a small instance needs few steps (about one per two pixels of its
+  // diameter), a large one the full 24 linear and 8 bisection steps.
+  float size_px = 2.0 * r * u_px_per_rad / max(dist, 1e-6);
+  int linear = int(clamp(ceil(0.5 * size_px), 8.0, 24.0));
+  v_steps = ivec2(linear, linear == 24 ? 8 : 4);
   gl_Position = u_vp * vec4(v_world, 1.0);
 }
 )";
@@ -86,6 +95,7 @@ in vec3 v_world;
 flat in vec3 v_eye_local;
 flat in vec4 v_ph;
 flat in float v_scale;
+flat in ivec2 v_steps;
 out vec4 o_color;
 
 // The three views around the view direction: frame, direction, image basis.
@@ -135,14 +145,13 @@ void main() {
   float t0 = max(max(max(tn.x, tn.y), tn.z), 0.0), t1 = min(min(tf.x, tf.y), tf.z);
   if (t0 >= t1) discard;
   // Linear search along the span, then bisection.
-  const int kSteps = 24;
   float lo = t0, hi = -1.0;
-  for (int k = 0; k <= kSteps && hi < 0.0; ++k) {
-    float t = mix(t0, t1, float(k) / float(kSteps));
+  for (int k = 0; k <= v_steps.x && hi < 0.0; ++k) {
+    float t = mix(t0, t1, float(k) / float(v_steps.x));
     if (solid(o + t * d - u_center)) hi = t; else lo = t;
   }
   if (hi < 0.0) discard;
-  for (int k = 0; k < 8; ++k) {
+  for (int k = 0; k < v_steps.y; ++k) {
     float t = 0.5 * (lo + hi);
     if (solid(o + t * d - u_center)) hi = t; else lo = t;
   }
@@ -282,6 +291,10 @@ void GlModel::Impl::draw_octahedral(const objects::OctahedralImpostor& o, GLsize
   glUniform1f(glGetUniformLocation(p, "u_radius"), o.radius);
   glUniform3f(glGetUniformLocation(p, "u_eye"), float(camera.position.x), float(camera.position.y),
               float(camera.position.z));
+  GLint viewport[4];
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  glUniform1f(glGetUniformLocation(p, "u_px_per_rad"),
+              float(viewport[3] / (2 * std::tan(glm::radians(camera.fov_y_deg) / 2))));
   glUniform1i(glGetUniformLocation(p, "u_views"), o.views);
   glUniform1i(glGetUniformLocation(p, "u_res"), o.resolution);
   glUniform1i(glGetUniformLocation(p, "u_albedo"), 0);

@@ -12,7 +12,8 @@
 //
 //   hemi-octahedral map: d (d.z >= 0) -> a = d.xy / (|x|+|y|+z),
 //   grid (u, v) = (a.x + a.y, a.x - a.y) in [-1, 1]^2; frame (i, j) at
-//   u = 2 i / (views - 1) - 1 (grid points include the horizon).
+//   u = 2 i / (views - 1) - 1 (grid points include the horizon, whose
+//   views are raised to 4 degrees: see oct_decode).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -29,9 +30,17 @@ namespace objects {
 namespace {
 
 const char* kOctGlsl = R"(
+// A capture direction: the grid point's, raised to at least 4 degrees above
+// the horizon. A flat part (a ground tile, a leaf card) seen exactly edge-on
+// is in no view, and the intersection of the views' solids carves it out of
+// every ray: the forest's ground tile vanished seen from the side.
+const float kMinSinElevation = 0.0698;  // sin(4 degrees)
 vec3 oct_decode(vec2 g) {
   vec2 a = vec2(g.x + g.y, g.x - g.y) * 0.5;
-  return normalize(vec3(a, max(1.0 - abs(a.x) - abs(a.y), 0.0)));
+  vec3 d = normalize(vec3(a, max(1.0 - abs(a.x) - abs(a.y), 0.0)));
+  if (d.z < kMinSinElevation)
+    d = vec3(normalize(d.xy) * sqrt(1.0 - kMinSinElevation * kMinSinElevation), kMinSinElevation);
+  return d;
 }
 vec2 oct_encode(vec3 d) {
   d.z = max(d.z, 0.0);
@@ -189,9 +198,15 @@ void main() {
 }
 )";
 
+constexpr float kMinSinElevation = 0.0698f;  // as in kOctGlsl
+
 glm::vec3 oct_decode(glm::vec2 g) {
   const glm::vec2 a = glm::vec2(g.x + g.y, g.x - g.y) * 0.5f;
-  return glm::normalize(glm::vec3(a, std::max(1.f - std::abs(a.x) - std::abs(a.y), 0.f)));
+  const glm::vec3 d =
+      glm::normalize(glm::vec3(a, std::max(1.f - std::abs(a.x) - std::abs(a.y), 0.f)));
+  if (d.z >= kMinSinElevation) return d;
+  const float c = std::sqrt(1.f - kMinSinElevation * kMinSinElevation);
+  return glm::vec3(glm::normalize(glm::vec2(d)) * c, kMinSinElevation);
 }
 
 // The view (i, j): orthographic, the bounding sphere fills the tile, depth 0
@@ -241,7 +256,7 @@ objects::OctahedralImpostor& GlModel::Impl::octahedral_impostor(int res, int vie
   for (const glm::vec3& p : model.positions) r = std::max(r, glm::length(p - c));
   r = std::max(r * 1.005f, 1e-6f);
   o.radius = r;
-  const std::string what = fmt::format("octahedral-{}x{}", res, views);
+  const std::string what = fmt::format("octahedral-4deg-{}x{}", res, views);
   const objects::TextureLevel albedo{o.albedo.id(), GL_TEXTURE_2D,    size, size, 1,
                                      GL_RGBA,       GL_UNSIGNED_BYTE, 4};
   const objects::TextureLevel geometry{o.geometry.id(), GL_TEXTURE_2D,    size, size, 1,

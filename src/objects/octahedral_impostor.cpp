@@ -29,12 +29,14 @@ namespace terrasprite {
 namespace objects {
 namespace {
 
-const char* kOctGlsl = R"(
-// A capture direction: the grid point's, raised to at least 4 degrees above
+// A capture direction is the grid point's, raised to at least 4 degrees above
 // the horizon. A flat part (a ground tile, a leaf card) seen exactly edge-on
 // is in no view, and the intersection of the views' solids carves it out of
-// every ray: the forest's ground tile vanished seen from the side.
-const float kMinSinElevation = 0.0698;  // sin(4 degrees)
+// every ray: the forest's ground tile vanished seen from the side. One
+// constant for both sides: octahedral_glsl() hands it to the shaders.
+constexpr float kMinSinElevation = 0.0698f;  // sin(4 degrees)
+
+const char* kOctGlsl = R"(
 vec3 oct_decode(vec2 g) {
   vec2 a = vec2(g.x + g.y, g.x - g.y) * 0.5;
   vec3 d = normalize(vec3(a, max(1.0 - abs(a.x) - abs(a.y), 0.0)));
@@ -60,7 +62,7 @@ uniform vec3 u_center;   // model metres
 uniform float u_radius;  // model metres
 uniform mat4 u_vp;
 uniform vec3 u_eye;
-uniform float u_px_per_rad;  // viewport height / (2 tan(fov_y / 2))
+uniform float u_focal_px;  // viewport height / (2 tan(fov_y / 2))
 out vec3 v_world;
 flat out vec3 v_eye_local;
 flat out ivec2 v_steps;  // linear steps, bisection steps
@@ -84,7 +86,7 @@ void main() {
   // The march resolves the hit to a fraction of a screen pixel, not of a
   // texel: a small instance needs few steps (about one per two pixels of its
   // diameter), a large one the full 24 linear and 8 bisection steps.
-  float size_px = 2.0 * r * u_px_per_rad / max(dist, 1e-6);
+  float size_px = 2.0 * r * u_focal_px / max(dist, 1e-6);
   int linear = int(clamp(ceil(0.5 * size_px), 8.0, 24.0));
   v_steps = ivec2(linear, linear == 24 ? 8 : 4);
   gl_Position = u_vp * vec4(v_world, 1.0);
@@ -198,8 +200,6 @@ void main() {
 }
 )";
 
-constexpr float kMinSinElevation = 0.0698f;  // as in kOctGlsl
-
 glm::vec3 oct_decode(glm::vec2 g) {
   const glm::vec2 a = glm::vec2(g.x + g.y, g.x - g.y) * 0.5f;
   const glm::vec3 d =
@@ -220,13 +220,18 @@ glm::mat4 view_capture(int i, int j, int views, glm::vec3 c, float r) {
                    glm::vec4(-v / (2.f * r), glm::dot(v, c) / (2.f * r) + 0.5f));
 }
 
+/// kOctGlsl with the C++ side's constants.
+std::string octahedral_glsl() {
+  return fmt::format("const float kMinSinElevation = {};\n", kMinSinElevation) + kOctGlsl;
+}
+
 }  // namespace
 
 gl::Program make_octahedral_program() {
-  const std::string head = std::string("#version 450 core\n") + kObjectGlsl + kOctGlsl;
-  return gl::link_program(head + kOctVertex, std::string("#version 450 core\n") + kSunGlsl +
-                                                 kOctGlsl + objects::kPackedGeometryGlsl +
-                                                 kOctFragment);
+  const std::string oct = octahedral_glsl();
+  const std::string head = std::string("#version 450 core\n") + kObjectGlsl + oct;
+  return gl::link_program(head + kOctVertex, std::string("#version 450 core\n") + kSunGlsl + oct +
+                                                 objects::kPackedGeometryGlsl + kOctFragment);
 }
 
 }  // namespace objects
@@ -308,7 +313,7 @@ void GlModel::Impl::draw_octahedral(const objects::OctahedralImpostor& o, GLsize
               float(camera.position.z));
   GLint viewport[4];
   glGetIntegerv(GL_VIEWPORT, viewport);
-  glUniform1f(glGetUniformLocation(p, "u_px_per_rad"),
+  glUniform1f(glGetUniformLocation(p, "u_focal_px"),
               float(viewport[3] / (2 * std::tan(glm::radians(camera.fov_y_deg) / 2))));
   glUniform1i(glGetUniformLocation(p, "u_views"), o.views);
   glUniform1i(glGetUniformLocation(p, "u_res"), o.resolution);

@@ -75,12 +75,17 @@ Image read_color(GLuint fbo, int width, int height) {
   return img;
 }
 
-std::vector<float> read_depth(GLuint fbo, int width, int height, double near_m, double far_m) {
-  const std::size_t n = static_cast<std::size_t>(width) * height;
-  std::vector<float> raw(n), out(n);
+std::vector<float> read_depth_raw(GLuint fbo, int width, int height) {
+  std::vector<float> raw(static_cast<std::size_t>(width) * height);
   bind_for_reading(fbo);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, raw.data());
+  return raw;
+}
+
+std::vector<float> read_depth(GLuint fbo, int width, int height, double near_m, double far_m) {
+  const std::vector<float> raw = read_depth_raw(fbo, width, height);
+  std::vector<float> out(raw.size());
   // Reversed Z: d = near (far - z) / (z (far - near)) inverted to z = n f / (n + d (f - n)).
   const double nf = near_m * far_m, fn = far_m - near_m;
   for (int y = 0; y < height; ++y)

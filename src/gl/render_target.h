@@ -28,6 +28,9 @@ void bind_for_drawing(GLuint fbo, int width, int height);
 void clear_to_sky();
 /// Colour of `fbo` (0 = the default back buffer), top row first.
 Image read_color(GLuint fbo, int width, int height);
+/// Depth of `fbo` as stored: reversed Z (near 1, far and nothing drawn 0),
+/// bottom row first.
+std::vector<float> read_depth_raw(GLuint fbo, int width, int height);
 /// Linear depth of `fbo` in metres along the view axis (+inf where nothing was
 /// drawn) for the camera whose near/far planes drew it.
 std::vector<float> read_depth(GLuint fbo, int width, int height, double near_m, double far_m);

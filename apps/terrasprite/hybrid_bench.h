@@ -29,6 +29,10 @@ struct HybridScenarioResult {
   double within_10pct = 0;  ///< fraction of frames at or under target + 10%
   double mean_ssim = 1, mean_ssim_objects = 1;
   double switches_per_frame = 0;
+  /// Means over frames: instances in the frustum but behind the terrain, left
+  /// out before selection (0 where the scenario does not cull), and the time
+  /// of the depth read-back and pyramid that found them.
+  double occluded_per_frame = 0, occlusion_ms = 0;
   std::vector<HybridCheckpoint> checkpoints;
   std::vector<FrameResult> frames;
 };

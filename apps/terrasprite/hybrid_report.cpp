@@ -30,7 +30,7 @@ void write_frames(const HybridScenarioResult& s, OutputDir& out) {
       "frame",        "ms",           "triangles",    "triangles_min", "triangles_max",
       "predicted_ms", "budget_ms",    "switches",     "selection_ms",  "ssim",
       "floor_ms",     "not_drawn",    "ssim_objects", "expected_ssim", "n_mesh",
-      "n_relief",     "n_octahedral", "draw_gap_ms"};
+      "n_relief",     "n_octahedral", "draw_gap_ms",  "visible",       "occluded"};
   std::ostringstream f;
   f << fmt::format("{}\n", fmt::join(kColumns, " "));
   for (const FrameResult& r : s.frames) {
@@ -134,6 +134,8 @@ nlohmann::json hybrid_json(const HybridBenchResult& r) {
                          {"mean_ssim", s.mean_ssim},
                          {"mean_ssim_objects", s.mean_ssim_objects},
                          {"switches_per_frame", s.switches_per_frame},
+                         {"occluded_per_frame", s.occluded_per_frame},
+                         {"occlusion_ms", s.occlusion_ms},
                          {"checkpoints", cps}});
   }
   const SelectionFigures& f = r.selection;

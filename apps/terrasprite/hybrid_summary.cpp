@@ -21,6 +21,9 @@ HybridScenarioResult summarise(const RendererRun& run, double target_ms,
   s.mean_ssim_objects = qo.count ? qo.mean : 1.0;
   const Summary sw = run.counter("switches");
   s.switches_per_frame = sw.count ? sw.mean : 0.0;
+  const Summary oc = run.counter("occluded"), om = run.counter("occlusion_ms");
+  s.occluded_per_frame = oc.count ? oc.mean : 0.0;
+  s.occlusion_ms = om.count ? om.mean : 0.0;
   for (const PathCheckpoint& c : checkpoints) {
     HybridCheckpoint hc{c.name, c.frame};
     for (const FrameResult& f : run.frames)

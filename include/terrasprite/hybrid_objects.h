@@ -32,6 +32,11 @@ struct HybridScenario {
     kBudgetPi,     ///< cost-model prediction corrected by measured time (PI)
     kFixed,        ///< HybridOptions::target_ms as the budget, in predicted ms (no feedback)
   } control = Control::kNone;
+  /// Instances hidden behind what is already drawn (the terrain) are left
+  /// out before selection (DepthOcclusion: conservative, the image does not
+  /// change). Costs one depth read-back a frame. The bench's `full` turns it
+  /// off: the paper's full geometry draws every instance in the frustum.
+  bool cull_occluded = true;
 };
 
 struct HybridOptions {
@@ -62,8 +67,12 @@ struct HybridOptions {
 
 /// What the last frame's selection did.
 struct HybridFrameStats {
-  int visible = 0;
-  double selection_ms = 0;    ///< view, options and policy, CPU wall time
+  int visible = 0;   ///< in the frustum and not hidden behind the terrain
+  int occluded = 0;  ///< in the frustum but behind the terrain (HybridScenario::cull_occluded)
+  /// Depth read-back (mostly waiting for the terrain's rasterisation) and
+  /// occlusion pyramid, wall time; not in selection_ms.
+  double occlusion_ms = 0;
+  double selection_ms = 0;    ///< view, occlusion tests, options and policy, CPU wall time
   double policy_ms = 0;       ///< of which the policy and hysteresis
   double predicted_ms = 0;    ///< cost model: terrain term + chosen objects
   double budget_ms = 0;       ///< whole-frame budget handed to the policy (predicted ms)

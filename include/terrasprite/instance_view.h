@@ -11,8 +11,10 @@
 namespace terrasprite {
 
 struct InstanceView {
-  bool visible = false;   ///< bounding sphere touches the view frustum
-  double distance_m = 0;  ///< camera to sphere centre
+  bool visible = false;    ///< bounding sphere touches the view frustum
+  double distance_m = 0;   ///< camera to sphere centre
+  glm::dvec3 centre_m{0};  ///< bounding sphere's centre, world metres (heading and scale applied)
+  double radius_m = 0;     ///< its radius, metres (scale applied)
   /// Diameter of the bounding sphere on screen, pixels (the tables' size_px);
   /// the full image height when the camera is inside the sphere.
   double size_px = 0;

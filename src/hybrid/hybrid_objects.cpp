@@ -10,6 +10,8 @@
 #include <map>
 #include <tuple>
 
+#include "gl/render_target.h"
+#include "terrasprite/depth_occlusion.h"
 #include "terrasprite/expected_quality.h"
 #include "terrasprite/instance_view.h"
 
@@ -110,6 +112,20 @@ long long HybridObjects::draw(const Camera& camera) {
   std::vector<std::pair<std::size_t, std::size_t>> where;  // (model, instance index)
   std::vector<double> pixels_of;                           // covered pixels, per entry
   HybridFrameStats st;
+  // The terrain is drawn: what lies behind it needs no representation. The
+  // read-back waits for its rasterisation; flushing it earlier, to overlap
+  // it with viewing the instances, only moved the wait into the selection's
+  // time (p95 2.4 ms against 1.0) on the two cores the rasteriser shares.
+  DepthOcclusion occluder;
+  if (scenario_.cull_occluded) {
+    const auto r0 = std::chrono::steady_clock::now();
+    GLint fbo = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+    occluder = DepthOcclusion(gl::read_depth_raw(GLuint(fbo), o.width, o.height), o.width, o.height,
+                              camera);
+    st.occlusion_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count();
+  }
   int id = 0;
   for (std::size_t m = 0; m < s.set.model_count(); ++m) {
     const Model& model = s.set.model(m).model();
@@ -119,6 +135,10 @@ long long HybridObjects::draw(const Camera& camera) {
       const InstanceView v = view_instance(camera, o.height, instances[i],
                                            glm::dvec3(model.center()), model.bounding_radius());
       if (!v.visible || s.offers[m].empty()) continue;
+      if (occluder.hidden(sphere_on_screen(camera, o.width, o.height, v.centre_m, v.radius_m))) {
+        ++st.occluded;
+        continue;
+      }
       InstanceOptions inst{id, v.size_px, std::min(1.0, v.pixels / image_px), {}};
       const double pixels = v.pixels;
       // One table lookup per instance; every representation on the same views reuses it.
@@ -203,7 +223,7 @@ long long HybridObjects::draw(const Camera& camera) {
   for (const InstanceOptions& inst : frame) wsum += inst.weight;
   st.expected_ssim = wsum > 0 ? sel.benefit / wsum : 1.0;
   const auto t2 = std::chrono::steady_clock::now();
-  st.selection_ms = std::chrono::duration<double, std::milli>(t2 - t0).count();
+  st.selection_ms = std::chrono::duration<double, std::milli>(t2 - t0).count() - st.occlusion_ms;
   st.policy_ms = std::chrono::duration<double, std::milli>(t2 - t1).count();
 
   // Group by (model, representation); one instanced draw per group.

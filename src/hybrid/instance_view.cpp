@@ -22,6 +22,8 @@ InstanceView view_instance(const Camera& camera, int height_px, const ObjectInst
   const glm::dvec3 centre = instance.position + heading_rotate(center_m * instance.scale, heading);
   const double r = radius_m * instance.scale;
   InstanceView v;
+  v.centre_m = centre;
+  v.radius_m = r;
   const glm::dvec3 to = centre - camera.position;
   v.distance_m = glm::length(to);
   // Frustum test on the sphere: depth along the view axis, then the four

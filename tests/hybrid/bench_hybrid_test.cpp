@@ -45,19 +45,29 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
   for (const auto& s : j["scenarios"]) {
     names.insert(s["name"].get<std::string>());
     for (const char* k : {"name", "median_ms", "p95_ms", "p99_ms", "within_10pct", "mean_ssim",
-                          "switches_per_frame", "checkpoints"})
+                          "switches_per_frame", "occluded_per_frame", "checkpoints"})
       EXPECT_TRUE(s.contains(k)) << k;
     ASSERT_EQ(s["checkpoints"].size(), 5u);  // A-E of the default walkthrough
     for (const auto& c : s["checkpoints"]) {
       for (const char* k : {"name", "frame", "ssim", "ssim_objects", "psnr", "flip"})
         EXPECT_TRUE(c.contains(k)) << k;
       EXPECT_EQ(c["frame"].get<int>() % 2, 0);  // on a scored frame
-      if (s["name"] == "full") {
+      // Culling what the terrain hides leaves the image as it was.
+      if (s["name"] == "full" || s["name"] == "full-culled") {
         EXPECT_EQ(c["ssim"].get<double>(), 1.0);
+        EXPECT_EQ(c["psnr"].get<double>(), 100.0);
       }
     }
   }
-  EXPECT_EQ(names, (std::set<std::string>{"full", "ibr", "pm", "mixed", "mixed-optimal"}));
+  EXPECT_EQ(names,
+            (std::set<std::string>{"full", "ibr", "pm", "mixed", "mixed-optimal", "full-culled"}));
+  // The path passes behind the terrain (1.2 instances a frame hidden), so the
+  // identical images above are a check of the culling, not of nothing.
+  for (const auto& s : j["scenarios"]) {
+    if (s["name"] == "full-culled") {
+      EXPECT_GT(s["occluded_per_frame"].get<double>(), 0.5);
+    }
+  }
   const auto& sel = j["selection"];
   for (const char* k : {"policy", "ms_per_frame", "objective_greedy", "objective_optimal"})
     EXPECT_TRUE(sel.contains(k)) << k;

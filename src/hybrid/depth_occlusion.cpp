@@ -34,12 +34,13 @@ SphereOnScreen sphere_on_screen(const Camera& camera, int width, int height, glm
   const auto [yl, yh] = tangent_slopes(glm::dot(to, camera.up()), z, radius_m);
   // Window pixel p covers [p, p + 1) of x = (slope / tx + 1) / 2 * width; a
   // pixel more each side absorbs rounding and the rasteriser's edge rules.
-  auto lo = [](double slope, double t, int n) {
-    return int(std::floor((slope / t + 1) / 2 * n)) - 1;
+  // Clamped before the conversion: a sphere just past the near plane has
+  // slopes far outside any int.
+  auto pixel = [](double slope, double t, int n) {
+    return int(std::floor(std::clamp((slope / t + 1) / 2 * n, -2.0, n + 2.0)));
   };
-  auto hi = [](double slope, double t, int n) {
-    return int(std::floor((slope / t + 1) / 2 * n)) + 1;
-  };
+  auto lo = [&](double slope, double t, int n) { return pixel(slope, t, n) - 1; };
+  auto hi = [&](double slope, double t, int n) { return pixel(slope, t, n) + 1; };
   s.rect.x0 = std::max(0, lo(xl, tx, width));
   s.rect.x1 = std::min(width - 1, hi(xh, tx, width));
   s.rect.y0 = std::max(0, lo(yl, ty, height));

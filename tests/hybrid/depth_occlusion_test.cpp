@@ -81,6 +81,18 @@ TEST(DepthOcclusion, TheRectangleHoldsEveryPointOfTheSphere) {
   EXPECT_GT(tested, 50);
 }
 
+TEST(DepthOcclusion, AHugeSphereJustPastTheNearPlaneStaysInTheImage) {
+  // Its nearest point 1.5 m ahead, far to the side: tangent slopes of ~1e12,
+  // ~1e13 pixels: clamped, never an int overflow.
+  const ts::Camera c = camera();
+  const ts::SphereOnScreen s = ts::sphere_on_screen(c, kW, kH, {1e12, 1e9 + 1.5, 0}, 1e9);
+  ASSERT_FALSE(s.straddles_near);
+  EXPECT_GE(s.rect.x0, 0);
+  EXPECT_LE(s.rect.x1, kW - 1);
+  EXPECT_GE(s.rect.y0, 0);
+  EXPECT_LE(s.rect.y1, kH - 1);
+}
+
 TEST(DepthOcclusion, AWallHidesWhatIsBehindItOnly) {
   const ts::Camera c = camera();
   std::vector<float> raw(std::size_t(kW) * kH, raw_depth(c, 50));

@@ -120,6 +120,14 @@ struct Participant {
   /// a terrain-size sweep. A mapped participant should not be scored: the
   /// reference draws the source's camera.
   std::function<Camera(int frame, const Camera& source)> camera_for;
+  /// Takes turns with the other rotating participants: they share their
+  /// places in the frame's order, moving one place a frame, so none always
+  /// draws right after the same one. A draw's time depends on what ran just
+  /// before it: in the hybrid walkthrough the scenario drawn after `ibr`
+  /// measured a log-spread of 0.14, the one after `mixed` 0.18, whichever
+  /// scenario it was, and the spread sets each one's budget. The reference
+  /// never rotates (it is drawn first: the others are scored against it).
+  bool rotate = false;
 };
 
 struct ExperimentOptions {
@@ -140,6 +148,7 @@ struct ExperimentOptions {
 
 /// Runs participants over a camera source. Per frame: the reference (on
 /// scored frames) draws and is read back, then each participant in order
+/// (rotating ones take turns in their places, Participant::rotate)
 /// draws (timed inside the renderer), is read back where needed, scored,
 /// annotated and handed to on_frame; nothing but the draw is in a timed span.
 class Experiment {

@@ -132,12 +132,20 @@ ExperimentResult Experiment::run(CameraSource& cameras, const ExperimentOptions&
   // renderer reuses its buffers instead of allocating a frame per draw. The
   // reference's frame is frames[0], read by the others' scorers.
   std::vector<Frame> frames(std::max<std::size_t>(1, all.size()));
+  std::vector<std::size_t> slots;  // places the rotating participants share
+  for (std::size_t k = reference_ ? 1 : 0; k < all.size(); ++k)
+    if (all[k]->rotate) slots.push_back(k);
+  std::vector<std::size_t> order(all.size());
   for (int i = 0;; ++i) {
     std::optional<Camera> camera = cameras.camera(i);
     if (!camera) break;
     const bool scored = reference_ && i % score_every == 0;
     const Frame& ref = frames[0];
-    for (std::size_t k = 0; k < all.size(); ++k) {
+    for (std::size_t k = 0; k < all.size(); ++k) order[k] = k;
+    for (std::size_t j = 0; j < slots.size(); ++j)
+      order[slots[j]] = slots[(j + std::size_t(i)) % slots.size()];
+    for (std::size_t place = 0; place < all.size(); ++place) {
+      const std::size_t k = order[place];
       Participant& p = *all[k];
       const bool is_ref = reference_ && k == 0;
       if (is_ref ? !scored : i % std::max(1, p.every) != 0) continue;

@@ -140,6 +140,39 @@ TEST(Experiment, AParticipantCanFlyItsOwnCameras) {
   EXPECT_EQ(r.run("b").frames[2].ms, 1002.0);
 }
 
+TEST(Experiment, RotatingParticipantsTakeTurnsTheOthersKeepTheirPlace) {
+  std::vector<std::string> log;
+  FakeRenderer ref("ref", 0, log), t("t", 0, log), a("a", 1, log), b("b", 2, log), c("c", 3, log);
+  Experiment e;
+  e.set_reference({.renderer = &ref, .name = "ref", .rotate = true});  // ignored: drawn first
+  e.add({.renderer = &a, .name = "a", .score = true, .rotate = true});
+  e.add({.renderer = &t, .name = "t"});
+  e.add({.renderer = &b, .name = "b", .score = true, .rotate = true});
+  e.add({.renderer = &c, .name = "c", .score = true, .rotate = true});
+  ExperimentOptions o;
+  o.warmup_draws = 0;
+  o.scorer = byte_scorer;
+  PathSource cams(path_of(3));
+  const ExperimentResult r = e.run(cams, o);
+  std::vector<std::string> draws;
+  for (const std::string& l : log)
+    if (l.size() > 5 && l.substr(l.size() - 5) == " draw")
+      draws.push_back(l.substr(0, l.size() - 5));
+  EXPECT_EQ(draws, (std::vector<std::string>{"ref", "a", "t", "b", "c",     // frame 0
+                                             "ref", "b", "t", "c", "a",     // frame 1
+                                             "ref", "c", "t", "a", "b"}));  // frame 2
+  // Each run still holds its own frames, in frame order, scored against the reference.
+  ASSERT_EQ(r.runs.size(), 5u);
+  for (std::size_t k : {1u, 3u, 4u}) {
+    ASSERT_EQ(r.runs[k].frames.size(), 3u) << r.runs[k].name;
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EQ(r.runs[k].frames[std::size_t(i)].frame, i);
+      ASSERT_TRUE(r.runs[k].frames[std::size_t(i)].quality);
+      EXPECT_EQ(r.runs[k].frames[std::size_t(i)].quality->psnr, double(k == 1 ? 1 : k - 1));
+    }
+  }
+}
+
 TEST(Fly, StreamingAndCollectingGiveTheSameStats) {
   std::vector<std::string> log;
   FakeRenderer a("a", 3, log);

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // `bench hybrid` at a reduced size: two small models, 12 instances, 10 frames
 // at 160 x 90, coarse table sampling (its own cache in a temp dir). Checks
-// the JSON contract and the report's files; no timing is asserted.
+// the JSON contract and the report's files, and runs it again without the
+// occlusion culling; no timing is asserted.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -84,6 +85,18 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
   EXPECT_TRUE(std::filesystem::exists(dir / "h/index.html"));
   EXPECT_TRUE(std::filesystem::exists(dir / "h/table2.md"));
   EXPECT_TRUE(std::filesystem::exists(dir / "h/fig6_mixed-optimal.png"));
+
+  // Without the culling (same tables, from the cache: about a second) nothing
+  // is hidden and there is no full-culled scenario.
+  const tstest::CliResult nc = tstest::run_cli(args + " --no-occlusion-cull --json " +
+                                               (dir / "n.json") + " --out " + (dir / "n"));
+  ASSERT_EQ(nc.status, 0) << nc.output;
+  const nlohmann::json nj = nlohmann::json::parse(std::ifstream(dir / "n.json"));
+  ASSERT_EQ(nj["scenarios"].size(), 5u);
+  for (const auto& s : nj["scenarios"]) {
+    EXPECT_NE(s["name"], "full-culled");
+    EXPECT_EQ(s["occluded_per_frame"].get<double>(), 0.0) << s["name"];
+  }
 
   // The controller replayed on this run's frames (well under a second).
   const tstest::CliResult rp = tstest::run_cli("bench replay-controller " + (dir / "h") +

@@ -3,7 +3,7 @@
 // object whose bounding sphere lies behind that depth on every pixel its
 // projection can touch cannot show, so it costs nothing and needs no
 // representation. At human height most of the walkthrough's instances in
-// the frustum are behind a hill (checkpoint E: 204 of 354, 63% of the full
+// the frustum are behind a hill (checkpoint E: 204-221 of 354, 63% of full
 // geometry's triangles).
 //
 // Conservative by construction: the sphere's exact screen rectangle (its

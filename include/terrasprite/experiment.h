@@ -121,8 +121,9 @@ struct Participant {
   /// reference draws the source's camera.
   std::function<Camera(int frame, const Camera& source)> camera_for;
   /// Takes turns with the other rotating participants: they share their
-  /// places in the frame's order, moving one place a frame, so none always
-  /// draws right after the same one. A draw's time depends on what ran just
+  /// places in the frame's order, shuffled every frame (with a fixed seed:
+  /// the same orders every run), so none always draws right after the same
+  /// one. A draw's time depends on what ran just
   /// before it: in the hybrid walkthrough the scenario drawn after `ibr`
   /// measured a log-spread of 0.14, the one after `mixed` 0.18, whichever
   /// scenario it was, and the spread sets each one's budget. The reference

@@ -2,6 +2,7 @@
 #include "terrasprite/experiment.h"
 
 #include <algorithm>
+#include <random>
 #include <stdexcept>
 
 #include "terrasprite/quality.h"
@@ -135,15 +136,18 @@ ExperimentResult Experiment::run(CameraSource& cameras, const ExperimentOptions&
   std::vector<std::size_t> slots;  // places the rotating participants share
   for (std::size_t k = reference_ ? 1 : 0; k < all.size(); ++k)
     if (all[k]->rotate) slots.push_back(k);
-  std::vector<std::size_t> order(all.size());
+  std::vector<std::size_t> order(all.size()), turn = slots;
+  // A fixed seed: the same order every run. Shuffled, not shifted: a cyclic
+  // shift keeps who follows whom in all but one frame of each cycle.
+  std::mt19937 rng(1);
   for (int i = 0;; ++i) {
     std::optional<Camera> camera = cameras.camera(i);
     if (!camera) break;
     const bool scored = reference_ && i % score_every == 0;
     const Frame& ref = frames[0];
     for (std::size_t k = 0; k < all.size(); ++k) order[k] = k;
-    for (std::size_t j = 0; j < slots.size(); ++j)
-      order[slots[j]] = slots[(j + std::size_t(i)) % slots.size()];
+    for (std::size_t j = turn.size(); j > 1; --j) std::swap(turn[j - 1], turn[rng() % j]);
+    for (std::size_t j = 0; j < slots.size(); ++j) order[slots[j]] = turn[j];
     for (std::size_t place = 0; place < all.size(); ++place) {
       const std::size_t k = order[place];
       Participant& p = *all[k];

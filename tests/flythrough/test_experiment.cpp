@@ -3,6 +3,9 @@
 // back, scores and keeps, frame by frame. CI cost: well under a second.
 #include <gtest/gtest.h>
 
+#include <map>
+#include <set>
+#include <string>
 #include <vector>
 
 #include "terrasprite/experiment.h"
@@ -145,30 +148,67 @@ TEST(Experiment, RotatingParticipantsTakeTurnsTheOthersKeepTheirPlace) {
   FakeRenderer ref("ref", 0, log), t("t", 0, log), a("a", 1, log), b("b", 2, log), c("c", 3, log);
   Experiment e;
   e.set_reference({.renderer = &ref, .name = "ref", .rotate = true});  // ignored: drawn first
-  e.add({.renderer = &a, .name = "a", .score = true, .rotate = true});
   e.add({.renderer = &t, .name = "t"});
+  e.add({.renderer = &a, .name = "a", .score = true, .rotate = true});
   e.add({.renderer = &b, .name = "b", .score = true, .rotate = true});
   e.add({.renderer = &c, .name = "c", .score = true, .rotate = true});
   ExperimentOptions o;
   o.warmup_draws = 0;
   o.scorer = byte_scorer;
-  PathSource cams(path_of(3));
+  constexpr int kFrames = 60;
+  PathSource cams(path_of(kFrames));
   const ExperimentResult r = e.run(cams, o);
   std::vector<std::string> draws;
   for (const std::string& l : log)
     if (l.size() > 5 && l.substr(l.size() - 5) == " draw")
       draws.push_back(l.substr(0, l.size() - 5));
-  EXPECT_EQ(draws, (std::vector<std::string>{"ref", "a", "t", "b", "c",     // frame 0
-                                             "ref", "b", "t", "c", "a",     // frame 1
-                                             "ref", "c", "t", "a", "b"}));  // frame 2
+  ASSERT_EQ(draws.size(), std::size_t(5 * kFrames));
+  // Every frame: the reference, then t in its place, then a, b and c in some
+  // order; over the run each of them is in each place, and each follows
+  // each of the others (a cyclic shift would leave a after c only once a cycle).
+  std::map<std::pair<std::string, int>, int> in_place;
+  std::map<std::pair<std::string, std::string>, int> follows;
+  std::string orders;
+  for (int i = 0; i < kFrames; ++i) {
+    const auto f = draws.begin() + 5 * i;
+    EXPECT_EQ(f[0], "ref");
+    EXPECT_EQ(f[1], "t");
+    EXPECT_EQ(std::set<std::string>(f + 2, f + 5), (std::set<std::string>{"a", "b", "c"}));
+    for (int p = 2; p < 5; ++p) in_place[{f[p], p}] += 1;
+    follows[{f[3], f[2]}] += 1;
+    follows[{f[4], f[3]}] += 1;
+    orders += f[2] + f[3] + f[4];
+  }
+  for (const char* x : {"a", "b", "c"}) {
+    for (int p = 2; p < 5; ++p) EXPECT_GE((in_place[{x, p}]), 8) << x << " in place " << p;
+    for (const char* y : {"a", "b", "c"})
+      if (std::string(x) != y) {
+        EXPECT_GE((follows[{x, y}]), 8) << x << " after " << y;
+      }
+  }
+  // The same orders on every run (a fixed seed).
+  std::vector<std::string> again;
+  FakeRenderer ref2("ref", 0, again), t2("t", 0, again), a2("a", 1, again), b2("b", 2, again),
+      c2("c", 3, again);
+  Experiment e2;
+  e2.set_reference(ref2, "ref");
+  e2.add({.renderer = &t2, .name = "t"});
+  for (FakeRenderer* x : {&a2, &b2, &c2})
+    e2.add({.renderer = x, .name = x->name(), .score = true, .rotate = true});
+  PathSource cams2(path_of(kFrames));
+  e2.run(cams2, o);
+  EXPECT_EQ(again, log);
   // Each run still holds its own frames, in frame order, scored against the reference.
   ASSERT_EQ(r.runs.size(), 5u);
-  for (std::size_t k : {1u, 3u, 4u}) {
-    ASSERT_EQ(r.runs[k].frames.size(), 3u) << r.runs[k].name;
-    for (int i = 0; i < 3; ++i) {
+  for (std::size_t k : {2u, 3u, 4u}) {
+    ASSERT_EQ(r.runs[k].frames.size(), std::size_t(kFrames)) << r.runs[k].name;
+    for (int i = 0; i < kFrames; ++i) {
       EXPECT_EQ(r.runs[k].frames[std::size_t(i)].frame, i);
       ASSERT_TRUE(r.runs[k].frames[std::size_t(i)].quality);
-      EXPECT_EQ(r.runs[k].frames[std::size_t(i)].quality->psnr, double(k == 1 ? 1 : k - 1));
+      // The fake's byte is (x + offset) mod 256, x = 10 i: the difference wraps with it.
+      const int offset = int(k) - 1, x = 10 * i;
+      EXPECT_EQ(r.runs[k].frames[std::size_t(i)].quality->psnr,
+                double((x + offset) % 256) - double(x % 256));
     }
   }
 }

@@ -117,7 +117,13 @@ long long HybridObjects::draw(const Camera& camera) {
   // it with viewing the instances, only moved the wait into the selection's
   // time (p95 2.4 ms against 1.0) on the two cores the rasteriser shares.
   DepthOcclusion occluder;
-  if (scenario_.cull_occluded) {
+  GLint viewport[4] = {0, 0, 0, 0};
+  if (scenario_.cull_occluded) glGetIntegerv(GL_VIEWPORT, viewport);
+  // Only into an image of the options' size: elsewhere the pixel mapping
+  // would be wrong, and a wrong mapping could hide what shows.
+  const bool cull = scenario_.cull_occluded && viewport[0] == 0 && viewport[1] == 0 &&
+                    viewport[2] == o.width && viewport[3] == o.height;
+  if (cull) {
     const auto r0 = std::chrono::steady_clock::now();
     GLint fbo = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
@@ -135,7 +141,8 @@ long long HybridObjects::draw(const Camera& camera) {
       const InstanceView v = view_instance(camera, o.height, instances[i],
                                            glm::dvec3(model.center()), model.bounding_radius());
       if (!v.visible || s.offers[m].empty()) continue;
-      if (occluder.hidden(sphere_on_screen(camera, o.width, o.height, v.centre_m, v.radius_m))) {
+      if (cull &&
+          occluder.hidden(sphere_on_screen(camera, o.width, o.height, v.centre_m, v.radius_m))) {
         ++st.occluded;
         continue;
       }

@@ -34,8 +34,10 @@ struct HybridScenario {
   } control = Control::kNone;
   /// Instances hidden behind what is already drawn (the terrain) are left
   /// out before selection (DepthOcclusion: conservative, the image does not
-  /// change). Costs one depth read-back a frame. The bench's `full` turns it
-  /// off: the paper's full geometry draws every instance in the frustum.
+  /// change). Costs one depth read-back a frame. Only into a viewport of
+  /// exactly HybridOptions' width x height (otherwise nothing is culled).
+  /// The bench's `full` turns it off: the paper's full geometry draws every
+  /// instance in the frustum.
   bool cull_occluded = true;
 };
 

@@ -53,9 +53,6 @@ class DepthOcclusion {
   /// plane, or a default-constructed (empty) occluder.
   bool hidden(const SphereOnScreen& s) const;
 
-  int width() const { return width_; }
-  int height() const { return height_; }
-
  private:
   bool nearer(int level, int tx, int ty, const PixelRect& r, float threshold) const;
   int width_ = 0, height_ = 0;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <random>
@@ -151,50 +152,6 @@ std::vector<HybridScenario> scenarios(bool cull_occluded) {
     s.push_back({"full-culled", {ObjectKind::kMesh}, SelectionPolicy::kStatic, true, C::kNone});
   }
   return s;
-}
-
-/// Per-frame state the scorer shares with the frame callback: which frame
-/// this is, and where the terrain alone is (object pixels are those in front
-/// of it in either image).
-struct ScoringState {
-  int frame = -1;
-  std::vector<float> terrain_depth;
-  std::vector<int> flip_frames;
-};
-
-std::vector<std::uint8_t> object_mask(const Frame& ref, const Frame& test,
-                                      const std::vector<float>& terrain) {
-  std::vector<std::uint8_t> mask(terrain.size(), 0);
-  auto in_front = [](float d, float t) { return std::isfinite(d) && !(d >= t * 0.9995f - 1e-3f); };
-  for (std::size_t i = 0; i < mask.size(); ++i)
-    mask[i] = (i < ref.depth.size() && in_front(ref.depth[i], terrain[i])) ||
-              (i < test.depth.size() && in_front(test.depth[i], terrain[i]));
-  return mask;
-}
-
-Scorer hybrid_scorer(std::shared_ptr<ScoringState> state) {
-  return [state](const Frame& ref, const Frame& test) {
-    QualityScore s;
-    s.figures["ssim_objects"] = 1.0;
-    const bool flip = std::find(state->flip_frames.begin(), state->flip_frames.end(),
-                                state->frame) != state->flip_frames.end();
-    if (ref.color.rgba == test.color.rgba) {
-      s.flip = flip ? 0.0 : -1.0;
-      return s;
-    }
-    quality::SsimOptions so;
-    so.channels = false;
-    s.psnr = std::min(quality::psnr(ref.color.view(), test.color.view()).rgb, kPsnrCapDb);
-    s.ssim = quality::ssim(ref.color.view(), test.color.view(), so).ssim;
-    if (state->terrain_depth.size() == std::size_t(ref.width()) * ref.height()) {
-      const auto mask = object_mask(ref, test, state->terrain_depth);
-      if (std::find(mask.begin(), mask.end(), 1) != mask.end())
-        s.figures["ssim_objects"] =
-            quality::ssim(ref.color.view(), test.color.view(), so, mask).ssim;
-    }
-    s.flip = flip ? quality::flip(ref.color.view(), test.color.view()).mean : -1.0;
-    return s;
-  };
 }
 
 void annotate(const HybridObjects& objects, FrameResult& r) {

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: MIT
 // `bench hybrid`: the walkthrough's typed results, and the report written
-// from them (JSON, the paper's Figures 4-6 and Table 2, index.html).
+// from them (JSON, the paper's Figures 4-6 and Table 2, index.html), and
+// the walkthrough's scoring.
 #pragma once
+#include <cstdint>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -64,6 +67,26 @@ struct HybridBenchResult {
   /// Figure 6: the images at that checkpoint, full first, by scenario.
   std::vector<std::pair<std::string, Image>> figure6;
 };
+
+/// Per-frame state the scorer shares with the frame callback: which frame
+/// this is, and where the terrain alone is (object pixels are those in front
+/// of it in either image).
+struct ScoringState {
+  int frame = -1;
+  std::vector<float> terrain_depth;
+  std::vector<int> flip_frames;
+};
+
+/// Pixels where either depth image has something in front of the terrain
+/// alone (`terrain`, the same size; linear depth, +inf where nothing was
+/// drawn): the objects' pixels, on which `ssim_objects` is measured.
+std::vector<std::uint8_t> object_mask(const std::vector<float>& ref_depth,
+                                      const std::vector<float>& test_depth,
+                                      const std::vector<float>& terrain);
+/// Whole-frame SSIM, PSNR and FLIP (FLIP only on `state`'s flip frames)
+/// and `ssim_objects` over object_mask (hybrid_scoring.cpp). `state` is
+/// updated by the run's frame callback before each frame is scored.
+Scorer hybrid_scorer(std::shared_ptr<ScoringState> state);
 
 /// One scenario's run summarised (frame time against `target_ms`, quality
 /// at `checkpoints`: a checkpoint not scored keeps SSIM 1) (hybrid_summary.cpp).

@@ -140,15 +140,8 @@ std::vector<Item> visible_items(ObjectSet& set, const Camera& cam, int height) {
 /// Luma SSIM of `test` against `ref` over the pixels either covers in front
 /// of `bare` (the terrain alone), as the bench scores; and their count.
 std::pair<double, std::size_t> masked_ssim(const Shot& ref, const Shot& test, const Shot& bare) {
-  std::vector<std::uint8_t> mask(ref.depth.size());
-  std::size_t covered = 0;
-  auto front = [&](float d, std::size_t i) {
-    return std::isfinite(d) && !(d >= bare.depth[i] * 0.9995f - 1e-3f);
-  };
-  for (std::size_t i = 0; i < mask.size(); ++i) {
-    mask[i] = front(ref.depth[i], i) || front(test.depth[i], i);
-    covered += mask[i];
-  }
+  const std::vector<std::uint8_t> mask = object_mask(ref.depth, test.depth, bare.depth);
+  const auto covered = std::size_t(std::count(mask.begin(), mask.end(), 1));
   if (!covered || ref.color.rgba == test.color.rgba) return {1.0, covered};
   quality::SsimOptions so;
   so.channels = false;

@@ -19,7 +19,7 @@ namespace {
 // measurements), so tables of format 2 are measured again. 4: a small
 // octahedral impostor marches fewer steps (other costs, other SSIM at 16 px).
 // 5: octahedral views on the horizon raised to 4 degrees.
-constexpr const char* kFormat = "terrasprite-objects-table-5";
+constexpr const char* kFormat = "terrasprite-objects-table-6";
 
 // Infinite PSNR (identical images) is written as the string "inf": JSON has no infinity.
 nlohmann::json number(double v) {
@@ -126,8 +126,8 @@ QualityTable table_from_json(const nlohmann::json& j) {
 
 std::string table_cache_key(const std::string& model_file, const ModelOptions& m,
                             const TableOptions& o, const std::string& chain) {
-  std::string params =
-      fmt::format("{}|up{}|h{}|tex{}|{}|", kFormat, int(m.up), m.height_m, m.texture, chain);
+  std::string params = fmt::format("{}|up{}|h{}|tex{}|ds{}|{}|", kFormat, int(m.up), m.height_m,
+                                   m.texture, m.double_sided ? int(*m.double_sided) : -1, chain);
   for (ObjectKind k : o.kinds) params += object_kind_name(k) + std::string(",");
   params += fmt::format("|r{}|s{}|a{}|fs{}|v{}|n{}|t{}|{}", fmt::join(o.resolutions, ","),
                         fmt::join(o.sizes_px, ","), o.angle_step_deg, o.full_sphere, o.views,

@@ -106,7 +106,7 @@ glm::dmat4 node_matrix(const tinygltf::Node& n) {
 void add_materials(RawModel& raw, const tinygltf::Model& g, const Reader& rd) {
   std::map<int, int> texture_of_image;
   for (const tinygltf::Material& m : g.materials) {
-    Material out{m.name, glm::vec4(1.f), -1};
+    Material out{m.name, glm::vec4(1.f), -1, m.doubleSided};
     const auto& f = m.pbrMetallicRoughness.baseColorFactor;
     if (f.size() == 4) out.base_color = glm::vec4(f[0], f[1], f[2], f[3]);
     const int ti = m.pbrMetallicRoughness.baseColorTexture.index;
@@ -137,7 +137,9 @@ void add_materials(RawModel& raw, const tinygltf::Model& g, const Reader& rd) {
     }
     raw.materials.push_back(out);
   }
-  raw.materials.push_back({"default", glm::vec4(0.8f, 0.8f, 0.8f, 1.f), -1});
+  // glTF's default material is single-sided.
+  raw.materials.push_back({"default", glm::vec4(0.8f, 0.8f, 0.8f, 1.f), -1, false});
+  raw.orientation_from_file = true;
 }
 
 bool add_primitive(RawModel& raw, const Reader& rd, const tinygltf::Primitive& prim,

@@ -130,6 +130,12 @@ Model finish_model(RawModel raw, const std::string& path, const ModelOptions& op
   m.uvs = raw.uvs.size() == m.positions.size() ? std::move(raw.uvs)
                                                : std::vector<glm::vec2>(m.positions.size());
   m.materials = std::move(raw.materials);
+  // OBJ cannot say which faces are meant to be seen; glTF does, per material.
+  const bool single = options.double_sided        ? !*options.double_sided
+                      : raw.orientation_from_file ? false
+                                                  : closed_and_outward(m.positions, m.indices);
+  if (options.double_sided || single)
+    for (Material& mat : m.materials) mat.double_sided = !single;
   m.textures = std::move(raw.textures);
   m.texture_names = std::move(raw.texture_names);
 

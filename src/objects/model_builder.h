@@ -18,6 +18,8 @@ struct RawModel {
   std::vector<Material> materials;
   std::vector<Image> textures;
   std::vector<std::string> texture_names;
+  /// The file says per material which faces are drawn (glTF's doubleSided).
+  bool orientation_from_file = false;
 };
 
 Model finish_model(RawModel raw, const std::string& path, const ModelOptions& options);

@@ -68,6 +68,11 @@ SceneModel parse_model(const nlohmann::json& m, const std::string& name, const s
       fail(name, fmt::format("model '{}': color needs 3 or 4 values", out.name));
     out.options.color = glm::vec4(c[0], c[1], c[2], c.size() == 4 ? c[3] : 1.0);
   }
+  if (m.contains("double_sided")) {
+    if (!m["double_sided"].is_boolean())
+      fail(name, fmt::format("model '{}': double_sided must be true or false", out.name));
+    out.options.double_sided = m["double_sided"].get<bool>();
+  }
   return out;
 }
 

@@ -115,8 +115,10 @@ std::uint64_t model_files_hash(const std::string& model_file, const ModelOptions
 
 std::string model_source_key(const std::string& model_file, const ModelOptions& m) {
   const std::uint64_t h = model_files_hash(model_file, m);
-  const std::string params = fmt::format("up{}|h{}|tex{}|c{},{},{},{}", int(m.up), m.height_m,
-                                         m.texture, m.color.r, m.color.g, m.color.b, m.color.a);
+  // faces2: single-sided materials drawn without their back faces.
+  const std::string params = fmt::format("up{}|h{}|tex{}|c{},{},{},{}|faces2|ds{}", int(m.up),
+                                         m.height_m, m.texture, m.color.r, m.color.g, m.color.b,
+                                         m.color.a, m.double_sided ? int(*m.double_sided) : -1);
   return fmt::format("{:016x}{:016x}", h, fnv1a(params));
 }
 

@@ -1,0 +1,151 @@
+// SPDX-License-Identifier: MIT
+// Single- and double-sided materials: which meshes may lose their back
+// faces, what the loaders and scene files say, and that drawing without
+// them changes nothing seen from outside a closed mesh.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "gl/render_target.h"
+#include "object_test_util.h"
+#include "terrasprite/error.h"
+#include "terrasprite/gl_context.h"
+#include "terrasprite/lod_chain.h"
+#include "terrasprite/object_renderer.h"
+
+namespace ts = terrasprite;
+
+namespace {
+
+// A unit cube as an OBJ, counter-clockwise from outside; `faces` of its six
+// quads written (the first n), `inverted` winds every one the other way.
+std::string cube_obj(int faces = 6, bool inverted = false) {
+  std::string s = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n";
+  const char* quads[6] = {"1 4 3 2", "5 6 7 8", "1 2 6 5", "2 3 7 6", "3 4 8 7", "4 1 5 8"};
+  for (int f = 0; f < faces; ++f) {
+    std::string q = quads[f];
+    if (inverted) q = std::string(q.rbegin(), q.rend());
+    s += "f " + q + "\n";
+  }
+  return s;
+}
+
+bool all_double_sided(const ts::Model& m, bool value) {
+  for (const ts::Material& mat : m.materials)
+    if (mat.double_sided != value) return false;
+  return true;
+}
+
+}  // namespace
+
+TEST(Faces, ClosedAndOutwardNeedsEveryEdgePairedAndPositiveVolume) {
+  // colored_box has four copies of each corner (a flat normal per face):
+  // they weld into one.
+  ts::Model box = tstest::colored_box();
+  EXPECT_TRUE(ts::closed_and_outward(box.positions, box.indices));
+
+  std::vector<std::uint32_t> inside_out = box.indices;
+  for (std::size_t t = 0; t < inside_out.size(); t += 3)
+    std::swap(inside_out[t + 1], inside_out[t + 2]);
+  EXPECT_FALSE(ts::closed_and_outward(box.positions, inside_out));  // closed, volume < 0
+
+  std::vector<std::uint32_t> one_flipped = box.indices;
+  std::swap(one_flipped[1], one_flipped[2]);
+  EXPECT_FALSE(ts::closed_and_outward(box.positions, one_flipped));
+
+  std::vector<std::uint32_t> open(box.indices.begin(), box.indices.end() - 6);  // one face off
+  EXPECT_FALSE(ts::closed_and_outward(box.positions, open));
+
+  // A degenerate triangle (two corners at one spot) is ignored.
+  std::vector<std::uint32_t> with_sliver = box.indices;
+  with_sliver.insert(with_sliver.end(), {0, 0, 1});
+  EXPECT_TRUE(ts::closed_and_outward(box.positions, with_sliver));
+
+  EXPECT_FALSE(ts::closed_and_outward(box.positions, {}));
+}
+
+TEST(Faces, ObjIsSingleSidedOnlyWhenClosedAndOutward) {
+  tstest::TempDir dir;
+  std::ofstream(dir / "cube.obj") << cube_obj();
+  std::ofstream(dir / "open.obj") << cube_obj(5);
+  std::ofstream(dir / "inverted.obj") << cube_obj(6, true);
+  EXPECT_TRUE(all_double_sided(ts::load_model(dir / "cube.obj"), false));
+  EXPECT_TRUE(all_double_sided(ts::load_model(dir / "open.obj"), true));
+  EXPECT_TRUE(all_double_sided(ts::load_model(dir / "inverted.obj"), true));
+  // The y-up to z-up turn is a rotation: it keeps the winding.
+  ts::ModelOptions z_up;
+  z_up.up = ts::UpAxis::kZ;
+  EXPECT_TRUE(all_double_sided(ts::load_model(dir / "cube.obj", z_up), false));
+  // The scene's word overrides either way.
+  ts::ModelOptions both, single;
+  both.double_sided = true;
+  single.double_sided = false;
+  EXPECT_TRUE(all_double_sided(ts::load_model(dir / "cube.obj", both), true));
+  EXPECT_TRUE(all_double_sided(ts::load_model(dir / "open.obj", single), false));
+}
+
+TEST(Faces, GltfMaterialsSayForThemselves) {
+  const std::string data = tstest::shared_data();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
+  // Every material of the truck leaves doubleSided at its default (false);
+  // the Kenney forest's one material sets it (its leaves are cards).
+  const ts::Model truck = ts::load_model(data + "/models_cesium_milk_truck/CesiumMilkTruck.glb");
+  EXPECT_TRUE(all_double_sided(truck, false));
+  const ts::Model forest = ts::load_model(data + "/models_kenney_racing/decoration-forest.glb");
+  const ts::Material& leaves = forest.materials[forest.parts[0].material];
+  EXPECT_TRUE(leaves.double_sided);
+  // Scans: spot is closed; the bunny has holes in its base.
+  EXPECT_TRUE(all_double_sided(ts::load_model(data + "/models_scans/spot.obj"), false));
+  EXPECT_TRUE(all_double_sided(ts::load_model(data + "/models_scans/stanford-bunny.obj"), true));
+}
+
+TEST(Faces, SceneFileDoubleSidedIsABoolean) {
+  ts::TerrainOptions o;
+  o.synthetic_size = 33;
+  const ts::Terrain terrain = ts::load_terrain(o);
+  tstest::TempDir dir;
+  const ts::ObjectScene scene = tstest::tower_scene(dir, terrain, R"("double_sided": false)", "[]");
+  ASSERT_EQ(scene.models.size(), 1u);
+  ASSERT_TRUE(scene.models[0].options.double_sided.has_value());
+  EXPECT_FALSE(*scene.models[0].options.double_sided);
+  try {
+    tstest::tower_scene(dir, terrain, R"("double_sided": "yes")", "[]");
+    ADD_FAILURE() << "a string was taken";
+  } catch (const ts::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("double_sided"), std::string::npos) << e.what();
+  }
+}
+
+// Seen from outside, a closed outward box looks the same with or without its
+// back faces; from inside, a single-sided box is not there at all.
+TEST(Faces, BackFacesAreSkippedAndInvisibleFromOutside) {
+  ts::GlContext ctx;
+  ts::gl::RenderTarget target(96, 96);
+  ts::Model single = tstest::colored_box();
+  for (ts::Material& m : single.materials) m.double_sided = false;
+  const ts::Model both = tstest::colored_box();
+  ts::GlModel gl_single(single, ts::build_lod_chain(single)),
+      gl_both(both, ts::build_lod_chain(both));
+  const ts::ObjectInstance at_origin;
+  const ts::Representation mesh{ts::ObjectKind::kMesh};
+  auto shot = [&](ts::GlModel& m, const ts::Camera& cam) {
+    target.bind_and_clear();
+    m.draw(mesh, std::span(&at_origin, 1), cam);
+    glFinish();
+    return target.read_color();
+  };
+  for (double phi : {0.0, 50.0, 135.0, 250.0}) {
+    const ts::Camera outside = tstest::orbit({0, 0, 0.5}, 4.0, phi, 25.0);
+    const ts::Image a = shot(gl_both, outside), b = shot(gl_single, outside);
+    EXPECT_EQ(a.rgba, b.rgba) << "phi " << phi;
+  }
+  ts::Camera inside = tstest::orbit({0, 0, 0.5}, 0.2, 30.0, 10.0, 60.0);
+  inside.near_m = 0.01;
+  inside.far_m = 10;
+  const ts::Image walls = shot(gl_both, inside), none = shot(gl_single, inside);
+  target.bind_and_clear();
+  glFinish();
+  const ts::Image empty = target.read_color();
+  EXPECT_NE(walls.rgba, empty.rgba);
+  EXPECT_EQ(none.rgba, empty.rgba);
+}

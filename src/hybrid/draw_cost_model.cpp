@@ -142,7 +142,13 @@ bool DrawCostModel::calibrated(const Representation& rep, int model) const {
 
 double DrawCostModel::instance_ms(ObjectKind kind, double triangles, double pixels) const {
   const DrawCostTerms& t = effective_[std::size_t(kind)];
-  return t.per_instance_ms + t.per_triangle_ms * triangles + t.per_pixel_ms * pixels;
+  return t.per_instance_ms + t.per_triangle_ms * triangles + t.per_pixel_ms * pixels +
+         impostor_extra_ms(kind);
+}
+
+double DrawCostModel::impostor_extra_ms(ObjectKind kind) const {
+  if (kind == ObjectKind::kMesh) return 0;
+  return m(extra_term(kind)) * options_.impostor_extra_prior_ms;
 }
 
 double DrawCostModel::instance_ms(const Representation& rep, double triangles, double pixels,
@@ -150,7 +156,8 @@ double DrawCostModel::instance_ms(const Representation& rep, double triangles, d
   const RepresentationCost* c = find(rep, model);
   if (!c) return instance_ms(rep.kind, triangles, pixels);
   const int k = int(rep.kind);
-  return m(2 + 3 * k) * c->fixed_ms + m(3 + 3 * k) * c->per_pixel_ms * pixels;
+  return m(2 + 3 * k) * c->fixed_ms + m(3 + 3 * k) * c->per_pixel_ms * pixels +
+         impostor_extra_ms(rep.kind);
 }
 
 void DrawCostModel::add(FrameLoad& load, const Representation& rep, double triangles, double pixels,
@@ -178,6 +185,10 @@ std::array<double, DrawCostModel::kTerms> DrawCostModel::contributions(
                           : t.per_instance_ms * s.instances + t.per_triangle_ms * s.triangles;
     z[3 + 3 * k] = summed ? load.pixel_ms[k] : t.per_pixel_ms * s.pixels;
   }
+  // The extra terms' unknowns are in units of the prior's standard deviation.
+  for (ObjectKind k : {ObjectKind::kRelief, ObjectKind::kOctahedral})
+    z[std::size_t(extra_term(k))] =
+        load.kinds[std::size_t(k)].instances * options_.impostor_extra_prior_ms;
   return z;
 }
 
@@ -195,11 +206,16 @@ double DrawCostModel::pixel_multiplier(ObjectKind kind) const {
 void DrawCostModel::reset_prior() {
   // The unknowns are multipliers on the calibrated contributions (1 = as
   // calibrated), so every unknown has the same scale whatever its unit.
-  multipliers_.fill(1.0);
+  // The extra impostor terms start at 0 with a standard deviation of one
+  // unit (their contribution is counted in units of that prior).
   covariance_.fill(0);
-  for (int i = 0; i < kTerms; ++i)
-    covariance_[std::size_t(i * kTerms + i)] = options_.prior_fraction * options_.prior_fraction;
-  prior_trace_ = kTerms * options_.prior_fraction * options_.prior_fraction;
+  prior_trace_ = 0;
+  for (int i = 0; i < kTerms; ++i) {
+    multipliers_[std::size_t(i)] = prior_mean(i);
+    const double sd = i >= 10 ? 1.0 : options_.prior_fraction;
+    covariance_[std::size_t(i * kTerms + i)] = sd * sd;
+    prior_trace_ += sd * sd;
+  }
   prior_set_ = true;
 }
 
@@ -221,8 +237,9 @@ void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
   const double denom = lambda * noise + zpz;
   const double residual = measured_ms - predicted;
   for (int i = 0; i < kTerms; ++i)
-    multipliers_[std::size_t(i)] = std::clamp(
-        multipliers_[std::size_t(i)] + pz[std::size_t(i)] / denom * residual, 0.05, 20.0);
+    multipliers_[std::size_t(i)] =
+        std::clamp(multipliers_[std::size_t(i)] + pz[std::size_t(i)] / denom * residual,
+                   i >= 10 ? 0.0 : 0.05, 20.0);
   double trace = 0;
   for (int i = 0; i < kTerms; ++i)
     for (int j = 0; j < kTerms; ++j) {

@@ -21,9 +21,10 @@ nlohmann::json table_json(const QualityTable& t, const TableOptions& o);
 /// document that does not have the expected shape.
 QualityTable table_from_json(const nlohmann::json& j);
 
-/// Cache key of a table: the model file's bytes (and its texture's), the
-/// model and table options, the LOD chain's key (lod_chain_key: levels built
-/// otherwise make another table) and the format version, as 32 hex digits.
+/// Cache key of a table: model_source_key() (the model file's bytes, its
+/// texture's and the model options), then a hash of the table options, the
+/// LOD chain's key (lod_chain_key: levels built otherwise make another
+/// table) and the format version; 48 hex digits.
 std::string table_cache_key(const std::string& model_file, const ModelOptions& m,
                             const TableOptions& o, const std::string& chain);
 /// The cache file of a model's table in `cache_dir` (empty: default_cache_dir()).

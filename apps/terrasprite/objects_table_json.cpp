@@ -126,14 +126,15 @@ QualityTable table_from_json(const nlohmann::json& j) {
 
 std::string table_cache_key(const std::string& model_file, const ModelOptions& m,
                             const TableOptions& o, const std::string& chain) {
-  std::string params = fmt::format("{}|up{}|h{}|tex{}|ds{}|{}|", kFormat, int(m.up), m.height_m,
-                                   m.texture, m.double_sided ? int(*m.double_sided) : -1, chain);
+  // The model and its options as the representation cache keys them (files,
+  // axes, size, texture, colour, faces), then what the table measures.
+  std::string params = fmt::format("{}|{}|", kFormat, chain);
   for (ObjectKind k : o.kinds) params += object_kind_name(k) + std::string(",");
   params += fmt::format("|r{}|s{}|a{}|fs{}|v{}|n{}|t{}|{}", fmt::join(o.resolutions, ","),
                         fmt::join(o.sizes_px, ","), o.angle_step_deg, o.full_sphere, o.views,
                         o.timing_instances, fmt::join(o.ssim_targets, ","),
                         fmt::join(o.psnr_targets, ","));
-  return fmt::format("{:016x}{:016x}", model_files_hash(model_file, m), fnv1a(params));
+  return model_source_key(model_file, m) + fmt::format("{:016x}", fnv1a(params));
 }
 
 }  // namespace terrasprite::cli

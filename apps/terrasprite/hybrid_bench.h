@@ -139,6 +139,10 @@ struct QualityContextInput {
 nlohmann::json calibrate_tables_in_context(const QualityContextInput& in,
                                            std::vector<QualityTable>& tables);
 
+/// The paper's full geometry, the walkthrough's reference: every instance
+/// in the frustum at level 0, nothing culled behind the terrain (bench_hybrid.cpp).
+HybridScenario full_geometry_scenario();
+
 /// What quality_budget_sweep needs.
 struct BudgetSweepInput {
   ObjectSet& set;

@@ -372,11 +372,8 @@ nlohmann::json calibrate_tables_in_context(const QualityContextInput& in,
 nlohmann::json quality_budget_sweep(const BudgetSweepInput& in) {
   nlohmann::json out = nlohmann::json::array();
   Shooter shooter(in.ground, in.width, in.height, in.terrain_quads, false);
-  // The paper's full geometry, as the bench's `full`: every instance in the
-  // frustum (the budget fractions are of its predicted time).
-  HybridScenario full_scenario{
-      "full", {ObjectKind::kMesh}, SelectionPolicy::kStatic, true, HybridScenario::Control::kNone,
-      false};
+  // The budget fractions are of full geometry's predicted time.
+  const HybridScenario full_scenario = full_geometry_scenario();
   HybridOptions o = in.options;
   o.use_hysteresis = false;
   for (const PathCheckpoint& cp : in.checkpoints) {

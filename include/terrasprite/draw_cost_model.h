@@ -139,9 +139,13 @@ class DrawCostModel {
 
  private:
   // frame; per kind: draw, fixed, pixel; per impostor kind: extra per instance
-  static constexpr int kTerms = 12;
-  static int extra_term(ObjectKind kind) { return kind == ObjectKind::kRelief ? 10 : 11; }
-  double prior_mean(int i) const { return i >= 10 ? 0.0 : 1.0; }
+  static constexpr int kFirstExtra = 10, kTerms = 12;
+  static int extra_term(ObjectKind kind) {
+    return kFirstExtra + (kind == ObjectKind::kRelief ? 0 : 1);
+  }
+  static bool is_extra(int i) { return i >= kFirstExtra; }
+  /// Multipliers start at 1 (as calibrated); the extra terms at 0 (none).
+  static double prior_mean(int i) { return is_extra(i) ? 0.0 : 1.0; }
   std::array<double, kTerms> contributions(const FrameLoad& load) const;
   void reset_prior();
   double m(int i) const { return prior_set_ ? multipliers_[std::size_t(i)] : prior_mean(i); }

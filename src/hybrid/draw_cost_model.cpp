@@ -212,7 +212,7 @@ void DrawCostModel::reset_prior() {
   prior_trace_ = 0;
   for (int i = 0; i < kTerms; ++i) {
     multipliers_[std::size_t(i)] = prior_mean(i);
-    const double sd = i >= 10 ? 1.0 : options_.prior_fraction;
+    const double sd = is_extra(i) ? 1.0 : options_.prior_fraction;
     covariance_[std::size_t(i * kTerms + i)] = sd * sd;
     prior_trace_ += sd * sd;
   }
@@ -239,7 +239,7 @@ void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
   for (int i = 0; i < kTerms; ++i)
     multipliers_[std::size_t(i)] =
         std::clamp(multipliers_[std::size_t(i)] + pz[std::size_t(i)] / denom * residual,
-                   i >= 10 ? 0.0 : 0.05, 20.0);
+                   is_extra(i) ? 0.0 : 0.05, 20.0);
   double trace = 0;
   for (int i = 0; i < kTerms; ++i)
     for (int j = 0; j < kTerms; ++j) {

@@ -30,7 +30,8 @@ void write_frames(const HybridScenarioResult& s, OutputDir& out) {
       "frame",        "ms",           "triangles",    "triangles_min", "triangles_max",
       "predicted_ms", "budget_ms",    "switches",     "selection_ms",  "ssim",
       "floor_ms",     "not_drawn",    "ssim_objects", "expected_ssim", "n_mesh",
-      "n_relief",     "n_octahedral", "draw_gap_ms",  "visible",       "occluded"};
+      "n_relief",     "n_octahedral", "draw_gap_ms",  "visible",       "occluded",
+      "policy_ms",    "occlusion_ms"};
   std::ostringstream f;
   f << fmt::format("{}\n", fmt::join(kColumns, " "));
   for (const FrameResult& r : s.frames) {

@@ -175,7 +175,7 @@ void DrawCostModel::add(FrameLoad& load, const Representation& rep, double trian
 
 std::array<double, DrawCostModel::kTerms> DrawCostModel::contributions(
     const FrameLoad& load) const {
-  std::array<double, kTerms> z{frame_ms_};
+  std::array<double, kTerms> z{load.measured_frame_ms > 0 ? load.measured_frame_ms : frame_ms_};
   for (std::size_t k = 0; k < 3; ++k) {
     const DrawSample& s = load.kinds[k];
     const DrawCostTerms& t = terms_[k];

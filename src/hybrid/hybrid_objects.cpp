@@ -219,7 +219,11 @@ long long HybridObjects::draw(const Camera& camera) {
   st.budget_ms = budget;
   st.target_quality = po.target_ssim;
   const SelectionPolicy policy = scenario_.full ? SelectionPolicy::kStatic : scenario_.policy;
-  const double objects_budget = budget - s.cost.frame_ms() - s.draw_gap_ms;
+  // What the terrain took in this frame is known by now (the read-back
+  // waited for it): the objects get what it left.
+  FrameLoad load;
+  if (cull) load.measured_frame_ms = st.occlusion_ms;
+  const double objects_budget = budget - s.cost.frame_ms(load) - s.draw_gap_ms;
   FrameSelection sel = select_representations(policy, frame, objects_budget, po);
   if (o.use_hysteresis && !scenario_.full)
     st.switches = s.hysteresis.apply(frame, sel, objects_budget);
@@ -235,7 +239,7 @@ long long HybridObjects::draw(const Camera& camera) {
 
   // Group by (model, representation); one instanced draw per group.
   std::map<GroupKey, std::pair<Representation, std::vector<ObjectInstance>>> groups;
-  s.load = {};
+  s.load = load;
   for (std::size_t k = 0; k < frame.size(); ++k) {
     const RepresentationOption& opt = frame[k].options[std::size_t(sel.option[k])];
     const auto [m, i] = where[k];
@@ -253,7 +257,7 @@ long long HybridObjects::draw(const Camera& camera) {
   }
   for (const auto& [key, g] : groups) s.load.kinds[std::size_t(std::get<1>(key))].draws += 1;
   st.predicted_ms = s.cost.predict(s.load);
-  s.draw_gap_ms = std::max(0.0, st.predicted_ms - s.cost.frame_ms() - sel.cost_ms);
+  s.draw_gap_ms = std::max(0.0, st.predicted_ms - s.cost.frame_ms(s.load) - sel.cost_ms);
   st.draw_gap_ms = s.draw_gap_ms;
   // Per model, all its groups at once: one upload of their instances.
   std::vector<GlModel::Group> batch;

@@ -298,5 +298,41 @@ TEST(DrawCostModel, LearnsWhatAnImpostorCostsInAFrame) {
   EXPECT_EQ(off.impostor_extra_ms(ObjectKind::kRelief), 0.0);
 }
 
+TEST(DrawCostModel, MeasuredFrameTermFollowsTheTerrain) {
+  // The terrain takes 2-9 ms from frame to frame (the view, the machine's
+  // pace); the frame costs 1.2 x that plus 4 ms of meshes. With each
+  // frame's terrain time measured before the selection, the prediction
+  // follows it; with only the calibrated 3 ms it cannot.
+  auto run = [](bool measured) {
+    DrawCostModel m;
+    m.set_terms(ObjectKind::kMesh, {0, 0, 2e-5, 0});
+    m.set_frame_ms(3);
+    double worst = 0;
+    for (int f = 0; f < 80; ++f) {
+      const double terrain = 2 + 7 * double((f * 5) % 11) / 10;
+      FrameLoad load;
+      load.kinds[0] = {1, 50, 2e5, 0, 0};
+      if (measured) load.measured_frame_ms = terrain;
+      const double truth = 1.2 * terrain + 4;
+      if (f >= 60) worst = std::max(worst, std::abs(m.predict(load) / truth - 1));
+      if (f == 79 && measured) {
+        EXPECT_NEAR(m.frame_ms(load), 1.2 * terrain, 0.05 * terrain);
+      }
+      m.observe(load, truth);
+    }
+    return worst;
+  };
+  EXPECT_LT(run(true), 0.02);
+  EXPECT_GT(run(false), 0.2);
+  // Not measured, the calibrated term applies.
+  DrawCostModel m;
+  m.set_frame_ms(3);
+  EXPECT_EQ(m.frame_ms(), 3.0);
+  FrameLoad load;
+  load.measured_frame_ms = 5;
+  EXPECT_EQ(m.frame_ms(load), 5.0);
+  EXPECT_EQ(m.predict(load), 5.0);
+}
+
 }  // namespace
 }  // namespace terrasprite

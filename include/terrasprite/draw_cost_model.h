@@ -57,8 +57,9 @@ struct FrameLoad {
   /// instances drawn: the kind's terms apply to the sums in `kinds`.
   std::array<double, 3> fixed_ms{}, pixel_ms{};
   /// The frame's work before the selection as measured in this frame (the
-  /// terrain drawn and its depth read back), ms: it replaces the calibrated
-  /// frame term (set_frame_ms), under the same refit multiplier. 0: not
+  /// terrain drawn and its depth read back; see MeasuredFixedTime), ms: it
+  /// replaces the calibrated frame term (set_frame_ms), under the same
+  /// refit multiplier. 0: not
   /// measured, the calibrated term applies. With occlusion culling the
   /// read-back waits for the terrain's rasterisation, whose time varies
   /// with the view and the machine's pace (3-12 ms a frame here); frame

@@ -8,6 +8,7 @@
 
 #include "terrasprite/budget_controller.h"
 #include "terrasprite/draw_cost_model.h"
+#include "terrasprite/measured_fixed_time.h"
 
 namespace terrasprite {
 namespace {
@@ -332,6 +333,24 @@ TEST(DrawCostModel, MeasuredFrameTermFollowsTheTerrain) {
   load.measured_frame_ms = 5;
   EXPECT_EQ(m.frame_ms(load), 5.0);
   EXPECT_EQ(m.predict(load), 5.0);
+}
+
+TEST(MeasuredFixedTime, CapsAStallButFollowsALastingChange) {
+  MeasuredFixedTime f(15, 1.5);
+  for (int i = 0; i < 15; ++i) EXPECT_EQ(f.accept(3.0 + 0.1 * (i % 3)), 3.0 + 0.1 * (i % 3));
+  // One stall counts for 1.5 x the median only.
+  EXPECT_NEAR(f.accept(8.0), 4.65, 1e-12);
+  // Faster than usual is taken as it is.
+  EXPECT_EQ(f.accept(1.0), 1.0);
+  // A lasting change to 6 ms is taken whole once it is most of the window.
+  double last = 0;
+  for (int i = 0; i < 9; ++i) last = f.accept(6.0);
+  EXPECT_EQ(last, 6.0);
+  // Nothing measured records nothing.
+  EXPECT_EQ(f.accept(0.0), 0.0);
+  EXPECT_EQ(f.accept(NAN), 0.0);
+  f.reset();
+  EXPECT_EQ(f.accept(20.0), 20.0);
 }
 
 }  // namespace

@@ -59,12 +59,12 @@ struct FrameLoad {
   /// The frame's work before the selection as measured in this frame (the
   /// terrain drawn and its depth read back; see MeasuredFixedTime), ms: it
   /// replaces the calibrated frame term (set_frame_ms), under the same
-  /// refit multiplier. 0: not
-  /// measured, the calibrated term applies. With occlusion culling the
-  /// read-back waits for the terrain's rasterisation, whose time varies
-  /// with the view and the machine's pace (3-12 ms a frame here); frame
-  /// time less its prediction followed it (r = 0.64), and what is known
-  /// before the selection need not be noise to the controller.
+  /// refit multiplier. 0: not measured, the calibrated term applies. With
+  /// occlusion culling the read-back waits for the terrain's rasterisation,
+  /// whose time varies with the view and the machine's pace (3-12 ms a
+  /// frame here); frame time less its prediction followed it (r = 0.64),
+  /// and what is known before the selection need not be noise to the
+  /// controller.
   double measured_frame_ms = 0;
 };
 

@@ -56,16 +56,15 @@ struct FrameLoad {
   /// its instances, summed by DrawCostModel::add. Zero for both with
   /// instances drawn: the kind's terms apply to the sums in `kinds`.
   std::array<double, 3> fixed_ms{}, pixel_ms{};
-  /// The frame's work before the selection as measured in this frame (the
-  /// terrain drawn and its depth read back; see MeasuredFixedTime), ms: it
-  /// replaces the calibrated frame term (set_frame_ms), under the same
-  /// refit multiplier. 0: not measured, the calibrated term applies. With
-  /// occlusion culling the read-back waits for the terrain's rasterisation,
-  /// whose time varies with the view and the machine's pace (3-12 ms a
-  /// frame here); frame time less its prediction followed it (r = 0.64),
-  /// and what is known before the selection need not be noise to the
-  /// controller.
-  double measured_frame_ms = 0;
+  /// Time this frame is known to take beyond the model's prediction, ms,
+  /// measured before the selection (see MeasuredFixedTime): added to
+  /// predict() and frame_ms() as it is, and taken off the measured time
+  /// before the refit, which never scales it. With occlusion culling the
+  /// read-back waits for the terrain's rasterisation, whose time varies
+  /// with the view and the machine's pace (2-12 ms a frame here); frame
+  /// time less its prediction followed it (r = 0.64), and what is known
+  /// before the selection need not be noise to the controller.
+  double known_extra_ms = 0;
 };
 
 struct CostModelOptions {
@@ -107,10 +106,9 @@ class DrawCostModel {
   }
   /// The kind's terms as refit so far.
   const DrawCostTerms& terms(ObjectKind kind) const { return effective_[std::size_t(kind)]; }
-  /// The frame's fixed time as refit: `load`'s measured_frame_ms when set,
-  /// else the calibrated frame term.
+  /// The frame's fixed time as refit, plus `load`'s known_extra_ms.
   double frame_ms(const FrameLoad& load = {}) const {
-    return (load.measured_frame_ms > 0 ? load.measured_frame_ms : frame_ms_) * m(0);
+    return frame_ms_ * m(0) + load.known_extra_ms;
   }
 
   /// Fits `rep`'s own cost (least squares on the relative error, non-negative

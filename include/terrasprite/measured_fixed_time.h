@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The frame's work before the selection (with occlusion culling: the
 // terrain drawn and its depth read back, which waits for the rasteriser),
-// measured in each frame, made safe to budget the objects from.
+// measured in each frame: how far it is from usual is known before the
+// selection, and is taken off (or added to) that frame's object budget.
 #pragma once
 #include <deque>
 
@@ -9,19 +10,20 @@ namespace terrasprite {
 
 class MeasuredFixedTime {
  public:
-  /// `window` frames of history (at least 1); `cap` (>= 1) x their median
-  /// is the most a frame's measurement counts for.
-  explicit MeasuredFixedTime(int window = 15, double cap = 1.5);
+  /// `window` frames of history (at least 1); a deviation counts for at
+  /// most `cap` (>= 0) x the median.
+  explicit MeasuredFixedTime(int window = 15, double cap = 0.5);
 
-  /// Records `ms` and returns what to budget with: `ms`, capped at `cap` x
-  /// the median of the last `window` measurements (this one included). A
+  /// Records `ms` and returns its deviation from the median of the last
+  /// `window` measurements (this one included), clamped to +-`cap` x that
+  /// median. The median is the usual cost, which the cost model's frame
+  /// term already holds; the deviation is this frame's known surprise. A
   /// stall of the machine, not of the view, shows as one measurement far
-  /// over the rest: uncapped, a 7.9 ms read-back against the usual 3.5
-  /// left checkpoint B's objects 2 ms and its object SSIM fell from 0.95 to
-  /// 0.50. A lasting change moves the median within window / 2 frames.
-  /// Not positive or not finite: returns 0 (nothing measured) and records
-  /// nothing.
-  double accept(double ms);
+  /// over the rest: taken whole (and, refit as a multiplier, up to 3 x),
+  /// it left checkpoint B's objects less than their cheapest and object
+  /// SSIM fell from 0.95 to 0.50. A lasting change moves the median within
+  /// window / 2 frames. Not positive or not finite: 0, recorded nothing.
+  double deviation(double ms);
   void reset() { recent_.clear(); }
 
  private:

@@ -175,7 +175,7 @@ void DrawCostModel::add(FrameLoad& load, const Representation& rep, double trian
 
 std::array<double, DrawCostModel::kTerms> DrawCostModel::contributions(
     const FrameLoad& load) const {
-  std::array<double, kTerms> z{load.measured_frame_ms > 0 ? load.measured_frame_ms : frame_ms_};
+  std::array<double, kTerms> z{frame_ms_};
   for (std::size_t k = 0; k < 3; ++k) {
     const DrawSample& s = load.kinds[k];
     const DrawCostTerms& t = terms_[k];
@@ -196,7 +196,7 @@ double DrawCostModel::predict(const FrameLoad& load) const {
   const std::array<double, kTerms> z = contributions(load);
   double ms = 0;
   for (int i = 0; i < kTerms; ++i) ms += m(i) * z[std::size_t(i)];
-  return ms;
+  return ms + load.known_extra_ms;
 }
 
 double DrawCostModel::pixel_multiplier(ObjectKind kind) const {
@@ -221,6 +221,7 @@ void DrawCostModel::reset_prior() {
 
 void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
   if (!prior_set_) reset_prior();
+  measured_ms -= load.known_extra_ms;                        // known, not the terms' to explain
   const std::array<double, kTerms> z = contributions(load);  // each term's calibrated ms
   auto P = [&](int i, int j) -> double& { return covariance_[std::size_t(i * kTerms + j)]; };
   std::array<double, kTerms> pz{};

@@ -223,11 +223,12 @@ long long HybridObjects::draw(const Camera& camera) {
   st.target_quality = po.target_ssim;
   const SelectionPolicy policy = scenario_.full ? SelectionPolicy::kStatic : scenario_.policy;
   // What the terrain took in this frame is known by now (the read-back
-  // waited for it): the objects get what it left. (Adding the instances'
+  // waited for it): the objects get what it left (its usual time is in
+  // the model's frame term; its deviation is added). (Adding the instances'
   // view and the last policy's time, up to 2.5 ms a frame, narrowed
   // nothing: 4 interleaved runs each.)
   FrameLoad load;
-  if (cull) load.measured_frame_ms = s.fixed_time.accept(st.occlusion_ms);
+  if (cull) load.known_extra_ms = s.fixed_time.deviation(st.occlusion_ms);
   const double objects_budget = budget - s.cost.frame_ms(load) - s.draw_gap_ms;
   FrameSelection sel = select_representations(policy, frame, objects_budget, po);
   if (o.use_hysteresis && !scenario_.full)

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "terrasprite/stats.h"
+
 namespace terrasprite {
 
 MeasuredFixedTime::MeasuredFixedTime(int window, double cap)
@@ -14,10 +16,8 @@ double MeasuredFixedTime::deviation(double ms) {
   if (!(ms > 0) || !std::isfinite(ms)) return 0;
   recent_.push_back(ms);
   while (int(recent_.size()) > window_) recent_.pop_front();
-  std::vector<double> sorted(recent_.begin(), recent_.end());
-  const auto mid = sorted.begin() + std::ptrdiff_t(sorted.size() / 2);
-  std::nth_element(sorted.begin(), mid, sorted.end());
-  return std::clamp(ms - *mid, -cap_ * *mid, cap_ * *mid);
+  const double usual = median(std::vector<double>(recent_.begin(), recent_.end()));
+  return std::clamp(ms - usual, -cap_ * usual, cap_ * usual);
 }
 
 }  // namespace terrasprite

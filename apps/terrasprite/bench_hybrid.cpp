@@ -40,6 +40,7 @@ struct HybridArgs {
   double cull_px = 4;
   bool occlusion_cull = true;
   double p95_margin = BudgetControllerOptions{}.quantile_margin;
+  double pace_max_slope = FramePaceOptions{}.max_slope;
   std::string table_sizes = "200,50,16", relief_resolutions = "32,64,128,256",
               octahedral_resolutions = "32,64,128";
   double table_angle_step = 45;
@@ -175,6 +176,7 @@ void annotate(const HybridObjects& objects, FrameResult& r) {
                 {"not_drawn", s.not_drawn},
                 {"occluded", s.occluded},
                 {"occlusion_ms", s.occlusion_ms},
+                {"pace", s.pace},
                 {"floor_ms", s.floor_ms},
                 {"draw_gap_ms", s.draw_gap_ms}};
   if (s.objective_greedy >= 0) {
@@ -265,6 +267,7 @@ void run_bench(const HybridArgs& a) {
   ho.height = h;
   ho.cull_px = a.cull_px;
   ho.controller.quantile_margin = a.p95_margin;
+  ho.pace.max_slope = a.pace_max_slope;
   for (const TableOptions& o : table_sampling)
     for (int px : o.sizes_px) ho.max_impostor_size_px = std::max(ho.max_impostor_size_px, 2.0 * px);
   const std::vector<QualityTable> tables_as_measured = tables;
@@ -520,6 +523,11 @@ void add_bench_hybrid(CLI::App& bench) {
                   "budgeted scenarios: standard errors of the controller's 40-frame p95 estimate "
                   "it keeps under the target (frame time first; 1 or 0: object quality first, "
                   "the p95 then lands nearer +10-15%)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10.0));
+  cmd->add_option("--pace-max-slope", a->pace_max_slope,
+                  "with occlusion culling: the most the frame's prediction may follow the "
+                  "read-back's pace (its log slope, fitted online; 0: not at all)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 10.0));
   cmd->add_option("--frames", a->frames, "frames along the path")

@@ -31,7 +31,7 @@ void write_frames(const HybridScenarioResult& s, OutputDir& out) {
       "predicted_ms", "budget_ms",    "switches",     "selection_ms",  "ssim",
       "floor_ms",     "not_drawn",    "ssim_objects", "expected_ssim", "n_mesh",
       "n_relief",     "n_octahedral", "draw_gap_ms",  "visible",       "occluded",
-      "policy_ms",    "occlusion_ms"};
+      "policy_ms",    "occlusion_ms", "pace"};
   std::ostringstream f;
   f << fmt::format("{}\n", fmt::join(kColumns, " "));
   for (const FrameResult& r : s.frames) {

@@ -11,6 +11,7 @@
 
 #include "terrasprite/budget_controller.h"
 #include "terrasprite/draw_cost_model.h"
+#include "terrasprite/frame_pace.h"
 #include "terrasprite/object_set.h"
 #include "terrasprite/quality_table.h"
 #include "terrasprite/representation_selection.h"
@@ -65,6 +66,7 @@ struct HybridOptions {
   double cull_px = 0;
   BudgetControllerOptions controller;  ///< target_ms is set from target_ms above
   QualityStepOptions quality_step;     ///< likewise
+  FramePaceOptions pace;               ///< max_slope 0: no pace
 };
 
 /// What the last frame's selection did.
@@ -74,8 +76,11 @@ struct HybridFrameStats {
   /// Depth read-back (mostly waiting for the terrain's rasterisation) and
   /// occlusion pyramid, wall time; not in selection_ms.
   double occlusion_ms = 0;
-  double selection_ms = 0;    ///< view, occlusion tests, options and policy, CPU wall time
-  double policy_ms = 0;       ///< of which the policy and hysteresis
+  double selection_ms = 0;  ///< view, occlusion tests, options and policy, CPU wall time
+  double policy_ms = 0;     ///< of which the policy and hysteresis
+  /// The factor on the frame's prediction after the read-back for the
+  /// machine's pace it showed (FramePace; 1 without occlusion culling).
+  double pace = 1;
   double predicted_ms = 0;    ///< cost model: terrain term + chosen objects
   double budget_ms = 0;       ///< whole-frame budget handed to the policy (predicted ms)
   double target_quality = 0;  ///< the paper controller's SSIM target (others: the fixed one)

@@ -24,12 +24,19 @@ class MeasuredFixedTime {
   /// SSIM fell from 0.95 to 0.50. A lasting change moves the median within
   /// window / 2 frames. Not positive or not finite: 0, recorded nothing.
   double deviation(double ms);
-  void reset() { recent_.clear(); }
+  /// log(ms / usual) of the last deviation() call, from its clamped
+  /// deviation (so within log(1 -+ cap)); 0 before any.
+  double last_log_ratio() const { return last_log_ratio_; }
+  void reset() {
+    recent_.clear();
+    last_log_ratio_ = 0;
+  }
 
  private:
   std::deque<double> recent_;
   int window_;
   double cap_;
+  double last_log_ratio_ = 0;
 };
 
 }  // namespace terrasprite

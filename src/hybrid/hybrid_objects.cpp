@@ -13,6 +13,7 @@
 #include "gl/render_target.h"
 #include "terrasprite/depth_occlusion.h"
 #include "terrasprite/expected_quality.h"
+#include "terrasprite/frame_pace.h"
 #include "terrasprite/instance_view.h"
 #include "terrasprite/measured_fixed_time.h"
 
@@ -53,6 +54,12 @@ struct HybridObjects::Impl {
   double draw_gap_ms = 0;
   /// The terrain's time in each frame, as the read-back measured it.
   MeasuredFixedTime fixed_time;
+  /// The machine's pace that read-back showed, on what follows it.
+  FramePace pace;
+  /// The last frame's prediction without the pace (0: nothing to fit) and
+  /// its log(read-back / usual) times the share of that prediction after
+  /// the read-back (the whole frame's log moves by that much).
+  double unpaced_ms = 0, pace_x = 0;
 
   Impl(ObjectSet& s, const DrawCostModel& c, const HybridOptions& o)
       : set(s),
@@ -61,7 +68,8 @@ struct HybridObjects::Impl {
         options(o),
         hysteresis(o.hysteresis),
         controller(o.controller),
-        quality_step(o.quality_step) {}
+        quality_step(o.quality_step),
+        pace(o.pace) {}
 };
 
 HybridObjects::HybridObjects(ObjectSet& set, const std::vector<QualityTable>& tables,
@@ -228,9 +236,18 @@ long long HybridObjects::draw(const Camera& camera) {
   // view and the last policy's time too (up to 2.5 ms a frame) narrowed
   // nothing: sd(log measured / predicted) 0.130-0.154 in 4 runs against
   // 0.128-0.159 in 3.
+  // What follows the read-back (the objects, their draw calls) runs at the
+  // pace the read-back showed: its prediction is scaled by the pace's
+  // factor (1 without culling).
   FrameLoad load;
-  if (cull) load.known_extra_ms = s.fixed_time.deviation(st.occlusion_ms);
-  const double objects_budget = budget - s.cost.frame_ms(load) - s.draw_gap_ms;
+  double pace = 1, pace_z = 0;
+  if (cull) {
+    load.known_extra_ms = s.fixed_time.deviation(st.occlusion_ms);
+    pace_z = s.fixed_time.last_log_ratio();
+    pace = s.pace.factor(pace_z);
+  }
+  st.pace = pace;
+  const double objects_budget = (budget - s.cost.frame_ms(load)) / pace - s.draw_gap_ms;
   FrameSelection sel = select_representations(policy, frame, objects_budget, po);
   if (o.use_hysteresis && !scenario_.full)
     st.switches = s.hysteresis.apply(frame, sel, objects_budget);
@@ -266,6 +283,12 @@ long long HybridObjects::draw(const Camera& camera) {
   st.predicted_ms = s.cost.predict(s.load);
   s.draw_gap_ms = std::max(0.0, st.predicted_ms - s.cost.frame_ms(s.load) - sel.cost_ms);
   st.draw_gap_ms = s.draw_gap_ms;
+  // The pace as known time: added to the prediction, never refit.
+  const double after = st.predicted_ms - s.cost.frame_ms(s.load);
+  s.unpaced_ms = cull ? st.predicted_ms : 0.0;
+  s.pace_x = st.predicted_ms > 0 ? pace_z * after / st.predicted_ms : 0.0;
+  s.load.known_extra_ms += (pace - 1) * after;
+  st.predicted_ms = s.cost.predict(s.load);
   // Per model, all its groups at once: one upload of their instances.
   std::vector<GlModel::Group> batch;
   for (auto it = groups.begin(); it != groups.end(); ++it) {
@@ -289,6 +312,8 @@ void HybridObjects::forget_feedback() {
   s.load = {};
   s.draw_gap_ms = 0;
   s.fixed_time.reset();
+  s.pace = FramePace(s.options.pace);
+  s.unpaced_ms = 0;
 }
 
 void HybridObjects::feedback(double measured_ms) {
@@ -296,7 +321,10 @@ void HybridObjects::feedback(double measured_ms) {
   s.controller.update(last_.predicted_ms, measured_ms);
   s.quality_step.update(measured_ms);
   // A one-off surprise (an impostor build, a stall) says nothing about the terms.
-  if (!s.controller.last_was_surprise()) s.cost.observe(s.load, measured_ms);
+  if (s.controller.last_was_surprise()) return;
+  s.cost.observe(s.load, measured_ms);
+  if (s.unpaced_ms > 0 && measured_ms > 0)
+    s.pace.observe(s.pace_x, std::log(measured_ms / s.unpaced_ms));
 }
 
 }  // namespace terrasprite

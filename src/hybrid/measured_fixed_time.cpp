@@ -17,7 +17,9 @@ double MeasuredFixedTime::deviation(double ms) {
   recent_.push_back(ms);
   while (int(recent_.size()) > window_) recent_.pop_front();
   const double usual = median(std::vector<double>(recent_.begin(), recent_.end()));
-  return std::clamp(ms - usual, -cap_ * usual, cap_ * usual);
+  const double d = std::clamp(ms - usual, -cap_ * usual, cap_ * usual);
+  last_log_ratio_ = usual + d > 0 ? std::log((usual + d) / usual) : 0.0;
+  return d;
 }
 
 }  // namespace terrasprite

@@ -8,6 +8,7 @@
 
 #include "terrasprite/budget_controller.h"
 #include "terrasprite/draw_cost_model.h"
+#include "terrasprite/frame_pace.h"
 #include "terrasprite/measured_fixed_time.h"
 
 namespace terrasprite {
@@ -352,6 +353,49 @@ TEST(MeasuredFixedTime, DeviationFromTheMedianIsCapped) {
   EXPECT_EQ(f.deviation(NAN), 0.0);
   f.reset();
   EXPECT_EQ(f.deviation(20.0), 0.0);
+  EXPECT_EQ(f.last_log_ratio(), 0.0);
+  // The log ratio is the clamped deviation's: a stall reads log 1.5.
+  for (int i = 0; i < 14; ++i) f.deviation(20.0);
+  f.deviation(100.0);
+  EXPECT_NEAR(f.last_log_ratio(), std::log(1.5), 1e-12);
+}
+
+TEST(FramePace, LearnsTheSlopeOfTheFrameOnTheReadBacksPace) {
+  // The frame runs at the read-back's pace to the power 0.4, plus an
+  // offset the refit owns (not the pace's) and noise of its own.
+  FramePace p;
+  EXPECT_EQ(p.slope(), 0.0);
+  EXPECT_EQ(p.factor(0.3), 1.0);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> z(0.0, 0.3), noise(0.0, 0.05);
+  for (int f = 0; f < 7; ++f) p.observe(z(rng), 0.1);
+  EXPECT_EQ(p.slope(), 0.0);  // too few frames
+  for (int f = 0; f < 200; ++f) {
+    const double zf = z(rng);
+    p.observe(zf, 0.1 + 0.4 * zf + noise(rng));
+  }
+  // Shrunk towards 0 by the prior (20 frames of 0.1 against 60 of 0.3).
+  EXPECT_NEAR(p.slope(), 0.4 * 60 * 0.09 / (60 * 0.09 + 0.2), 0.05);
+  EXPECT_NEAR(p.factor(0.5), std::exp(p.slope() * 0.5), 1e-12);
+  // Nothing to learn (the frame ignores the pace): back to 0 within a window.
+  for (int f = 0; f < 60; ++f) p.observe(z(rng), noise(rng));
+  EXPECT_LT(p.slope(), 0.08);
+  // Never negative, never past max_slope; non-finite input ignored.
+  for (int f = 0; f < 60; ++f) {
+    const double zf = z(rng);
+    p.observe(zf, -2 * zf);
+  }
+  EXPECT_EQ(p.slope(), 0.0);
+  for (int f = 0; f < 60; ++f) {
+    const double zf = z(rng);
+    p.observe(zf, 5 * zf);
+  }
+  EXPECT_EQ(p.slope(), 1.0);
+  p.observe(NAN, 1.0);
+  p.observe(0.1, INFINITY);
+  EXPECT_EQ(p.slope(), 1.0);
+  p.reset();
+  EXPECT_EQ(p.slope(), 0.0);
 }
 
 }  // namespace

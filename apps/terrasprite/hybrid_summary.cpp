@@ -41,10 +41,12 @@ HybridScenarioResult summarise(const RendererRun& run, double target_ms,
 
 SelectionFigures selection_figures(const RendererRun& run) {
   SelectionFigures f;
-  std::vector<double> ms;
+  std::vector<double> ms, policy;
   double g = 0, o = 0;
   for (const FrameResult& r : run.frames) {
     ms.push_back(r.counters.at("selection_ms"));
+    if (const auto p = r.counters.find("policy_ms"); p != r.counters.end())
+      policy.push_back(p->second);
     const auto gi = r.counters.find("objective_greedy");
     if (gi == r.counters.end()) continue;
     const double og = gi->second, oo = r.counters.at("objective_optimal");
@@ -58,6 +60,11 @@ SelectionFigures selection_figures(const RendererRun& run) {
   const Summary s = summarize(ms);
   f.ms_per_frame = s.median;
   f.ms_p95 = s.p95;
+  if (!policy.empty()) {
+    const Summary p = summarize(policy);
+    f.policy_ms_per_frame = p.median;
+    f.policy_ms_p95 = p.p95;
+  }
   if (f.frames) {
     f.objective_greedy = g / f.frames;
     f.objective_optimal = o / f.frames;

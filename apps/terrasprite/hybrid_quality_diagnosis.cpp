@@ -88,7 +88,8 @@ class Shooter {
  public:
   Shooter(Scene& ground, int w, int h, int quads, bool sky)
       : ground_(ground),
-        terrain_(ground, w, h, quads, RasterOptions{.drape_filter = DrapeFilter::kTrilinear}),
+        terrain_(ground, w, h, quads,
+                 RasterOptions{.drape_filter = DrapeFilter::kTrilinear, .cull_back_faces = true}),
         target_(w, h),
         sky_(sky) {}
   Shot shoot(SceneObjects& objects, const Camera& cam, int repeats = 1) {

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 // One hybrid scenario as a Renderer: the terrain as a fixed coarse mesh with
-// the hand-filtered drape (the same in every scenario, counted in the frame
-// time), then the scenario's objects; the measured frame time is fed back to
-// the objects' controller after each draw.
+// a trilinear drape and its back faces culled (the same in every scenario,
+// counted in the frame time), then the scenario's objects; the measured frame
+// time is fed back to the objects' controller after each draw. Cameras and
+// objects belong on that mesh's surface (grid_surface_height,
+// keep_above_ground): from under it, the culled terrain shows the sky.
 #pragma once
 #include <memory>
 #include <string>

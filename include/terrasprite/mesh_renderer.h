@@ -31,6 +31,13 @@ struct RasterOptions {
   /// Full resolution keeps hardware 16x: it is the quality reference, and
   /// its small triangles never hit that path's stalls.
   DrapeFilter drape_filter = DrapeFilter::kAuto;
+  /// Leave out the triangles facing away (down). A camera above the drawn
+  /// surface sees none of them (a ray from above meets a face turned towards
+  /// it first), so the image is the same and llvmpipe skips their setup:
+  /// the hybrid walkthrough's 64-quad terrain at 320 x 180 took 1.4 ms
+  /// against 2.4. Off by default: a camera under the drawn surface (a path
+  /// at human height over a coarse grid) would see through it.
+  bool cull_back_faces = false;
 };
 
 /// Draws one grid mesh of `scene` with one indexed draw call into a

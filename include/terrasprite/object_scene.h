@@ -3,6 +3,7 @@
 // scene file (JSON, schema in the README) or the built-in default scene.
 #pragma once
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,9 @@ struct SceneModel {
 struct PlacedInstance {
   int model = 0;
   ObjectInstance instance;
+  /// Stands on the terrain (its height came from it, not from the file):
+  /// ground_instances may move it onto the surface actually drawn.
+  bool grounded = true;
 };
 
 struct ObjectScene {
@@ -48,6 +52,11 @@ ObjectScene load_object_scene(const std::string& path, const Heightfield& height
 /// at least 1.5 million triangles at full geometry. Model paths resolve
 /// against `models_dir` (the shared data folder).
 ObjectScene default_object_scene(const std::string& models_dir, const Heightfield& heights);
+
+/// Sets the height of every grounded instance to `ground(x, y)` (metres):
+/// the surface the terrain is drawn with, where that is not the heightfield's
+/// bilinear one (grid_surface_height for a coarse grid).
+void ground_instances(ObjectScene& scene, const std::function<double(double, double)>& ground);
 
 /// The default scene's JSON text (what default_object_scene parses).
 const char* default_scene_json();

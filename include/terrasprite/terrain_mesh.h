@@ -20,6 +20,10 @@ std::vector<int> level_indices(int n, int level);
 /// 513 samples, 16 quads: every 32nd). quads is clamped to [1, n - 1].
 std::vector<int> quad_indices(int n, int quads);
 
+/// The sample indices along one axis of the grid TerrainGpu draws for
+/// `quads`: every sample for quads <= 0 (full resolution), else quad_indices.
+std::vector<int> grid_indices(int n, int quads);
+
 /// Number of pyramid levels down to (and including) the first level with
 /// at most `min_quads` quads along the longer axis.
 int level_count(const Heightfield& h, int min_quads = 1);
@@ -38,5 +42,15 @@ struct GridMesh {
 
 /// Builds the mesh; xs and ys must be increasing sample indices (>= 2 each).
 GridMesh build_grid_mesh(const Heightfield& h, std::span<const int> xs, std::span<const int> ys);
+
+/// Height in metres of build_grid_mesh(h, xs, ys)'s surface at world (x, y):
+/// the plane of the triangle (x, y) falls in, each quad split from its NW to
+/// its SE corner as the mesh does. Heightfield::sample's bilinear surface is
+/// not what a grid draws: the synthetic terrain's 64-quad grid (240 m quads)
+/// lies up to tens of metres above it, and a camera walking 1.7 m above the
+/// bilinear surface saw the grid from below. Outside the grid: clamped to
+/// its border. xs and ys as for build_grid_mesh.
+double grid_surface_height(const Heightfield& h, std::span<const int> xs, std::span<const int> ys,
+                           double x, double y);
 
 }  // namespace terrasprite

@@ -3,10 +3,12 @@
 // 4): a camera path at human height and low altitude through the object
 // scene, with named checkpoints where quality is compared.
 #pragma once
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "terrasprite/camera.h"
 #include "terrasprite/heightfield.h"
 
 namespace terrasprite {
@@ -31,6 +33,17 @@ std::vector<PathCheckpoint> checkpoints_of(std::string_view json_text, const std
 /// the south-west corner of the field, walks north-east between the objects,
 /// rises to low altitude (about 30 m) over the centre, lands again and ends
 /// looking back over the field from 40 m; checkpoints A-E along it.
-std::string walkthrough_path_json(const Heightfield& heights);
+/// Heights are above `ground(x, y)` (metres; empty: the heightfield's
+/// bilinear sample), which should be the surface the terrain is drawn with.
+std::string walkthrough_path_json(const Heightfield& heights,
+                                  const std::function<double(double, double)>& ground = {});
+
+/// Raises every camera of `path` to at least `min_eye_m` over `ground(x, y)`
+/// (between its keys a spline may dip under a ridge of the drawn surface),
+/// and brings its near plane within an eighth of its height over that ground
+/// (path_from_json fits it to the bilinear surface, which may lie far below
+/// a coarse grid's). Orientation is kept.
+void keep_above_ground(std::vector<Camera>& path,
+                       const std::function<double(double, double)>& ground, double min_eye_m = 1.5);
 
 }  // namespace terrasprite

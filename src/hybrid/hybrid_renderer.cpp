@@ -12,8 +12,12 @@ HybridRenderer::HybridRenderer(Scene& scene, HybridObjects* objects, std::string
   // angles, and a walkthrough is all grazing angles. Trilinear, not the hand
   // filter: the terrain is the same in every scenario, and at 320 x 180 it
   // took 2.0 ms against the hand filter's 10.5, which went to the objects.
-  terrain_ = std::make_unique<MeshRenderer>(scene, width, height, terrain_quads,
-                                            RasterOptions{.drape_filter = DrapeFilter::kTrilinear});
+  // Back faces culled: the walkthrough stands on the drawn grid, so they are
+  // never seen (1 silhouette pixel in 11 of 160 frames differs), and the
+  // terrain took 1.4 ms against 2.4.
+  terrain_ = std::make_unique<MeshRenderer>(
+      scene, width, height, terrain_quads,
+      RasterOptions{.drape_filter = DrapeFilter::kTrilinear, .cull_back_faces = true});
 }
 
 HybridRenderer::~HybridRenderer() = default;

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -47,7 +48,9 @@ std::vector<PathCheckpoint> checkpoints_of(std::string_view json_text, const std
   return out;
 }
 
-std::string walkthrough_path_json(const Heightfield& h) {
+std::string walkthrough_path_json(const Heightfield& h,
+                                  const std::function<double(double, double)>& ground) {
+  const auto z = [&](double x, double y) { return ground ? ground(x, y) : double(h.sample(x, y)); };
   struct Key {
     double t, x, y, above, tx, ty, target_above;
     const char* checkpoint;
@@ -63,12 +66,21 @@ std::string walkthrough_path_json(const Heightfield& h) {
   nlohmann::json kf = nlohmann::json::array(), cp = nlohmann::json::array();
   for (const Key& k : keys) {
     kf.push_back({{"t", k.t},
-                  {"position", {k.x, k.y, h.sample(k.x, k.y) + k.above}},
-                  {"target", {k.tx, k.ty, h.sample(k.tx, k.ty) + k.target_above}},
+                  {"position", {k.x, k.y, z(k.x, k.y) + k.above}},
+                  {"target", {k.tx, k.ty, z(k.tx, k.ty) + k.target_above}},
                   {"fov_deg", 60}});
     if (k.checkpoint) cp.push_back({{"name", k.checkpoint}, {"t", k.t}});
   }
   return nlohmann::json{{"keyframes", kf}, {"checkpoints", cp}}.dump(2);
+}
+
+void keep_above_ground(std::vector<Camera>& path,
+                       const std::function<double(double, double)>& ground, double min_eye_m) {
+  for (Camera& c : path) {
+    const double z = ground(c.position.x, c.position.y);
+    c.position.z = std::max(c.position.z, z + min_eye_m);
+    c.near_m = std::min(c.near_m, std::max(0.05, 0.125 * (c.position.z - z)));
+  }
 }
 
 }  // namespace terrasprite

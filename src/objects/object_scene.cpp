@@ -155,8 +155,9 @@ ObjectScene parse_object_scene(const std::string& text, const std::string& name,
       const double z = p.size() == 3 ? p[2] : h.sample(p[0], p[1]);
       const double scale = i.value("scale", 1.0);
       if (!(scale > 0)) fail(name, "an instance scale must be positive");
-      scene.instances.push_back(
-          {model_of(i.at("model")), {{p[0], p[1], z}, i.value("heading_deg", 0.0), scale}});
+      scene.instances.push_back({model_of(i.at("model")),
+                                 {{p[0], p[1], z}, i.value("heading_deg", 0.0), scale},
+                                 p.size() != 3});
     }
     const nlohmann::json defaults = j.value("scatter_defaults", nlohmann::json::object());
     for (const auto& s : j.value("scatter", nlohmann::json::array())) {
@@ -190,6 +191,11 @@ ObjectScene load_object_scene(const std::string& path, const Heightfield& height
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   return parse_object_scene(text, path, std::filesystem::path(path).parent_path().string(),
                             heights);
+}
+
+void ground_instances(ObjectScene& scene, const std::function<double(double, double)>& ground) {
+  for (PlacedInstance& p : scene.instances)
+    if (p.grounded) p.instance.position.z = ground(p.instance.position.x, p.instance.position.y);
 }
 
 ObjectScene default_object_scene(const std::string& models_dir, const Heightfield& heights) {

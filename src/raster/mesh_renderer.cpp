@@ -40,7 +40,7 @@ Frame MeshRenderer::draw(const Camera& camera) {
                                  : filter == DrapeFilter::kHardware || s_->quads <= 0
                                      ? DrapeSampling::kHardware
                                      : DrapeSampling::kTrilinear;
-  terrain.draw(mesh, vp, s_->options.lighting, sampling);
+  terrain.draw(mesh, vp, s_->options.lighting, sampling, s_->options.cull_back_faces);
   const long long triangles = mesh.triangles + s_->scene.draw_objects(camera);
   return make_frame(camera, timer().end(), s_->quads <= 0 ? "full" : "lod", triangles);
 }

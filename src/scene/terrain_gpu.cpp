@@ -205,14 +205,7 @@ const GpuMesh& TerrainGpu::mesh(int quads) {
   auto it = meshes_.find(quads);
   if (it != meshes_.end()) return it->second;
   const Heightfield& h = terrain_.heights;
-  std::vector<int> xs, ys;
-  if (quads <= 0) {
-    xs = level_indices(h.width, 0);
-    ys = level_indices(h.height, 0);
-  } else {
-    xs = quad_indices(h.width, quads);
-    ys = quad_indices(h.height, quads);
-  }
+  const std::vector<int> xs = grid_indices(h.width, quads), ys = grid_indices(h.height, quads);
   const double bytes = double(xs.size()) * ys.size() * 6 * sizeof(float) +
                        double(xs.size() - 1) * (ys.size() - 1) * 6 * sizeof(std::uint32_t);
   if (bytes > kMaxMeshBytes)
@@ -289,9 +282,14 @@ void TerrainGpu::use_program(const glm::mat4& vp, bool lighting, DrapeSampling s
   glBindSampler(0, sampling == DrapeSampling::kHardware ? 0 : trilinear_);
 }
 
-void TerrainGpu::draw(const GpuMesh& m, const glm::mat4& vp, bool lighting,
-                      DrapeSampling sampling) {
+void TerrainGpu::draw(const GpuMesh& m, const glm::mat4& vp, bool lighting, DrapeSampling sampling,
+                      bool cull_back_faces) {
   use_program(vp, lighting, sampling);
+  if (cull_back_faces) {
+    glEnable(GL_CULL_FACE);
+    glFrontFace(GL_CCW);  // the grid's triangles, seen from above
+    glCullFace(GL_BACK);
+  }
   if (m.parts.empty()) {
     glBindVertexArray(m.vao.id());
     glDrawElements(GL_TRIANGLES, m.index_count, GL_UNSIGNED_INT, nullptr);
@@ -301,6 +299,7 @@ void TerrainGpu::draw(const GpuMesh& m, const glm::mat4& vp, bool lighting,
     glDrawElements(GL_TRIANGLES, part.index_count, GL_UNSIGNED_INT, nullptr);
   }
   glBindSampler(0, 0);
+  glDisable(GL_CULL_FACE);  // what every other pass expects
 }
 
 void TerrainGpu::draw_in_pieces(const GpuMesh& m, const glm::mat4& vp, bool lighting, int pieces,

@@ -52,9 +52,12 @@ class TerrainGpu {
   /// Throws InputError when it would need more than 4 GiB of buffers.
   const GpuMesh& mesh(int quads);
   /// Draws `m` with the plain terrain shader: drape texture by world
-  /// position, filtered as `sampling` says, optional sun lighting. The target must be bound.
+  /// position, filtered as `sampling` says, optional sun lighting. The
+  /// target must be bound. With `cull_back_faces` the triangles facing down
+  /// are not rasterised (RasterOptions::cull_back_faces); face culling is
+  /// off again on return.
   void draw(const GpuMesh& m, const glm::mat4& view_projection, bool lighting,
-            DrapeSampling sampling = DrapeSampling::kHardware);
+            DrapeSampling sampling = DrapeSampling::kHardware, bool cull_back_faces = false);
   /// draw() with the hardware filter, split into about `pieces` draws of
   /// consecutive triangles with `between()` called after each (a keyframe on
   /// a second context calls glFinish there: llvmpipe has one rasterizer for

@@ -45,4 +45,26 @@ GridMesh build_grid_mesh(const Heightfield& h, std::span<const int> xs, std::spa
   return m;
 }
 
+std::vector<int> grid_indices(int n, int quads) {
+  return quads <= 0 ? level_indices(n, 0) : quad_indices(n, quads);
+}
+
+double grid_surface_height(const Heightfield& h, std::span<const int> xs, std::span<const int> ys,
+                           double x, double y) {
+  assert(xs.size() >= 2 && ys.size() >= 2);
+  // The cell of index coordinate v along `idx`, and where v falls in it (0..1).
+  auto locate = [](std::span<const int> idx, double v) {
+    v = std::clamp(v, double(idx.front()), double(idx.back()));
+    const auto hi = std::upper_bound(idx.begin(), idx.end() - 1, v);
+    const std::size_t c = std::size_t(std::max<std::ptrdiff_t>(hi - idx.begin() - 1, 0));
+    return std::pair{c, (v - idx[c]) / double(idx[c + 1] - idx[c])};
+  };
+  const auto [c, u] = locate(xs, x / h.spacing_x + (h.width - 1) * 0.5);
+  const auto [r, v] = locate(ys, (h.height - 1) * 0.5 - y / h.spacing_y);   // rows run south
+  const double a = h.at(xs[c], ys[r]), b = h.at(xs[c + 1], ys[r]);          // NW, NE
+  const double d = h.at(xs[c], ys[r + 1]), e = h.at(xs[c + 1], ys[r + 1]);  // SW, SE
+  // Triangles (a, e, b) where u >= v and (a, d, e) where v > u.
+  return u >= v ? a + u * (b - a) + v * (e - b) : a + v * (d - a) + u * (e - d);
+}
+
 }  // namespace terrasprite

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <glm/glm.hpp>
 
 #include "terrasprite/terrain_gen.h"
 #include "terrasprite/terrain_mesh.h"
@@ -59,4 +61,40 @@ TEST(Mesh, TwoByTwoGridGeometryAndNormals) {
   EXPECT_FLOAT_EQ(m.vertices[1], 10.f);               // NW corner y
   EXPECT_NEAR(m.vertices[3], -std::sqrt(0.5), 1e-6);  // normal leans west
   EXPECT_NEAR(m.vertices[5], std::sqrt(0.5), 1e-6);
+}
+
+TEST(Mesh, GridSurfaceHeightIsTheDrawnTriangles) {
+  SynthOptions s;
+  s.size = 33;
+  Heightfield h = synthesize_terrain(s);
+  h.spacing_x = 30;
+  h.spacing_y = 20;  // unequal, so an axis mix-up shows
+  for (int quads : {32, 5}) {
+    const auto xs = quad_indices(h.width, quads), ys = quad_indices(h.height, quads);
+    const GridMesh m = build_grid_mesh(h, xs, ys);
+    // Every triangle of the mesh: at its corners and at interior points the
+    // height is the triangle's own plane.
+    for (std::size_t t = 0; t < m.indices.size(); t += 3) {
+      glm::dvec3 p[3];
+      for (int k = 0; k < 3; ++k) {
+        const float* v = &m.vertices[std::size_t(m.indices[t + k]) * 6];
+        p[k] = {v[0], v[1], v[2]};
+      }
+      for (const glm::dvec3& w : {glm::dvec3(1, 0, 0), glm::dvec3(0.2, 0.3, 0.5),
+                                  glm::dvec3(0.6, 0.3, 0.1), glm::dvec3(0.1, 0.1, 0.8)}) {
+        const glm::dvec3 q = w.x * p[0] + w.y * p[1] + w.z * p[2];
+        ASSERT_NEAR(grid_surface_height(h, xs, ys, q.x, q.y), q.z, 1e-3)
+            << "quads " << quads << ", triangle " << t / 3;
+      }
+    }
+    // Off the grid: its border.
+    EXPECT_NEAR(grid_surface_height(h, xs, ys, 1e6, 1e6), h.at(h.width - 1, 0), 1e-3);
+  }
+  // The bilinear sampler is not the coarse grid's surface.
+  const auto xs = quad_indices(h.width, 2), ys = quad_indices(h.height, 2);
+  double worst = 0;
+  for (double x = -400; x <= 400; x += 37)
+    for (double y = -300; y <= 300; y += 29)
+      worst = std::max(worst, std::abs(grid_surface_height(h, xs, ys, x, y) - h.sample(x, y)));
+  EXPECT_GT(worst, 1.0);
 }

@@ -159,33 +159,6 @@ std::vector<HybridScenario> scenarios(bool cull_occluded) {
   return s;
 }
 
-void annotate(const HybridObjects& objects, FrameResult& r) {
-  const HybridFrameStats& s = objects.last();
-  r.counters = {{"selection_ms", s.selection_ms},
-                {"policy_ms", s.policy_ms},
-                {"predicted_ms", s.predicted_ms},
-                {"budget_ms", s.budget_ms},
-                {"target_quality", s.target_quality},
-                {"expected_ssim", s.expected_ssim},
-                {"switches", s.switches},
-                {"visible", s.visible},
-                {"triangles_min", double(s.triangles_min)},
-                {"triangles_max", double(s.triangles_max)},
-                {"n_mesh", s.instances_by_kind[0]},
-                {"n_relief", s.instances_by_kind[1]},
-                {"n_octahedral", s.instances_by_kind[2]},
-                {"not_drawn", s.not_drawn},
-                {"occluded", s.occluded},
-                {"occlusion_ms", s.occlusion_ms},
-                {"pace", s.pace},
-                {"floor_ms", s.floor_ms},
-                {"draw_gap_ms", s.draw_gap_ms}};
-  if (s.objective_greedy >= 0) {
-    r.counters["objective_greedy"] = s.objective_greedy;
-    r.counters["objective_optimal"] = s.objective_optimal;
-  }
-}
-
 /// Checkpoints moved onto the nearest scored frame.
 std::vector<PathCheckpoint> snapped(std::vector<PathCheckpoint> cps, int score_every, int frames) {
   for (PathCheckpoint& c : cps) {
@@ -238,15 +211,10 @@ void run_bench(const HybridArgs& a) {
   ObjectScene scene = a.scene.empty() ? default_object_scene(a.models_dir, terrain.heights)
                                       : load_object_scene(a.scene, terrain.heights);
   subsample(scene, a.instances);
-  // The objects and the walkthrough stand on the terrain as drawn (the grid
-  // of --terrain-quads), not on the heightfield's bilinear surface: the
-  // synthetic terrain's 64-quad grid lies up to tens of metres above that,
-  // and the walkthrough at 1.7 m saw the grid from below in 108 of its 160
-  // frames (checkpoints A, B and D), with the objects standing in the sky.
-  const Heightfield& hf = terrain.heights;
-  const std::vector<int> gx = grid_indices(hf.width, a.terrain_quads),
-                         gy = grid_indices(hf.height, a.terrain_quads);
-  const auto drawn = [&](double x, double y) { return grid_surface_height(hf, gx, gy, x, y); };
+  // The objects and the walkthrough stand on the terrain as drawn, not on
+  // the bilinear surface (up to 69 m below the 64-quad grid: the walkthrough
+  // saw the grid from below in 108 of 160 frames, A, B and D among them).
+  const auto drawn = grid_surface(terrain.heights, a.terrain_quads);
   ground_instances(scene, drawn);
   std::string path_text;
   if (a.path.empty()) {
@@ -414,7 +382,7 @@ void run_bench(const HybridArgs& a) {
 
   Experiment experiment;
   Participant ref{.renderer = renderers[0].get(), .name = "full", .read = ReadBack::kColorDepth};
-  ref.annotate = [o = objects[0].get()](const Frame&, FrameResult& r) { annotate(*o, r); };
+  ref.annotate = [o = objects[0].get()](const Frame&, FrameResult& r) { annotate_frame(*o, r); };
   experiment.set_reference(ref);
   experiment.add({.renderer = &terrain_only,
                   .name = "terrain",
@@ -430,7 +398,7 @@ void run_bench(const HybridArgs& a) {
                   .score = true,
                   .read = ReadBack::kDepth,
                   .rotate = true};
-    p.annotate = [o = objects[k].get()](const Frame&, FrameResult& r) { annotate(*o, r); };
+    p.annotate = [o = objects[k].get()](const Frame&, FrameResult& r) { annotate_frame(*o, r); };
     // The warm-up draw is untimed and cold: it must not set the first
     // timed frame's budget (checkpoint A is frame 0).
     p.after_warmup = [o = objects[k].get()] { o->forget_feedback(); };

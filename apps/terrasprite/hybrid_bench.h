@@ -91,6 +91,10 @@ std::vector<std::uint8_t> object_mask(const std::vector<float>& ref_depth,
 /// updated by the run's frame callback before each frame is scored.
 Scorer hybrid_scorer(std::shared_ptr<ScoringState> state);
 
+/// A frame's selection figures (objects.last()) as `r`'s counters, the
+/// names the .dat files, summarise and selection_figures read.
+void annotate_frame(const HybridObjects& objects, FrameResult& r);
+
 /// One scenario's run summarised (frame time against `target_ms`, quality
 /// at `checkpoints`: a checkpoint not scored keeps SSIM 1) (hybrid_summary.cpp).
 HybridScenarioResult summarise(const RendererRun& run, double target_ms,

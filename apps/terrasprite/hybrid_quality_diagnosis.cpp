@@ -21,6 +21,7 @@
 #include "gl/render_target.h"
 #include "hybrid_bench.h"
 #include "terrasprite/expected_quality.h"
+#include "terrasprite/hybrid_renderer.h"
 #include "terrasprite/instance_view.h"
 #include "terrasprite/mesh_renderer.h"
 #include "terrasprite/quality.h"
@@ -88,8 +89,7 @@ class Shooter {
  public:
   Shooter(Scene& ground, int w, int h, int quads, bool sky)
       : ground_(ground),
-        terrain_(ground, w, h, quads,
-                 RasterOptions{.drape_filter = DrapeFilter::kTrilinear, .cull_back_faces = true}),
+        terrain_(ground, w, h, quads, hybrid_terrain_raster()),
         target_(w, h),
         sky_(sky) {}
   Shot shoot(SceneObjects& objects, const Camera& cam, int repeats = 1) {

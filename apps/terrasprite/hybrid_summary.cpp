@@ -1,11 +1,39 @@
 // SPDX-License-Identifier: MIT
-// A walkthrough scenario's run summarised: frame time against the target,
-// quality at the checkpoints, switches; the optimal policy's figures.
+// A walkthrough scenario's frames as counters, and its run summarised: frame
+// time against the target, quality at the checkpoints, switches; the
+// optimal policy's figures.
 #include <algorithm>
 
 #include "hybrid_bench.h"
 
 namespace terrasprite::cli {
+
+void annotate_frame(const HybridObjects& objects, FrameResult& r) {
+  const HybridFrameStats& s = objects.last();
+  r.counters = {{"selection_ms", s.selection_ms},
+                {"policy_ms", s.policy_ms},
+                {"predicted_ms", s.predicted_ms},
+                {"budget_ms", s.budget_ms},
+                {"target_quality", s.target_quality},
+                {"expected_ssim", s.expected_ssim},
+                {"switches", s.switches},
+                {"visible", s.visible},
+                {"triangles_min", double(s.triangles_min)},
+                {"triangles_max", double(s.triangles_max)},
+                {"n_mesh", s.instances_by_kind[0]},
+                {"n_relief", s.instances_by_kind[1]},
+                {"n_octahedral", s.instances_by_kind[2]},
+                {"not_drawn", s.not_drawn},
+                {"occluded", s.occluded},
+                {"occlusion_ms", s.occlusion_ms},
+                {"pace", s.pace},
+                {"floor_ms", s.floor_ms},
+                {"draw_gap_ms", s.draw_gap_ms}};
+  if (s.objective_greedy >= 0) {
+    r.counters["objective_greedy"] = s.objective_greedy;
+    r.counters["objective_optimal"] = s.objective_optimal;
+  }
+}
 
 HybridScenarioResult summarise(const RendererRun& run, double target_ms,
                                const std::vector<PathCheckpoint>& checkpoints) {

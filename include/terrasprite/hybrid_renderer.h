@@ -10,10 +10,15 @@
 #include <string>
 
 #include "terrasprite/hybrid_objects.h"
+#include "terrasprite/mesh_renderer.h"
 #include "terrasprite/renderer.h"
 #include "terrasprite/scene.h"
 
 namespace terrasprite {
+
+/// How the walkthrough's terrain is rasterised: by every scenario, and by
+/// anything that must draw the same views (the quality diagnosis' shots).
+RasterOptions hybrid_terrain_raster();
 
 class HybridRenderer : public Renderer {
  public:

@@ -2,6 +2,7 @@
 // Quadtree LOD levels of a height grid and the grid meshes drawn from them.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -52,5 +53,10 @@ GridMesh build_grid_mesh(const Heightfield& h, std::span<const int> xs, std::spa
 /// its border. xs and ys as for build_grid_mesh.
 double grid_surface_height(const Heightfield& h, std::span<const int> xs, std::span<const int> ys,
                            double x, double y);
+
+/// grid_surface_height of the grid TerrainGpu draws for `quads`
+/// (grid_indices), as a function of world (x, y). Holds `h` by reference:
+/// it must outlive the function.
+std::function<double(double, double)> grid_surface(const Heightfield& h, int quads);
 
 }  // namespace terrasprite

@@ -67,4 +67,9 @@ double grid_surface_height(const Heightfield& h, std::span<const int> xs, std::s
   return u >= v ? a + u * (b - a) + v * (e - b) : a + v * (d - a) + u * (e - d);
 }
 
+std::function<double(double, double)> grid_surface(const Heightfield& h, int quads) {
+  return [&h, xs = grid_indices(h.width, quads), ys = grid_indices(h.height, quads)](
+             double x, double y) { return grid_surface_height(h, xs, ys, x, y); };
+}
+
 }  // namespace terrasprite

@@ -53,8 +53,7 @@ TEST(Walkthrough, NeverSeesTheDrawnTerrainFromBelow) {
   const Terrain t = load_terrain(TerrainOptions{});
   const Heightfield& hf = t.heights;
   const int quads = 64, w = 160, h = 90;
-  const auto xs = grid_indices(hf.width, quads), ys = grid_indices(hf.height, quads);
-  const auto drawn = [&](double x, double y) { return grid_surface_height(hf, xs, ys, x, y); };
+  const auto drawn = grid_surface(hf, quads);
   std::vector<Camera> path =
       path_from_json(walkthrough_path_json(hf, drawn), "walkthrough", hf, 160, double(w) / h);
   keep_above_ground(path, drawn);

@@ -12,6 +12,7 @@
 #include <random>
 
 #include "terrasprite/error.h"
+#include "terrasprite/terrain_mesh.h"
 
 namespace terrasprite {
 namespace {
@@ -182,6 +183,10 @@ ObjectScene parse_object_scene(const std::string& text, const std::string& name,
   } catch (const nlohmann::json::exception& e) {
     fail(name, fmt::format("not a valid scene file ({})", e.what()));
   }
+  // On the full-resolution triangulation the GL renderers draw, not the
+  // bilinear surface: the two part by metres inside a 30 m quad, enough to
+  // bury a bush or float a truck. A coarser drawn grid grounds again.
+  ground_instances(scene, grid_surface(h, 0));
   return scene;
 }
 

@@ -9,6 +9,7 @@
 
 #include "terrasprite/error.h"
 #include "terrasprite/terrain.h"
+#include "terrasprite/terrain_mesh.h"
 #include "test_util.h"
 
 namespace ts = terrasprite;
@@ -51,13 +52,36 @@ TEST(ObjectScene, ListedAndScatteredInstancesStandOnTheGround) {
   for (std::size_t a = 2; a < s.instances.size(); ++a) {
     const glm::dvec3 p = s.instances[a].instance.position;
     EXPECT_LE(p.x, 300.0 + 10.0) << "on the cliff";
-    EXPECT_NEAR(p.z, h.sample(p.x, p.y), 1e-4);
+    EXPECT_NEAR(p.z, ts::grid_surface(h, 0)(p.x, p.y), 1e-4);
     for (std::size_t b = 0; b < a; ++b)
       EXPECT_GE(glm::length(glm::dvec2(p) - glm::dvec2(s.instances[b].instance.position)), 25.0);
   }
   // The same seed places the same instances.
   const ts::ObjectScene again = ts::parse_object_scene(text, "t.json", dir.path.string(), h);
   EXPECT_EQ(again.instances.back().instance.position, s.instances.back().instance.position);
+}
+
+// A saddle: inside a quad the bilinear surface and the drawn triangles part
+// (by 25 m at the centre of this 10 m quad). Instances stand on the triangles.
+TEST(ObjectScene, InstancesStandOnTheDrawnTrianglesNotTheBilinearSurface) {
+  tstest::TempDir dir;
+  std::ofstream(dir / "box.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  ts::Heightfield h;
+  h.width = h.height = 2;
+  h.spacing_x = h.spacing_y = 10;
+  h.heights = {100, 0, 0, 0};  // NW high, the rest low
+  const std::string text = R"({"models": [{"name": "b", "file": "box.obj"}],
+    "instances": [{"model": "b", "position": [0, 0]}, {"model": "b", "position": [-2.5, -2]}]})";
+  const ts::ObjectScene s = ts::parse_object_scene(text, "t.json", dir.path.string(), h);
+  ASSERT_EQ(s.instances.size(), 2u);
+  // The centre lies on the NW-SE diagonal: (100 + 0) / 2 on the triangles,
+  // 25 on the bilinear surface.
+  EXPECT_NEAR(h.sample(0, 0), 25.0, 1e-6);
+  EXPECT_NEAR(s.instances[0].instance.position.z, 50.0, 1e-6);
+  // South of the diagonal, in triangle (NW, SW, SE): u = 0.25, v = 0.7, so
+  // 100 - 0.7 * 100 = 30 on the triangles; (0.75 * 0.3) * 100 = 22.5 bilinear.
+  EXPECT_NEAR(h.sample(-2.5, -2), 22.5, 1e-6);
+  EXPECT_NEAR(s.instances[1].instance.position.z, 30.0, 1e-6);
 }
 
 TEST(ObjectScene, BadScenesNameTheFile) {

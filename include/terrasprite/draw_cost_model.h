@@ -142,6 +142,7 @@ class DrawCostModel {
   /// least squares on a multiplier (prior 1 +- prior_fraction, clamped to
   /// [0.05, 20]) per calibrated contribution: the frame's fixed term, and per
   /// kind its draw calls, its instances' fixed and their per-pixel time.
+  /// Terms with no part in `load` (a kind not drawn) are left as they are.
   void observe(const FrameLoad& load, double measured_ms);
   /// The refit's multiplier of kind `kind`'s per-pixel time (1: as calibrated).
   double pixel_multiplier(ObjectKind kind) const;

@@ -224,10 +224,21 @@ void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
   measured_ms -= load.known_extra_ms;                        // known, not the terms' to explain
   const std::array<double, kTerms> z = contributions(load);  // each term's calibrated ms
   auto P = [&](int i, int j) -> double& { return covariance_[std::size_t(i * kTerms + j)]; };
+  // Only the terms in this frame's time learn from it. A term with nothing
+  // in the frame (an impostor kind not drawn) moved all the same through its
+  // covariance with the others: in the walkthrough the octahedral extra rose
+  // from 0.03 ms an instance (frame 8) to 0.20 (frame 150) while 3 of those
+  // 142 frames drew one octahedral impostor each. It priced them out (6x
+  // their calibrated cost), so they were never drawn to correct it. Its covariance with the terms
+  // that learn is dropped, its own kept as it was (no forgetting of what no frame shows).
+  std::array<bool, kTerms> in{};
+  for (int i = 0; i < kTerms; ++i) in[std::size_t(i)] = z[std::size_t(i)] != 0;
   std::array<double, kTerms> pz{};
   double zpz = 0, predicted = 0;
   for (int i = 0; i < kTerms; ++i) {
-    for (int j = 0; j < kTerms; ++j) pz[std::size_t(i)] += P(i, j) * z[std::size_t(j)];
+    if (in[std::size_t(i)])
+      for (int j = 0; j < kTerms; ++j)
+        if (in[std::size_t(j)]) pz[std::size_t(i)] += P(i, j) * z[std::size_t(j)];
     zpz += z[std::size_t(i)] * pz[std::size_t(i)];
     predicted += z[std::size_t(i)] * multipliers_[std::size_t(i)];
   }
@@ -244,7 +255,11 @@ void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
   double trace = 0;
   for (int i = 0; i < kTerms; ++i)
     for (int j = 0; j < kTerms; ++j) {
-      P(i, j) = (P(i, j) - pz[std::size_t(i)] * pz[std::size_t(j)] / denom) / lambda;
+      const bool a = in[std::size_t(i)], b = in[std::size_t(j)];
+      if (a && b)
+        P(i, j) = (P(i, j) - pz[std::size_t(i)] * pz[std::size_t(j)] / denom) / lambda;
+      else if (a || b)
+        P(i, j) = 0;
       if (i == j) trace += P(i, i);
     }
   // Forgetting inflates directions no frame excites; never past the prior's size.

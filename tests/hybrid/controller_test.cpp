@@ -300,6 +300,39 @@ TEST(DrawCostModel, LearnsWhatAnImpostorCostsInAFrame) {
   EXPECT_EQ(off.impostor_extra_ms(ObjectKind::kRelief), 0.0);
 }
 
+TEST(DrawCostModel, ATermNoFrameDrawsStaysAsItWas) {
+  // 20 frames draw octahedral impostors with the meshes, all as calibrated;
+  // then 150 frames draw meshes only, on a machine 1.4x slower. The meshes'
+  // and the frame's terms follow; the octahedral ones have no part in those
+  // frames and stay (before, their covariance with the meshes dragged them
+  // along, and in the walkthrough that priced octahedral impostors out).
+  DrawCostModel m;
+  m.set_terms(ObjectKind::kMesh, {0, 0, 2e-5, 0});
+  const Representation octa{ObjectKind::kOctahedral, 0, 64};
+  m.set_cost(octa, {0.01, 1e-5});
+  m.set_frame_ms(2);
+  auto meshes = [](int f) {
+    FrameLoad load;
+    load.kinds[0] = {1, 50, 2e5 * (1 + 0.2 * (f % 4)), 0, 0};
+    return load;
+  };
+  for (int f = 0; f < 20; ++f) {
+    FrameLoad load = meshes(f);
+    const int n = 5 + (f * 7) % 11;
+    for (int i = 0; i < n; ++i) m.add(load, octa, 2, 400);
+    m.observe(load, 2 + 2e-5 * load.kinds[0].triangles + n * 0.014);
+  }
+  const double extra = m.impostor_extra_ms(ObjectKind::kOctahedral);
+  const double cost = m.instance_ms(octa, 2, 400);
+  for (int f = 0; f < 150; ++f) {
+    const FrameLoad load = meshes(f);
+    m.observe(load, 1.4 * (2 + 2e-5 * load.kinds[0].triangles));
+  }
+  EXPECT_EQ(m.impostor_extra_ms(ObjectKind::kOctahedral), extra);
+  EXPECT_EQ(m.instance_ms(octa, 2, 400), cost);
+  EXPECT_NEAR(m.predict(meshes(0)) / (1.4 * (2 + 4)), 1.0, 0.05);
+}
+
 TEST(DrawCostModel, KnownExtraTimeIsAddedAndNotRefit) {
   // The terrain usually takes 3 ms, the model's frame term; from frame to
   // frame it deviates by -1 to +5 ms, known before the selection. Meshes

@@ -36,9 +36,9 @@ struct ObjectScene {
 
 /// Parses a scene from JSON text. Relative model and texture paths resolve
 /// against `base_dir`. Listed instances without a height stand on the
-/// terrain (its full-resolution triangulation, grid_surface(heights, 0),
-/// as the GL renderers draw it); scattered ones are placed at random (seeded, reproducible) in
-/// their region, on slopes under the limit, at least the minimum spacing from
+/// terrain (its full-resolution triangles, grid_surface(heights, 0), as the
+/// GL renderers draw it); scattered ones are placed at random (seeded,
+/// reproducible) in their region, on slopes under the limit, at least the minimum spacing from
 /// every instance placed before. Throws InputError naming `name` for bad JSON,
 /// unknown keys' values, an unknown model, a region off the terrain, or a
 /// scatter that cannot place its count.

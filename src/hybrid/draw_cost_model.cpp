@@ -229,8 +229,9 @@ void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
   // covariance with the others: in the walkthrough the octahedral extra rose
   // from 0.03 ms an instance (frame 8) to 0.20 (frame 150) while 3 of those
   // 142 frames drew one octahedral impostor each. It priced them out (6x
-  // their calibrated cost), so they were never drawn to correct it. Its covariance with the terms
-  // that learn is dropped, its own kept as it was (no forgetting of what no frame shows).
+  // their calibrated cost), so they were never drawn to correct it. Its
+  // covariance with the terms that learn is dropped, its own kept as it was
+  // (no forgetting of what no frame shows).
   std::array<bool, kTerms> in{};
   for (int i = 0; i < kTerms; ++i) in[std::size_t(i)] = z[std::size_t(i)] != 0;
   std::array<double, kTerms> pz{};

@@ -92,7 +92,8 @@ struct Scatter {
 };
 
 void scatter(const Scatter& s, const std::string& name, const std::string& model_name,
-             const Heightfield& h, std::vector<PlacedInstance>& placed) {
+             const Heightfield& h, const std::function<double(double, double)>& ground,
+             std::vector<PlacedInstance>& placed) {
   std::mt19937 rng(s.seed * 2654435761u + unsigned(s.model));
   std::uniform_real_distribution<double> ux(s.region[0], s.region[2]), uy(s.region[1], s.region[3]),
       heading(0, 360);
@@ -106,7 +107,7 @@ void scatter(const Scatter& s, const std::string& name, const std::string& model
       near = near ||
              std::hypot(p.instance.position.x - x, p.instance.position.y - y) < s.min_spacing_m;
     if (near) continue;
-    placed.push_back({s.model, {{x, y, h.sample(x, y)}, hd, 1.0}});
+    placed.push_back({s.model, {{x, y, ground(x, y)}, hd, 1.0}});
     ++done;
   }
   if (done < s.count)
@@ -135,6 +136,11 @@ const char* default_scene_json() {
 ObjectScene parse_object_scene(const std::string& text, const std::string& name,
                                const std::string& base_dir, const Heightfield& h) {
   ObjectScene scene;
+  // Instances stand on the full-resolution triangles the GL renderers draw,
+  // not the bilinear surface: the two part by metres inside a 30 m quad,
+  // enough to bury a bush or float a truck. A coarser drawn grid grounds
+  // them again (ground_instances).
+  const auto ground = grid_surface(h, 0);
   try {
     const nlohmann::json j = nlohmann::json::parse(text);
     std::map<std::string, int> index;
@@ -153,7 +159,7 @@ ObjectScene parse_object_scene(const std::string& text, const std::string& name,
       const auto p = i.at("position").get<std::vector<double>>();
       if (p.size() != 2 && p.size() != 3)
         fail(name, "an instance position needs [x, y] or [x, y, z]");
-      const double z = p.size() == 3 ? p[2] : h.sample(p[0], p[1]);
+      const double z = p.size() == 3 ? p[2] : ground(p[0], p[1]);
       const double scale = i.value("scale", 1.0);
       if (!(scale > 0)) fail(name, "an instance scale must be positive");
       scene.instances.push_back({model_of(i.at("model")),
@@ -178,15 +184,11 @@ ObjectScene parse_object_scene(const std::string& text, const std::string& name,
       if (sc.count < 0 || sc.count > 1000000)
         fail(name, fmt::format("scatter count {} is not in 0..1000000", sc.count));
       check_region(sc.region, h, name);
-      scatter(sc, name, scene.models[sc.model].name, h, scene.instances);
+      scatter(sc, name, scene.models[sc.model].name, h, ground, scene.instances);
     }
   } catch (const nlohmann::json::exception& e) {
     fail(name, fmt::format("not a valid scene file ({})", e.what()));
   }
-  // On the full-resolution triangulation the GL renderers draw, not the
-  // bilinear surface: the two part by metres inside a 30 m quad, enough to
-  // bury a bush or float a truck. A coarser drawn grid grounds again.
-  ground_instances(scene, grid_surface(h, 0));
   return scene;
 }
 

@@ -5,6 +5,7 @@
 // cost model, a policy picks, hysteresis steadies the picks, a controller
 // holds the target frame time from measured frames.
 #pragma once
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -90,12 +91,17 @@ struct HybridFrameStats {
   int switches = 0;
   long long triangles = 0, triangles_min = 0, triangles_max = 0;  ///< chosen, cheapest, full
   std::array<int, 3> instances_by_kind{};                         ///< drawn instances
+  std::array<int, 3> draws_by_kind{};  ///< draw calls ((model, representation) groups)
   int not_drawn = 0;  ///< visible instances the policy left out (HybridOptions::cull_px)
   /// Expected cost of every visible instance at its cheapest option (the
   /// policy's floor: under it, nothing can be upgraded), ms.
   double floor_ms = 0;
   /// Predicted draw calls the policy could not see (taken off the next budget), ms.
   double draw_gap_ms = 0;
+  /// Of predicted_ms, per kind (indexed by ObjectKind): its instances and
+  /// draw calls at the read-back's pace (without the frame term and the
+  /// terrain's known deviation), ms.
+  std::array<double, 3> predicted_by_kind_ms{};
 };
 
 class HybridObjects : public SceneObjects {
@@ -120,6 +126,11 @@ class HybridObjects : public SceneObjects {
   const HybridScenario& scenario() const { return scenario_; }
   /// Builds every impostor the scenario may draw (before timing anything).
   void prepare();
+  /// Diagnosis (`bench hybrid --cost-split`): from the next draw on, only
+  /// instances of the kinds set here (indexed by ObjectKind) are drawn; the
+  /// selection, its stats and the cost model go on as if all were. Default:
+  /// every kind.
+  void set_drawn_kinds(const std::array<bool, 3>& kinds);
 
  private:
   struct Impl;

@@ -60,6 +60,7 @@ struct HybridObjects::Impl {
   /// its log(read-back / usual) times the share of that prediction after
   /// the read-back (the whole frame's log moves by that much).
   double unpaced_ms = 0, pace_x = 0;
+  std::array<bool, 3> drawn_kinds{true, true, true};  ///< set_drawn_kinds
 
   Impl(ObjectSet& s, const DrawCostModel& c, const HybridOptions& o)
       : set(s),
@@ -279,7 +280,10 @@ long long HybridObjects::draw(const Camera& camera) {
     st.triangles += opt.triangles;
     st.instances_by_kind[std::size_t(r.kind)] += 1;
   }
-  for (const auto& [key, g] : groups) s.load.kinds[std::size_t(std::get<1>(key))].draws += 1;
+  for (const auto& [key, g] : groups) {
+    s.load.kinds[std::size_t(std::get<1>(key))].draws += 1;
+    st.draws_by_kind[std::size_t(std::get<1>(key))] += 1;
+  }
   st.predicted_ms = s.cost.predict(s.load);
   s.draw_gap_ms = std::max(0.0, st.predicted_ms - s.cost.frame_ms(s.load) - sel.cost_ms);
   st.draw_gap_ms = s.draw_gap_ms;
@@ -289,18 +293,30 @@ long long HybridObjects::draw(const Camera& camera) {
   s.pace_x = st.predicted_ms > 0 ? pace_z * after / st.predicted_ms : 0.0;
   s.load.known_extra_ms += (pace - 1) * after;
   st.predicted_ms = s.cost.predict(s.load);
+  for (std::size_t k = 0; k < 3; ++k) {
+    FrameLoad only;
+    only.kinds[k] = s.load.kinds[k];
+    only.fixed_ms[k] = s.load.fixed_ms[k];
+    only.pixel_ms[k] = s.load.pixel_ms[k];
+    st.predicted_by_kind_ms[k] = pace * (s.cost.predict(only) - s.cost.frame_ms(only));
+  }
   // Per model, all its groups at once: one upload of their instances.
   std::vector<GlModel::Group> batch;
   for (auto it = groups.begin(); it != groups.end(); ++it) {
-    batch.push_back({it->second.first, it->second.second});
+    if (s.drawn_kinds[std::size_t(std::get<1>(it->first))])
+      batch.push_back({it->second.first, it->second.second});
     const auto next = std::next(it);
     if (next == groups.end() || std::get<0>(next->first) != std::get<0>(it->first)) {
-      s.set.model(std::get<0>(it->first)).draw(batch, camera);
+      if (!batch.empty()) s.set.model(std::get<0>(it->first)).draw(batch, camera);
       batch.clear();
     }
   }
   last_ = st;
   return st.triangles;
+}
+
+void HybridObjects::set_drawn_kinds(const std::array<bool, 3>& kinds) {
+  impl_->drawn_kinds = kinds;
 }
 
 void HybridObjects::forget_feedback() {

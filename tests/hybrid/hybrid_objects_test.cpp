@@ -2,11 +2,14 @@
 // HybridObjects end to end on a model made in code (a 6-triangle tower): one
 // near instance, twelve far and tiny; under a budget below the floor the tiny
 // ones are left out (HybridOptions::cull_px), never the near one, and with
-// room in the budget nothing is. GL (llvmpipe), about 0.1 s.
+// room in the budget nothing is; a kind left out of the draw is not drawn.
+// GL (llvmpipe), about 0.1 s.
 #include "terrasprite/hybrid_objects.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -42,8 +45,11 @@ ts::Camera view(const ts::Terrain& t) {
   return tstest::orbit(target, 300, 20, 15, 50, double(kW) / kH);
 }
 
-/// Draws the objects once under a fixed budget (ms, whole frame, terrain term 0).
-ts::HybridFrameStats draw_once(World& w, double budget_ms, double cull_px) {
+/// Draws the objects once under a fixed budget (ms, whole frame, terrain
+/// term 0), of the kinds in `drawn` only; `image`, when given, gets the frame.
+ts::HybridFrameStats draw_once(World& w, double budget_ms, double cull_px,
+                               std::array<bool, 3> drawn = {true, true, true},
+                               ts::Image* image = nullptr) {
   ts::ObjectSet set(w.objects);
   ts::DrawCostModel cost;
   cost.set_terms(ts::ObjectKind::kMesh, {0.01, 0.05, 1e-4, 1e-6});
@@ -60,9 +66,11 @@ ts::HybridFrameStats draw_once(World& w, double budget_ms, double cull_px) {
                              false,
                              ts::HybridScenario::Control::kFixed},
                             o);
+  objects.set_drawn_kinds(drawn);
   ts::gl::RenderTarget target(kW, kH);
   target.bind_and_clear();
   objects.draw(view(w.terrain));
+  if (image) *image = target.read_color();
   return objects.last();
 }
 
@@ -100,6 +108,36 @@ TEST(HybridObjects, TinyInstancesGoUnderATightBudgetTheNearOneStays) {
   const ts::HybridFrameStats room = draw_once(w, 100.0, 4.0);
   EXPECT_EQ(room.not_drawn, 0);
   EXPECT_EQ(room.instances_by_kind[0], kTiny + 1);
+}
+
+// The cost split's switch (bench hybrid --cost-split): a kind left out is
+// not drawn, and the selection and its prediction are as with it drawn.
+TEST(HybridObjects, KindsLeftOutAreNotDrawnAndTheSelectionStaysTheSame) {
+  ts::GlContext ctx;
+  World w;
+  ts::Image drawn, left_out;
+  const ts::HybridFrameStats a = draw_once(w, 100.0, 0.0, {true, true, true}, &drawn);
+  const ts::HybridFrameStats b = draw_once(w, 100.0, 0.0, {false, true, true}, &left_out);
+  EXPECT_EQ(a.instances_by_kind, b.instances_by_kind);
+  EXPECT_EQ(a.triangles, b.triangles);
+  EXPECT_EQ(a.instances_by_kind[0], kTiny + 1);
+  EXPECT_EQ(a.draws_by_kind, (std::array<int, 3>{1, 0, 0}));  // one model, one level
+  // Meshes only, no frame term, no pace: the kind's share is the whole prediction.
+  EXPECT_GT(a.predicted_by_kind_ms[0], 0.0);
+  EXPECT_NEAR(a.predicted_by_kind_ms[0], a.predicted_ms, 1e-9);
+  EXPECT_EQ(a.predicted_by_kind_ms[1], 0.0);
+  EXPECT_EQ(a.predicted_by_kind_ms[2], 0.0);
+  EXPECT_EQ(a.predicted_by_kind_ms, b.predicted_by_kind_ms);
+  // Without its meshes the image is the clear colour alone; with them the tower shows.
+  ASSERT_EQ(left_out.rgba.size(), drawn.rgba.size());
+  const auto not_clear = [&](const ts::Image& im) {
+    int n = 0;
+    for (std::size_t i = 0; i < im.rgba.size(); i += 4)
+      n += !std::equal(im.rgba.begin() + i, im.rgba.begin() + i + 4, left_out.rgba.begin());
+    return n;
+  };
+  EXPECT_EQ(not_clear(left_out), 0);
+  EXPECT_GT(not_clear(drawn), 20);  // 45 here
 }
 
 }  // namespace

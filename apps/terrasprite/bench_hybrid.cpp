@@ -50,6 +50,7 @@ struct HybridArgs {
   std::string calibration_sizes = "auto";
   int quality_context_frames = 0;
   std::string budget_sweep, budget_fractions = "0.05,0.1,0.15,0.2,0.3,0.5";
+  int cost_split = 0;
   std::string quality_diagnosis, diagnosis_conditions = "scene,sky", diagnosis_images;
 };
 
@@ -192,6 +193,8 @@ void run_bench(const HybridArgs& a) {
       throw InputError(fmt::format("--budget-fractions: '{}' is not a number in (0, 4]", f));
     fractions.push_back(v);
   }
+  if (a.cost_split > 0 && a.budget_sweep.empty())
+    throw InputError("--cost-split: only with --budget-sweep");
   double target_ms = 0;  // 0: auto, decided once full geometry has been timed
   if (a.target != "auto") {
     std::size_t used = 0;
@@ -333,7 +336,8 @@ void run_bench(const HybridArgs& a) {
       if (sc.name == "pm" || sc.name == "mixed-optimal") swept.push_back(sc);
     write_json(quality_budget_sweep({set, tables, cost, ground, path, checkpoints, w, h,
                                      a.terrain_quads, ho, swept, fractions,
-                                     a.quality_context_frames > 0 ? &tables_as_measured : nullptr}),
+                                     a.quality_context_frames > 0 ? &tables_as_measured : nullptr,
+                                     a.cost_split}),
                a.budget_sweep);
     return;
   }
@@ -552,6 +556,12 @@ void add_bench_hybrid(CLI::App& bench) {
                   "and timed (JSON to this file)");
   cmd->add_option("--budget-fractions", a->budget_fractions, "for --budget-sweep")
       ->capture_default_str();
+  cmd->add_option("--cost-split", a->cost_split,
+                  "for --budget-sweep: also time each frame split by kind, over this many "
+                  "interleaved rounds of redraws (each kind alone over the terrain and its "
+                  "share of the whole frame, against its prediction; 0: not)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
   cmd->add_option("--quality-diagnosis", a->quality_diagnosis,
                   "instead of the walkthrough: per checkpoint, size bucket and representation, "
                   "the tables' predicted SSIM against the measured one (JSON to this file)");

@@ -165,6 +165,10 @@ struct BudgetSweepInput {
   /// When set (the tables as measured, `tables` being in context): every
   /// scenario also selects from these, named "<name> (tables as measured)".
   const std::vector<QualityTable>* raw_tables = nullptr;
+  /// Above 0: each row also times its frame split by kind (`cost_split`:
+  /// per kind drawn, `predicted_ms`, `alone_ms`, `in_frame_ms`), over this
+  /// many interleaved rounds of redraws.
+  int cost_split_rounds = 0;
 };
 /// Quality against budget, without the controller: at each checkpoint each
 /// scenario selects once under a fixed budget (a fraction of full

@@ -8,9 +8,12 @@
 // a multiple of the image size; each pair is scored as the bench scores
 // (luma SSIM over the pixels the group covers in either image) next to the
 // tables' prediction (expected SSIM weighted by the instances' pixels).
+// `--budget-sweep FILE` (quality against fixed budgets, no controller) and
+// its `--cost-split N` (each frame's time split by kind) are here too.
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -180,6 +183,58 @@ double predicted_ssim(const std::vector<Item>& items,
   return wsum > 0 ? sum / wsum : 1.0;
 }
 
+/// Per kind the frame draws: its time alone over the terrain (drawn with
+/// only that kind, less the terrain alone) and its share of the whole frame
+/// (the whole frame less the frame without it), each the median over
+/// `rounds` of differences taken within one round (the machine's pace
+/// drifts between rounds), next to its prediction. `objects` selects as it
+/// did for `st` at every draw (fixed budget, no hysteresis).
+nlohmann::json cost_split(Shooter& shooter, HybridObjects& objects, const Camera& cam,
+                          const HybridFrameStats& st, int rounds) {
+  using Kinds = std::array<bool, 3>;
+  const Kinds all{true, true, true}, none{};
+  std::vector<std::size_t> drawn;
+  for (std::size_t k = 0; k < 3; ++k)
+    if (st.instances_by_kind[k] > 0) drawn.push_back(k);
+  std::vector<Kinds> masks{all, none};
+  for (std::size_t k : drawn) {
+    Kinds only{}, without = all;
+    only[k] = true;
+    without[k] = false;
+    for (const Kinds& m : {only, without})
+      if (std::find(masks.begin(), masks.end(), m) == masks.end()) masks.push_back(m);
+  }
+  const auto index = [&](const Kinds& m) {
+    return std::size_t(std::find(masks.begin(), masks.end(), m) - masks.begin());
+  };
+  std::vector<std::vector<double>> alone(3), in_frame(3);
+  for (int r = 0; r < rounds; ++r) {
+    std::vector<double> ms(masks.size());
+    // Rotated each round, so no mask always follows the same one.
+    for (std::size_t j = 0; j < masks.size(); ++j) {
+      const std::size_t i = (j + std::size_t(r)) % masks.size();
+      objects.set_drawn_kinds(masks[i]);
+      ms[i] = shooter.shoot(objects, cam, 1).ms;
+    }
+    for (std::size_t k : drawn) {
+      Kinds only{}, without = all;
+      only[k] = true;
+      without[k] = false;
+      alone[k].push_back(ms[index(only)] - ms[index(none)]);
+      in_frame[k].push_back(ms[index(all)] - ms[index(without)]);
+    }
+  }
+  objects.set_drawn_kinds(all);
+  nlohmann::json out = nlohmann::json::array();
+  for (std::size_t k : drawn)
+    out.push_back({{"kind", object_kind_name(ObjectKind(k))},
+                   {"instances", st.instances_by_kind[k]},
+                   {"draw_calls", st.draws_by_kind[k]},
+                   {"predicted_ms", st.predicted_by_kind_ms[k]},
+                   {"alone_ms", summarize(alone[k]).median},
+                   {"in_frame_ms", summarize(in_frame[k]).median}});
+  return out;
+}
 }  // namespace
 
 nlohmann::json diagnose_hybrid_quality(const QualityDiagnosisInput& in) {
@@ -436,6 +491,18 @@ nlohmann::json quality_budget_sweep(const BudgetSweepInput& in) {
                    cp.name, sc.name, f, o.target_ms, st.predicted_ms, test.ms, ref.ms, bare.ms,
                    st.expected_ssim, measured, whole, st.instances_by_kind[0],
                    st.instances_by_kind[1], st.instances_by_kind[2]);
+        if (in.cost_split_rounds > 0) {
+          const HybridFrameStats drawn = st;  // the draws below select again
+          nlohmann::json split = cost_split(shooter, objects, cam, drawn, in.cost_split_rounds);
+          for (const nlohmann::json& k : split)
+            fmt::print(stderr,
+                       "  {:10} x {:3} in {:2} calls: predicted {:6.2f} ms, alone {:6.2f} ms, in "
+                       "the frame {:6.2f} ms\n",
+                       k["kind"].get<std::string>(), k["instances"].get<int>(),
+                       k["draw_calls"].get<int>(), k["predicted_ms"].get<double>(),
+                       k["alone_ms"].get<double>(), k["in_frame_ms"].get<double>());
+          out.back()["cost_split"] = std::move(split);
+        }
       }
   }
   return out;

@@ -192,21 +192,26 @@ double predicted_ssim(const std::vector<Item>& items,
 nlohmann::json cost_split(Shooter& shooter, HybridObjects& objects, const Camera& cam,
                           const HybridFrameStats& st, int rounds) {
   using Kinds = std::array<bool, 3>;
-  const Kinds all{true, true, true}, none{};
-  std::vector<std::size_t> drawn;
-  for (std::size_t k = 0; k < 3; ++k)
-    if (st.instances_by_kind[k] > 0) drawn.push_back(k);
-  std::vector<Kinds> masks{all, none};
-  for (std::size_t k : drawn) {
+  std::vector<Kinds> masks;
+  const auto mask_index = [&](const Kinds& m) {  // added on first use
+    const auto it = std::find(masks.begin(), masks.end(), m);
+    if (it != masks.end()) return std::size_t(it - masks.begin());
+    masks.push_back(m);
+    return masks.size() - 1;
+  };
+  const Kinds all{true, true, true};
+  const std::size_t whole = mask_index(all), bare = mask_index({});
+  struct Split {
+    std::size_t kind, only, without;
+  };
+  std::vector<Split> splits;
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (st.instances_by_kind[k] == 0) continue;
     Kinds only{}, without = all;
     only[k] = true;
     without[k] = false;
-    for (const Kinds& m : {only, without})
-      if (std::find(masks.begin(), masks.end(), m) == masks.end()) masks.push_back(m);
+    splits.push_back({k, mask_index(only), mask_index(without)});
   }
-  const auto index = [&](const Kinds& m) {
-    return std::size_t(std::find(masks.begin(), masks.end(), m) - masks.begin());
-  };
   std::vector<std::vector<double>> alone(3), in_frame(3);
   for (int r = 0; r < rounds; ++r) {
     std::vector<double> ms(masks.size());
@@ -216,23 +221,22 @@ nlohmann::json cost_split(Shooter& shooter, HybridObjects& objects, const Camera
       objects.set_drawn_kinds(masks[i]);
       ms[i] = shooter.shoot(objects, cam, 1).ms;
     }
-    for (std::size_t k : drawn) {
-      Kinds only{}, without = all;
-      only[k] = true;
-      without[k] = false;
-      alone[k].push_back(ms[index(only)] - ms[index(none)]);
-      in_frame[k].push_back(ms[index(all)] - ms[index(without)]);
+    for (const Split& s : splits) {
+      alone[s.kind].push_back(ms[s.only] - ms[bare]);
+      in_frame[s.kind].push_back(ms[whole] - ms[s.without]);
     }
   }
   objects.set_drawn_kinds(all);
   nlohmann::json out = nlohmann::json::array();
-  for (std::size_t k : drawn)
+  for (const Split& sp : splits) {
+    const std::size_t k = sp.kind;
     out.push_back({{"kind", object_kind_name(ObjectKind(k))},
                    {"instances", st.instances_by_kind[k]},
                    {"draw_calls", st.draws_by_kind[k]},
                    {"predicted_ms", st.predicted_by_kind_ms[k]},
                    {"alone_ms", summarize(alone[k]).median},
                    {"in_frame_ms", summarize(in_frame[k]).median}});
+  }
   return out;
 }
 }  // namespace

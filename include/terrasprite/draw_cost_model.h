@@ -137,6 +137,9 @@ class DrawCostModel {
            int model = kAnyModel) const;
   /// Expected time of a frame: the fixed term plus every kind's load.
   double predict(const FrameLoad& load) const;
+  /// Of predict(load), kind `kind`'s part: its draw calls and instances
+  /// (its impostor extra included), without the frame term and known_extra_ms.
+  double kind_ms(const FrameLoad& load, ObjectKind kind) const;
 
   /// Moves every term towards explaining `measured_ms` for `load`: recursive
   /// least squares on a multiplier (prior 1 +- prior_fraction, clamped to

@@ -199,6 +199,15 @@ double DrawCostModel::predict(const FrameLoad& load) const {
   return ms + load.known_extra_ms;
 }
 
+double DrawCostModel::kind_ms(const FrameLoad& load, ObjectKind kind) const {
+  const std::array<double, kTerms> z = contributions(load);
+  const int k = int(kind);
+  double ms = 0;
+  for (int i = 1 + 3 * k; i <= 3 + 3 * k; ++i) ms += m(i) * z[std::size_t(i)];
+  if (kind != ObjectKind::kMesh) ms += m(extra_term(kind)) * z[std::size_t(extra_term(kind))];
+  return ms;
+}
+
 double DrawCostModel::pixel_multiplier(ObjectKind kind) const {
   return m(3 + 3 * int(kind));
 }

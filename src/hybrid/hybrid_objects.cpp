@@ -293,13 +293,8 @@ long long HybridObjects::draw(const Camera& camera) {
   s.pace_x = st.predicted_ms > 0 ? pace_z * after / st.predicted_ms : 0.0;
   s.load.known_extra_ms += (pace - 1) * after;
   st.predicted_ms = s.cost.predict(s.load);
-  for (std::size_t k = 0; k < 3; ++k) {
-    FrameLoad only;
-    only.kinds[k] = s.load.kinds[k];
-    only.fixed_ms[k] = s.load.fixed_ms[k];
-    only.pixel_ms[k] = s.load.pixel_ms[k];
-    st.predicted_by_kind_ms[k] = pace * (s.cost.predict(only) - s.cost.frame_ms(only));
-  }
+  for (std::size_t k = 0; k < 3; ++k)
+    st.predicted_by_kind_ms[k] = pace * s.cost.kind_ms(s.load, ObjectKind(k));
   // Per model, all its groups at once: one upload of their instances.
   std::vector<GlModel::Group> batch;
   for (auto it = groups.begin(); it != groups.end(); ++it) {
@@ -307,7 +302,7 @@ long long HybridObjects::draw(const Camera& camera) {
       batch.push_back({it->second.first, it->second.second});
     const auto next = std::next(it);
     if (next == groups.end() || std::get<0>(next->first) != std::get<0>(it->first)) {
-      if (!batch.empty()) s.set.model(std::get<0>(it->first)).draw(batch, camera);
+      s.set.model(std::get<0>(it->first)).draw(batch, camera);  // nothing when empty
       batch.clear();
     }
   }

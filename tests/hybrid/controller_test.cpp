@@ -287,6 +287,17 @@ TEST(DrawCostModel, LearnsWhatAnImpostorCostsInAFrame) {
   }
   EXPECT_NEAR(m.impostor_extra_ms(ObjectKind::kRelief), 0.12, 0.02);
   EXPECT_NEAR(m.instance_ms(relief, 12, 400), 0.144, 0.02);
+  // The kinds' parts and the frame term make up the prediction.
+  {
+    FrameLoad load;
+    load.kinds[0] = {1, 50, 2e5, 0, 0};
+    for (int i = 0; i < 5; ++i) m.add(load, relief, 12, 400);
+    EXPECT_NEAR(m.kind_ms(load, ObjectKind::kRelief), 5 * m.instance_ms(relief, 12, 400), 1e-9);
+    EXPECT_EQ(m.kind_ms(load, ObjectKind::kOctahedral), 0.0);
+    EXPECT_NEAR(
+        m.frame_ms() + m.kind_ms(load, ObjectKind::kMesh) + m.kind_ms(load, ObjectKind::kRelief),
+        m.predict(load), 1e-9);
+  }
   // Never drawn, the octahedral's extra stays at its prior; meshes have none.
   EXPECT_EQ(m.impostor_extra_ms(ObjectKind::kOctahedral), 0.0);
   EXPECT_EQ(m.impostor_extra_ms(ObjectKind::kMesh), 0.0);

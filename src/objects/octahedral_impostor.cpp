@@ -60,6 +60,7 @@ void view_basis(vec3 v, out vec3 right, out vec3 up) {
 const char* kOctVertex = R"(
 uniform vec3 u_center;   // model metres
 uniform float u_radius;  // model metres
+uniform vec3 u_lo, u_hi;  // the model's bounds (grown a little), model metres
 uniform mat4 u_vp;
 uniform vec3 u_eye;
 uniform float u_focal_px;  // viewport height / (2 tan(fov_y / 2))
@@ -79,7 +80,30 @@ void main() {
   vec3 right = normalize(cross(ref, n)), up = cross(n, right);
   // The sphere's silhouette on the plane through its centre.
   float half_size = dist > 1.01 * r ? r * dist / sqrt(dist * dist - r * r) : 8.0 * r;
-  v_world = c + (corner.x * right + corner.y * up) * half_size;
+  vec2 lo = vec2(-half_size), hi = vec2(half_size);
+  // Narrowed to the model box's silhouette on that plane when the whole box
+  // is in front of the eye: a fragment costs about as much as the march
+  // behind it whether or not the ray finds the object, and the sphere's
+  // square holds a flat or long model's box several times over.
+  vec2 blo = vec2(1e30), bhi = vec2(-1e30);
+  bool in_front = true;
+  for (int k = 0; k < 8; ++k) {
+    vec3 b = vec3((k & 1) != 0 ? u_hi.x : u_lo.x, (k & 2) != 0 ? u_hi.y : u_lo.y,
+                  (k & 4) != 0 ? u_hi.z : u_lo.z);
+    vec3 ray = instance_to_world(b) - u_eye;
+    float along = -dot(ray, n);  // distance in front of the eye, along the view of the centre
+    in_front = in_front && along > 0.01 * dist;
+    vec3 on_plane = ray * (dist / max(along, 1e-6)) - (c - u_eye);
+    vec2 q = vec2(dot(on_plane, right), dot(on_plane, up));
+    blo = min(blo, q);
+    bhi = max(bhi, q);
+  }
+  if (in_front) {
+    lo = max(lo, blo);
+    hi = min(hi, bhi);
+  }
+  vec2 at = mix(lo, hi, corner * 0.5 + 0.5);
+  v_world = c + at.x * right + at.y * up;
   v_eye_local = world_to_instance(u_eye);
   v_ph = i_pos_heading;
   v_scale = i_scale.x;

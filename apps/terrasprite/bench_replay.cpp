@@ -133,6 +133,7 @@ void run_replay(const ReplayArgs& a) {
                  {{"tolerance", a.controller.tolerance},
                   {"quantile_margin", a.controller.quantile_margin},
                   {"prior_noise", a.controller.prior_noise},
+                  {"drift", a.controller.drift},
                   {"centre_half_width", a.controller.centre_half_width},
                   {"quantile_window", a.controller.quantile_window}}},
                 {"series", series},
@@ -172,6 +173,11 @@ void add_bench_replay_controller(CLI::App& bench) {
   cmd->add_option("--quantile-window", a->controller.quantile_window, "frames in the p95's window")
       ->capture_default_str()
       ->check(CLI::Range(4, 10000));
+  cmd->add_option("--drift", a->controller.drift,
+                  "how far the measured / predicted ratio is taken to move per frame (sigma, "
+                  "log): sets how fast the ratio follows the frames")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--json", a->json, "also write the figures as JSON");
   cmd->callback([a] { run_replay(*a); });
 }

@@ -103,8 +103,9 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
   }
 
   // The controller replayed on this run's frames (well under a second).
-  const tstest::CliResult rp = tstest::run_cli("bench replay-controller " + (dir / "h") +
-                                               " --margin 0 --json " + (dir / "r.json"));
+  const tstest::CliResult rp =
+      tstest::run_cli("bench replay-controller " + (dir / "h") +
+                      " --margin 0 --drift 0.02 --json " + (dir / "r.json"));
   ASSERT_EQ(rp.status, 0) << rp.output;
   const nlohmann::json rj = nlohmann::json::parse(std::ifstream(dir / "r.json"));
   ASSERT_EQ(rj["series"].size(), 2u);  // pm, mixed-optimal
@@ -114,6 +115,7 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
     EXPECT_GT(s["replayed_budget_over_target"].get<double>(), 0.0);
   }
   EXPECT_EQ(rj["controller"]["quantile_margin"].get<double>(), 0.0);
+  EXPECT_EQ(rj["controller"]["drift"].get<double>(), 0.02);
 }
 
 TEST(BenchReplayController, BadRunsExitTwoNamingTheFile) {

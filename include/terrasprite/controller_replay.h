@@ -2,10 +2,10 @@
 // Replays a budget controller on the frames of a recorded walkthrough, so a
 // change to the loop can be judged on this machine's real noise without
 // flying it again: each recorded frame gives its surprise, measured /
-// predicted, and the least the selection could have drawn; a replayed frame
-// is predicted at its budget (or that floor) and takes the recorded surprise.
-// It assumes the surprise does not depend on the budget: replaying 18 runs
-// recorded with the loop itself gave their recorded p95 within 1%.
+// predicted, the least the selection could have drawn and, where it left
+// budget over, the most it wanted; a replayed frame is predicted at its
+// budget (within those) and takes the recorded surprise. It assumes the
+// surprise does not depend on the budget.
 #pragma once
 #include <vector>
 
@@ -28,6 +28,11 @@ struct ReplayResult {
 /// the selection could not get down to its budget (predicted over budget by
 /// more than 2%), else 0 (it could have drawn less).
 double recorded_floor_ms(const RecordedFrame& f);
+
+/// The most a recorded frame's selection would have spent of any budget: its
+/// prediction where it left more than 10% of its budget over (every instance
+/// at its best already: a larger budget buys nothing), else unbounded.
+double recorded_demand_ms(const RecordedFrame& f);
 
 /// Runs `options` (target included) over `frames` in order. Frames with a
 /// non-positive time or prediction are skipped. Empty input: an empty result.

@@ -2,6 +2,7 @@
 #include "terrasprite/controller_replay.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "terrasprite/stats.h"
 
@@ -11,6 +12,10 @@ double recorded_floor_ms(const RecordedFrame& f) {
   return f.predicted_ms > 1.02 * f.budget_ms ? f.predicted_ms : 0.0;
 }
 
+double recorded_demand_ms(const RecordedFrame& f) {
+  return f.predicted_ms < 0.9 * f.budget_ms ? f.predicted_ms : INFINITY;
+}
+
 ReplayResult replay_controller(const std::vector<RecordedFrame>& frames,
                                const BudgetControllerOptions& options) {
   ReplayResult out;
@@ -18,7 +23,8 @@ ReplayResult replay_controller(const std::vector<RecordedFrame>& frames,
   for (const RecordedFrame& f : frames) {
     if (!(f.ms > 0) || !(f.predicted_ms > 0)) continue;
     const double budget = c.budget_ms();
-    const double predicted = std::max(budget, recorded_floor_ms(f));
+    const double predicted =
+        std::max(std::min(budget, recorded_demand_ms(f)), recorded_floor_ms(f));
     const double ms = predicted * (f.ms / f.predicted_ms);
     c.update(predicted, ms);
     out.ms.push_back(ms);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The controller replay: a run recorded from the loop itself replays to the
-// same frames, and a change of options changes them. No GL, under 10 ms.
+// same frames (its floors and its frames with budget left over included),
+// and a change of options changes them. No GL, under 10 ms.
 #include "terrasprite/controller_replay.h"
 
 #include <gtest/gtest.h>
@@ -12,7 +13,8 @@ namespace terrasprite {
 namespace {
 
 /// A walkthrough-like run of the loop: 20% noise, the selection's floor now
-/// and then far over the budget (every instance at its cheapest).
+/// and then far over the budget (every instance at its cheapest), and 20
+/// frames whose scene uses only 40% of the target (every instance at its best).
 std::vector<RecordedFrame> recorded_run(const BudgetControllerOptions& o) {
   BudgetController c(o);
   std::mt19937 rng{9};
@@ -21,7 +23,8 @@ std::vector<RecordedFrame> recorded_run(const BudgetControllerOptions& o) {
   for (int f = 0; f < 160; ++f) {
     const double budget = c.budget_ms();
     const double floor = f % 40 == 39 ? 2 * o.target_ms : 0.0;
-    const double predicted = std::max(budget, floor);
+    const double wants = f >= 60 && f < 80 ? 0.4 * o.target_ms : INFINITY;
+    const double predicted = std::max(std::min(budget, wants), floor);
     const double ms = predicted * std::exp(noise(rng));
     c.update(predicted, ms);
     frames.push_back({ms, predicted, budget});
@@ -56,6 +59,14 @@ TEST(ControllerReplay, AnotherAimGivesOtherFramesAndTheFloorStays) {
     if (recorded_floor_ms(frames[i]) > 0) {
       EXPECT_GE(b.ms[i] / (frames[i].ms / frames[i].predicted_ms), frames[i].predicted_ms - 1e-9);
     }
+  // Where it left budget over, the replay spends no more than it did.
+  int left_over = 0;
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    if (std::isfinite(recorded_demand_ms(frames[i]))) {
+      ++left_over;
+      EXPECT_LE(b.ms[i] / (frames[i].ms / frames[i].predicted_ms), frames[i].predicted_ms + 1e-9);
+    }
+  EXPECT_EQ(left_over, 19);  // the 20 but frame 79, whose floor is over its budget
   // Frames without a time or a prediction are skipped.
   std::vector<RecordedFrame> holes = frames;
   holes[3].ms = 0;

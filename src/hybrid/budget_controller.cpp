@@ -76,7 +76,12 @@ void BudgetController::update(double predicted_ms, double measured_ms) {
     first_ = false;
     const double setpoint = setpoint_ms();
     const double error = std::clamp((setpoint - measured_ms) / o_.target_ms, -1.0, 1.0);
-    integral_ = std::clamp(integral_ + o_.ki * error, -o_.integral_limit, o_.integral_limit);
+    // A frame that left its budget over (every instance at its best) was
+    // short for want of anything to draw, not for a loose budget: its error
+    // must not raise the integral (see `spent_fraction`).
+    const bool spent = predicted_ms >= o_.spent_fraction * budget_ms_;
+    if (spent || error < 0)
+      integral_ = std::clamp(integral_ + o_.ki * error, -o_.integral_limit, o_.integral_limit);
     const double correction = std::max(0.1, 1.0 + o_.kp * error + integral_);
     budget_ms_ = setpoint / ratio_ * correction;
   }

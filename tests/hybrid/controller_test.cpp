@@ -203,6 +203,39 @@ TEST(BudgetController, NoisyFramesDoNotSwingTheBudget) {
   EXPECT_LT(kalman_p95, 1.05 * fixed_p95);
 }
 
+TEST(BudgetController, FramesWithNothingMoreToDrawDoNotWindTheBudgetUp) {
+  // 30 frames whose scene can use only 40% of the budget (every instance at
+  // its best), then the full load again (the walkthrough's D: objects behind
+  // the hill, then in view). Their short times must not wind the budget up
+  // for the frames after; with every frame integrated (spent_fraction 0, the
+  // loop before) they do, and the first full frames run far over.
+  const double target = 20;
+  auto worst_after = [&](double spent_fraction, double& peak_budget) {
+    BudgetController c({.target_ms = target, .spent_fraction = spent_fraction});
+    std::mt19937 rng{7};
+    double worst = 0;
+    for (int f = 0; f < 100; ++f) {
+      const double wants = f >= 30 && f < 60 ? 0.4 * target : 1e9;  // predicted ms it can use
+      const double predicted = std::min(c.budget_ms(), wants);
+      const double measured = predicted * std::exp(std::normal_distribution<double>(0, 0.03)(rng));
+      if (f >= 60 && f < 70) worst = std::max(worst, measured);
+      if (f < 60) peak_budget = std::max(peak_budget, c.budget_ms());
+      c.update(predicted, measured);
+    }
+    return worst;
+  };
+  double peak = 0, peak_before = 0;
+  const double now = worst_after(BudgetControllerOptions{}.spent_fraction, peak);
+  const double before = worst_after(0.0, peak_before);
+  std::printf(
+      "after 30 frames with nothing to draw: worst %.1f ms, budget peak %.1f ms "
+      "(integrating them: %.1f, %.1f) at %.0f ms\n",
+      now, peak, before, peak_before, target);
+  EXPECT_LE(now, 1.1 * target);
+  EXPECT_LE(peak, 1.2 * target);
+  EXPECT_GT(before, 1.3 * target);  // the windup this guards against
+}
+
 TEST(BudgetController, OneSurpriseFrameDoesNotThrowTheRestOff) {
   // A twin fed the same frames without the surprises: the loop may still be
   // settling (the first frames assume noise), so the check is "as if the

@@ -64,6 +64,22 @@ class OctahedralTest : public ::testing::Test {
     return c;
   }
 
+  struct Coverage {
+    int mesh_px = 0;  ///< pixels the mesh covers
+    int both = 0;     ///< of those, the ones the impostor covers too
+  };
+  /// The mesh's coverage of `model` and how much of it `impostor` covers.
+  Coverage coverage(ts::GlModel& model, const ts::Representation& impostor, const ts::Camera& cam) {
+    const std::vector<bool> a = covered(model, {ts::ObjectKind::kMesh}, cam),
+                            b = covered(model, impostor, cam);
+    Coverage c;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      c.mesh_px += a[k];
+      c.both += a[k] && b[k];
+    }
+    return c;
+  }
+
   struct Match {
     double ssim = 0;
     int interior_mismatches = 0;  ///< pixels off by > 8 levels away from any mesh edge
@@ -176,20 +192,14 @@ TEST_F(OctahedralTest, SmallOnScreenFindsTheSurfaceWithFewerSteps) {
 TEST_F(OctahedralTest, AFlatPartSeenNearlyEdgeOnIsDrawn) {
   const ts::Model plate = tstest::colored_box(2.f, 2.f, 0.002f);
   ts::GlModel gl_plate{plate, ts::build_lod_chain(plate)};
-  const ts::Representation mesh{ts::ObjectKind::kMesh},
-      oct{ts::ObjectKind::kOctahedral, 0, 128, kViews};
+  const ts::Representation oct{ts::ObjectKind::kOctahedral, 0, 128, kViews};
   gl_plate.prepare(oct);
   const ts::Camera cam = tstest::orbit(glm::dvec3(plate.center()), 100.0, 30.0, 2.0, 2.0);
-  const std::vector<bool> a = covered(gl_plate, mesh, cam), b = covered(gl_plate, oct, cam);
-  int mesh_px = 0, both = 0;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    mesh_px += a[k];
-    both += a[k] && b[k];
-  }
-  RecordProperty("sliver_pixels", mesh_px);
-  RecordProperty("covered_by_impostor", both);
-  ASSERT_GT(mesh_px, 100);
-  EXPECT_GE(both, mesh_px * 8 / 10);
+  const Coverage c = coverage(gl_plate, oct, cam);
+  RecordProperty("sliver_pixels", c.mesh_px);
+  RecordProperty("covered_by_impostor", c.both);
+  ASSERT_GT(c.mesh_px, 100);
+  EXPECT_GE(c.both, c.mesh_px * 8 / 10);
 }
 
 // The quad is narrowed to the model box's silhouette on its plane (a fragment
@@ -204,23 +214,17 @@ TEST_F(OctahedralTest, AFlatPartSeenNearlyEdgeOnIsDrawn) {
 TEST_F(OctahedralTest, TheNarrowedQuadDoesNotCutALongBar) {
   const ts::Model bar = tstest::colored_box(4.f, 1.f, 1.f);
   ts::GlModel gl_bar{bar, ts::build_lod_chain(bar)};
-  const ts::Representation mesh{ts::ObjectKind::kMesh},
-      oct{ts::ObjectKind::kOctahedral, 0, 128, kViews};
+  const ts::Representation oct{ts::ObjectKind::kOctahedral, 0, 128, kViews};
   gl_bar.prepare(oct);
   struct View {
     double dist, phi, elev, fov;
   };
   for (const View& v : {View{7, 20, 25, 60}, View{7, 70, 50, 60}, View{30, 35, 10, 16}}) {
     const ts::Camera cam = tstest::orbit(glm::dvec3(bar.center()), v.dist, v.phi, v.elev, v.fov);
-    const std::vector<bool> a = covered(gl_bar, mesh, cam), b = covered(gl_bar, oct, cam);
-    int mesh_px = 0, both = 0;
-    for (std::size_t k = 0; k < a.size(); ++k) {
-      mesh_px += a[k];
-      both += a[k] && b[k];
-    }
-    RecordProperty("bar_pixels_" + std::to_string(int(v.phi)), mesh_px);
-    RecordProperty("covered_by_impostor_" + std::to_string(int(v.phi)), both);
-    ASSERT_GT(mesh_px, 500) << v.phi;
-    EXPECT_GE(both, mesh_px * 97 / 100) << v.phi;
+    const Coverage c = coverage(gl_bar, oct, cam);
+    RecordProperty("bar_pixels_" + std::to_string(int(v.phi)), c.mesh_px);
+    RecordProperty("covered_by_impostor_" + std::to_string(int(v.phi)), c.both);
+    ASSERT_GT(c.mesh_px, 500) << v.phi;
+    EXPECT_GE(c.both, c.mesh_px * 97 / 100) << v.phi;
   }
 }

@@ -30,8 +30,9 @@ struct ReplayResult {
 double recorded_floor_ms(const RecordedFrame& f);
 
 /// The most a recorded frame's selection would have spent of any budget: its
-/// prediction where it left more than 10% of its budget over (every instance
-/// at its best already: a larger budget buys nothing), else unbounded.
+/// prediction where it left its budget over (under the default
+/// `BudgetControllerOptions::spent_fraction` of it: every instance at its
+/// best already, a larger budget buys nothing), else unbounded.
 double recorded_demand_ms(const RecordedFrame& f);
 
 /// Runs `options` (target included) over `frames` in order. Frames with a

@@ -13,7 +13,10 @@ double recorded_floor_ms(const RecordedFrame& f) {
 }
 
 double recorded_demand_ms(const RecordedFrame& f) {
-  return f.predicted_ms < 0.9 * f.budget_ms ? f.predicted_ms : INFINITY;
+  // "Left its budget over" as the loop's own anti-windup reads it, at its
+  // default: what a recorded frame wanted does not depend on the loop replayed.
+  const double spent = BudgetControllerOptions{}.spent_fraction;
+  return f.predicted_ms < spent * f.budget_ms ? f.predicted_ms : INFINITY;
 }
 
 ReplayResult replay_controller(const std::vector<RecordedFrame>& frames,

@@ -27,11 +27,11 @@ std::string dat_name(const std::string& scenario) {
 /// selection's counters and the quality figures (NaN where a frame has none).
 void write_frames(const HybridScenarioResult& s, OutputDir& out) {
   static constexpr std::string_view kColumns[] = {
-      "frame",        "ms",           "triangles",    "triangles_min", "triangles_max",
-      "predicted_ms", "budget_ms",    "switches",     "selection_ms",  "ssim",
-      "floor_ms",     "not_drawn",    "ssim_objects", "expected_ssim", "n_mesh",
-      "n_relief",     "n_octahedral", "draw_gap_ms",  "visible",       "occluded",
-      "policy_ms",    "occlusion_ms", "pace"};
+      "frame",        "ms",           "triangles",    "triangles_min",    "triangles_max",
+      "predicted_ms", "budget_ms",    "switches",     "selection_ms",     "ssim",
+      "floor_ms",     "not_drawn",    "ssim_objects", "expected_ssim",    "n_mesh",
+      "n_relief",     "n_octahedral", "draw_gap_ms",  "visible",          "occluded",
+      "policy_ms",    "occlusion_ms", "pace",         "objects_budget_ms"};
   std::ostringstream f;
   f << fmt::format("{}\n", fmt::join(kColumns, " "));
   for (const FrameResult& r : s.frames) {

@@ -14,6 +14,7 @@ void annotate_frame(const HybridObjects& objects, FrameResult& r) {
                 {"policy_ms", s.policy_ms},
                 {"predicted_ms", s.predicted_ms},
                 {"budget_ms", s.budget_ms},
+                {"objects_budget_ms", s.objects_budget_ms},
                 {"target_quality", s.target_quality},
                 {"expected_ssim", s.expected_ssim},
                 {"switches", s.switches},

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <map>
 #include <tuple>
 
@@ -61,6 +62,8 @@ struct HybridObjects::Impl {
   /// the read-back (the whole frame's log moves by that much).
   double unpaced_ms = 0, pace_x = 0;
   std::array<bool, 3> drawn_kinds{true, true, true};  ///< set_drawn_kinds
+  /// The objects' budgets of the last frames as computed, before the floor.
+  std::deque<double> recent_budgets;
 
   Impl(ObjectSet& s, const DrawCostModel& c, const HybridOptions& o)
       : set(s),
@@ -248,7 +251,21 @@ long long HybridObjects::draw(const Camera& camera) {
     pace = s.pace.factor(pace_z);
   }
   st.pace = pace;
-  const double objects_budget = (budget - s.cost.frame_ms(load)) / pace - s.draw_gap_ms;
+  const double computed_budget = (budget - s.cost.frame_ms(load)) / pace - s.draw_gap_ms;
+  // Floored by the recent budgets (HybridOptions::objects_budget_floor): one
+  // slow frame must not send every instance to its coarsest.
+  double objects_budget = computed_budget;
+  if (std::isfinite(computed_budget)) {
+    if (!s.recent_budgets.empty()) {
+      std::vector<double> r(s.recent_budgets.begin(), s.recent_budgets.end());
+      std::nth_element(r.begin(), r.begin() + std::ptrdiff_t(r.size() / 2), r.end());
+      objects_budget = std::max(computed_budget, o.objects_budget_floor * r[r.size() / 2]);
+    }
+    s.recent_budgets.push_back(computed_budget);
+    while (int(s.recent_budgets.size()) > std::max(1, o.objects_budget_window))
+      s.recent_budgets.pop_front();
+  }
+  st.objects_budget_ms = objects_budget;
   FrameSelection sel = select_representations(policy, frame, objects_budget, po);
   if (o.use_hysteresis && !scenario_.full)
     st.switches = s.hysteresis.apply(frame, sel, objects_budget);
@@ -325,6 +342,7 @@ void HybridObjects::forget_feedback() {
   s.fixed_time.reset();
   s.pace = FramePace(s.options.pace);
   s.unpaced_ms = 0;
+  s.recent_budgets.clear();
 }
 
 void HybridObjects::feedback(double measured_ms) {

@@ -72,7 +72,7 @@ struct HybridOptions {
   /// model's refit and the read-back's pace all answer one slow frame, and
   /// together they cut the objects' budget to a fraction of its usual for a
   /// frame or several: with a CPU hog beside 4 walkthroughs, 71 frames
-  /// scored an expected SSIM 0.15-0.45 under the frames around them (every
+  /// scored an expected SSIM 0.15 or more under the frames around them (every
   /// instance near its coarsest) and took 4.9-18.7 ms, median 8.9, against
   /// an 18 ms target. With the floor: 24 such frames, the p95 held as often.
   double objects_budget_floor = 0.6;

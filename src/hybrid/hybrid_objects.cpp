@@ -17,6 +17,7 @@
 #include "terrasprite/frame_pace.h"
 #include "terrasprite/instance_view.h"
 #include "terrasprite/measured_fixed_time.h"
+#include "terrasprite/stats.h"
 
 namespace terrasprite {
 namespace {
@@ -256,11 +257,10 @@ long long HybridObjects::draw(const Camera& camera) {
   // slow frame must not send every instance to its coarsest.
   double objects_budget = computed_budget;
   if (std::isfinite(computed_budget)) {
-    if (!s.recent_budgets.empty()) {
-      std::vector<double> r(s.recent_budgets.begin(), s.recent_budgets.end());
-      std::nth_element(r.begin(), r.begin() + std::ptrdiff_t(r.size() / 2), r.end());
-      objects_budget = std::max(computed_budget, o.objects_budget_floor * r[r.size() / 2]);
-    }
+    if (!s.recent_budgets.empty())
+      objects_budget =
+          std::max(computed_budget, o.objects_budget_floor *
+                                        median({s.recent_budgets.begin(), s.recent_budgets.end()}));
     s.recent_budgets.push_back(computed_budget);
     while (int(s.recent_budgets.size()) > std::max(1, o.objects_budget_window))
       s.recent_budgets.pop_front();

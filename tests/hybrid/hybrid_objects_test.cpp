@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "gl/render_target.h"
@@ -46,33 +47,42 @@ ts::Camera view(const ts::Terrain& t) {
   return tstest::orbit(target, 300, 20, 15, 50, double(kW) / kH);
 }
 
+/// pm (meshes, greedy) over `set` at a `target_ms` target under `control`,
+/// priced by the test's cost model (terrain term 0).
+std::unique_ptr<ts::HybridObjects> pm_objects(ts::ObjectSet& set, double target_ms,
+                                              ts::HybridScenario::Control control,
+                                              bool cull_occluded, ts::HybridOptions o = {}) {
+  ts::DrawCostModel cost;
+  cost.set_terms(ts::ObjectKind::kMesh, {0.01, 0.05, 1e-4, 1e-6});
+  cost.set_frame_ms(0);
+  o.width = kW;
+  o.height = kH;
+  o.target_ms = target_ms;
+  return std::make_unique<ts::HybridObjects>(set, std::vector<ts::QualityTable>{}, cost,
+                                             ts::HybridScenario{"pm",
+                                                                {ts::ObjectKind::kMesh},
+                                                                ts::SelectionPolicy::kGreedy,
+                                                                false,
+                                                                control,
+                                                                cull_occluded},
+                                             o);
+}
+
 /// Draws the objects once under a fixed budget (ms, whole frame, terrain
 /// term 0), of the kinds in `drawn` only; `image`, when given, gets the frame.
 ts::HybridFrameStats draw_once(World& w, double budget_ms, double cull_px,
                                std::array<bool, 3> drawn = {true, true, true},
                                ts::Image* image = nullptr) {
   ts::ObjectSet set(w.objects);
-  ts::DrawCostModel cost;
-  cost.set_terms(ts::ObjectKind::kMesh, {0.01, 0.05, 1e-4, 1e-6});
-  cost.set_frame_ms(0);
   ts::HybridOptions o;
-  o.width = kW;
-  o.height = kH;
-  o.target_ms = budget_ms;
   o.cull_px = cull_px;
-  ts::HybridObjects objects(set, {}, cost,
-                            {"pm",
-                             {ts::ObjectKind::kMesh},
-                             ts::SelectionPolicy::kGreedy,
-                             false,
-                             ts::HybridScenario::Control::kFixed},
-                            o);
-  objects.set_drawn_kinds(drawn);
+  auto objects = pm_objects(set, budget_ms, ts::HybridScenario::Control::kFixed, true, o);
+  objects->set_drawn_kinds(drawn);
   ts::gl::RenderTarget target(kW, kH);
   target.bind_and_clear();
-  objects.draw(view(w.terrain));
+  objects->draw(view(w.terrain));
   if (image) *image = target.read_color();
-  return objects.last();
+  return objects->last();
 }
 
 TEST(HybridObjects, TinyInstancesGoUnderATightBudgetTheNearOneStays) {
@@ -151,29 +161,17 @@ TEST(HybridObjects, TwoSlowFramesDoNotStarveTheObjectsOfTheFramesAfter) {
   const ts::Camera cam = view(w.terrain);
   auto fly = [&](double floor) {
     ts::ObjectSet set(w.objects);
-    ts::DrawCostModel cost;
-    cost.set_terms(ts::ObjectKind::kMesh, {0.01, 0.05, 1e-4, 1e-6});
-    cost.set_frame_ms(0);
     ts::HybridOptions o;
-    o.width = kW;
-    o.height = kH;
-    o.target_ms = 1.0;
     o.objects_budget_floor = floor;
-    ts::HybridObjects objects(set, {}, cost,
-                              {"pm",
-                               {ts::ObjectKind::kMesh},
-                               ts::SelectionPolicy::kGreedy,
-                               false,
-                               ts::HybridScenario::Control::kBudgetPi,
-                               false},  // no read-back: its wall time would vary the budgets
-                              o);
+    // No read-back: its wall time would vary the budgets.
+    auto objects = pm_objects(set, 1.0, ts::HybridScenario::Control::kBudgetPi, false, o);
     ts::gl::RenderTarget target(kW, kH);
     std::vector<double> budgets;
     for (int f = 0; f < 20; ++f) {
       target.bind_and_clear();
-      objects.draw(cam);
-      budgets.push_back(objects.last().objects_budget_ms);
-      objects.feedback(objects.last().predicted_ms * (f == 12 || f == 13 ? 3.0 : 1.0));
+      objects->draw(cam);
+      budgets.push_back(objects->last().objects_budget_ms);
+      objects->feedback(objects->last().predicted_ms * (f == 12 || f == 13 ? 3.0 : 1.0));
     }
     return budgets;
   };

@@ -65,6 +65,20 @@ class GlModel {
   /// GPU memory of the representation: vertex + index buffers, or textures.
   std::size_t bytes(const Representation& rep);
 
+  /// Model metres above an instance's base (times its scale) from which the
+  /// camera sees no back face of LOD level `level`: the model's top, where
+  /// back faces covered at most 0.5% of the level's pixels in each of 12
+  /// views above it, drawn when the model was made. No camera there is
+  /// inside a closed part; only an opening facing up (a cup) or a face wound
+  /// the wrong way would show one. Mesh draws cull the back faces of
+  /// double-sided parts for instances the camera is above it. +inf where a
+  /// view showed back faces or the level has no double-sided part. Throws
+  /// InputError for a level outside the chain.
+  double back_faces_hidden_above(int level) const;
+  /// Turns that culling off (draws every double-sided part with its back
+  /// faces, as the file says) or on again (the default): for comparisons.
+  void set_cull_hidden_back_faces(bool on);
+
   /// Draws `instances` with one instanced draw per part into the currently
   /// bound framebuffer, which must use the RenderTarget conventions
   /// (reversed-Z float depth, GL_GREATER, zero-to-one clip control). Writes

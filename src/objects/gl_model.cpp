@@ -3,6 +3,7 @@
 // dispatch to the impostors (relief_impostor.cpp, octahedral_impostor.cpp).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <glm/gtc/type_ptr.hpp>
@@ -52,19 +53,39 @@ void main() {
 }
 )";
 
-const char* kMeshFragment = R"(
-in vec3 v_normal;
+// The material's colour, cut-out texels (alpha under 0.5) discarded: what
+// every mesh fragment stage starts from.
+const char* kMaterialGlsl = R"(
 in vec2 v_uv;
 uniform vec4 u_color;
 uniform int u_textured;
 uniform sampler2D u_texture;
 out vec4 o_color;
-void main() {
+vec4 material_color() {
   vec4 c = u_color;
   if (u_textured != 0) c *= texture(u_texture, v_uv);
   if (c.a < 0.5) discard;
+  return c;
+}
+)";
+
+const char* kMeshFragment = R"(
+in vec3 v_normal;
+void main() {
+  vec4 c = material_color();
   vec3 n = gl_FrontFacing ? v_normal : -v_normal;  // open meshes show their inside
   o_color = vec4(sun_lit(c.rgb, n), 1.0);
+}
+)";
+
+// back_face_check.cpp: which faces the camera sees, front white, back red.
+// A back face coplanar with a front one (a face doubled with the other
+// winding) is pushed behind it, whichever was drawn first: it is no opening.
+const char* kMarkBackFragment = R"(
+void main() {
+  material_color();
+  o_color = gl_FrontFacing ? vec4(1.0) : vec4(1.0, 0.0, 0.0, 1.0);
+  gl_FragDepth = gl_FrontFacing ? gl_FragCoord.z : gl_FragCoord.z * (1.0 - 1e-5);  // reversed Z
 }
 )";
 
@@ -122,6 +143,11 @@ void check_representation(const Representation& rep, const GlModel::Impl& m) {
 
 }  // namespace
 
+gl::Program objects::make_back_face_mark_program() {
+  return gl::link_program(std::string("#version 450 core\n") + kObjectGlsl + kMeshVertex,
+                          std::string("#version 450 core\n") + kMaterialGlsl + kMarkBackFragment);
+}
+
 ObjectKind parse_object_kind(const std::string& text, const char* option) {
   if (text == "pm" || text == "mesh") return ObjectKind::kMesh;
   if (text == "relief") return ObjectKind::kRelief;
@@ -155,12 +181,16 @@ GlModel::GlModel(const Model& model, std::vector<LodLevel> chain, Representation
   }
   for (const Image& img : model.textures) m.textures.push_back(upload_texture(img));
   const std::string head = std::string("#version 450 core\n") + objects::kObjectGlsl;
-  m.mesh_program = gl::link_program(
-      head + kMeshVertex, std::string("#version 450 core\n") + objects::kSunGlsl + kMeshFragment);
+  m.mesh_program =
+      gl::link_program(head + kMeshVertex, std::string("#version 450 core\n") + objects::kSunGlsl +
+                                               kMaterialGlsl + kMeshFragment);
   m.capture_program = objects::make_capture_program();
   m.relief_program = objects::make_relief_program();
   m.octahedral_program = objects::make_octahedral_program();
   m.attach_instance_attributes(m.instance_vao.id());
+  m.back_faces_hidden_above.resize(m.chain.size());
+  for (std::size_t i = 0; i < m.chain.size(); ++i)
+    m.back_faces_hidden_above[i] = m.find_back_faces_hidden_above(int(i));
 }
 
 GlModel::~GlModel() = default;
@@ -220,7 +250,8 @@ void GlModel::Impl::upload_instances(std::span<const ObjectInstance> instances, 
   bind_instances(vao);
 }
 
-void GlModel::Impl::draw_level_parts(int level, GLuint p, GLsizei count, GLuint first) {
+void GlModel::Impl::draw_level_parts(int level, GLuint p, GLsizei count, GLuint first,
+                                     bool cull_all) {
   const objects::GpuLevel& g = levels[level];
   glBindVertexArray(g.vao.id());
   for (const MeshPart& part : g.parts) {
@@ -231,7 +262,7 @@ void GlModel::Impl::draw_level_parts(int level, GLuint p, GLsizei count, GLuint 
     if (mat.texture >= 0) glBindTextureUnit(0, textures[mat.texture].id());
     // Back faces of a single-sided material cannot show: not rasterising
     // them took 14% off the walkthrough's full geometry on llvmpipe.
-    if (mat.double_sided)
+    if (mat.double_sided && !cull_all)
       glDisable(GL_CULL_FACE);
     else
       glEnable(GL_CULL_FACE);
@@ -274,6 +305,16 @@ std::size_t GlModel::bytes(const Representation& rep) {
   return 0;
 }
 
+double GlModel::back_faces_hidden_above(int level) const {
+  if (level < 0 || level >= int(impl_->chain.size()))
+    throw InputError(fmt::format("LOD level {} is not in 0..{}", level, impl_->chain.size() - 1));
+  return impl_->back_faces_hidden_above[level];
+}
+
+void GlModel::set_cull_hidden_back_faces(bool on) {
+  impl_->cull_hidden_back_faces = on;
+}
+
 void GlModel::draw(const Representation& rep, std::span<const ObjectInstance> instances,
                    const Camera& camera) {
   const Group group{rep, instances};
@@ -282,10 +323,25 @@ void GlModel::draw(const Representation& rep, std::span<const ObjectInstance> in
 
 void GlModel::draw(std::span<const Group> groups, const Camera& camera) {
   Impl& m = *impl_;
+  // Each mesh group's instances the camera is above its hidden-back-face
+  // height first: those are drawn with every back face culled.
   std::vector<ObjectInstance> all;
-  for (const Group& g : groups) {
+  std::vector<GLsizei> culled(groups.size(), 0);
+  for (std::size_t i = 0; i < groups.size(); ++i) {
+    const Group& g = groups[i];
     check_representation(g.rep, m);
+    const std::size_t begin = all.size();
     all.insert(all.end(), g.instances.begin(), g.instances.end());
+    const double above = g.rep.kind == ObjectKind::kMesh && m.cull_hidden_back_faces
+                             ? m.back_faces_hidden_above[g.rep.level]
+                             : INFINITY;
+    if (std::isfinite(above))
+      culled[i] =
+          GLsizei(std::stable_partition(all.begin() + begin, all.end(),
+                                        [&](const ObjectInstance& o) {
+                                          return camera.position.z > o.position.z + o.scale * above;
+                                        }) -
+                  (all.begin() + begin));
   }
   if (all.empty()) return;
   // Impostors first built here would capture between draws.
@@ -295,7 +351,8 @@ void GlModel::draw(std::span<const Group> groups, const Camera& camera) {
   }
   m.upload_instances(all);
   GLuint first = 0;
-  for (const Group& g : groups) {
+  for (std::size_t i = 0; i < groups.size(); ++i) {
+    const Group& g = groups[i];
     const GLsizei count = GLsizei(g.instances.size());
     if (count == 0) continue;
     if (g.rep.kind == ObjectKind::kMesh) {
@@ -304,7 +361,9 @@ void GlModel::draw(std::span<const Group> groups, const Camera& camera) {
       glUseProgram(p);
       const glm::mat4 vp(gl::view_projection_reversed_z(camera));
       glUniformMatrix4fv(glGetUniformLocation(p, "u_vp"), 1, GL_FALSE, glm::value_ptr(vp));
-      m.draw_level_parts(g.rep.level, p, count, first);
+      if (culled[i] > 0) m.draw_level_parts(g.rep.level, p, culled[i], first, true);
+      if (count > culled[i])
+        m.draw_level_parts(g.rep.level, p, count - culled[i], first + GLuint(culled[i]));
     } else {
       m.bind_instances(m.instance_vao.id());
       if (g.rep.kind == ObjectKind::kRelief)

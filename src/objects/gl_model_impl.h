@@ -81,7 +81,15 @@ struct GlModel::Impl {
   /// Draws level `level` with `program` (its u_vp set by the caller): one
   /// instanced draw per part, material colour and texture bound. Instances
   /// `first` to `first + count - 1` of the bound instance buffer.
-  void draw_level_parts(int level, GLuint program, GLsizei count, GLuint first = 0);
+  /// `cull_all` culls back faces of double-sided parts too (instances the
+  /// camera is above back_faces_hidden_above).
+  void draw_level_parts(int level, GLuint program, GLsizei count, GLuint first = 0,
+                        bool cull_all = false);
+  /// Per level, model metres above the base: GlModel::back_faces_hidden_above.
+  std::vector<double> back_faces_hidden_above;
+  bool cull_hidden_back_faces = true;
+  /// back_face_check.cpp: the verified height for `level` (+inf if none).
+  double find_back_faces_hidden_above(int level);
 
   objects::ReliefImpostor& relief_impostor(int resolution);
   objects::OctahedralImpostor& octahedral_impostor(int resolution, int views);
@@ -96,6 +104,9 @@ namespace objects {
 gl::Program make_capture_program();
 gl::Program make_relief_program();
 gl::Program make_octahedral_program();
+/// The mesh vertex stage with a fragment stage that writes white for front
+/// faces and red for back faces (back_face_check.cpp).
+gl::Program make_back_face_mark_program();
 }  // namespace objects
 
 }  // namespace terrasprite

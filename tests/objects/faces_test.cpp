@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 // Single- and double-sided materials: which meshes may lose their back
 // faces, what the loaders and scene files say, and that drawing without
-// them changes nothing seen from outside a closed mesh.
+// them changes nothing seen from outside a closed mesh or from above one
+// whose openings face down.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "gl/render_target.h"
@@ -12,6 +14,7 @@
 #include "terrasprite/gl_context.h"
 #include "terrasprite/lod_chain.h"
 #include "terrasprite/object_renderer.h"
+#include "terrasprite/quality.h"
 
 namespace ts = terrasprite;
 
@@ -28,6 +31,18 @@ std::string cube_obj(int faces = 6, bool inverted = false) {
     s += "f " + q + "\n";
   }
   return s;
+}
+
+// colored_box (double-sided) without face `f` (+x, -x, +y, -y, +z, -z).
+ts::Model box_without(int f) {
+  ts::Model m = tstest::colored_box();
+  const ts::MeshPart gone = m.parts[f];
+  m.indices.erase(m.indices.begin() + gone.first_index,
+                  m.indices.begin() + gone.first_index + gone.index_count);
+  m.parts.erase(m.parts.begin() + f);
+  for (ts::MeshPart& p : m.parts)
+    if (p.first_index > gone.first_index) p.first_index -= gone.index_count;
+  return m;
 }
 
 bool all_double_sided(const ts::Model& m, bool value) {
@@ -148,4 +163,84 @@ TEST(Faces, BackFacesAreSkippedAndInvisibleFromOutside) {
   const ts::Image empty = target.read_color();
   EXPECT_NE(walls.rgba, empty.rgba);
   EXPECT_EQ(none.rgba, empty.rgba);
+}
+
+// From above its top, a double-sided model loses its back faces only where
+// none can show: a closed box and one open underneath (a tree) do, a box open
+// on top (a cup) does not. What is seen stays the same either way, and the
+// culling is real: fewer fragments are shaded.
+TEST(Faces, BackFacesAreCulledFromAboveOnlyWhereNoneShows) {
+  ts::GlContext ctx;
+  ts::gl::RenderTarget target(96, 96);
+  const ts::Model closed = tstest::colored_box(), open_below = box_without(5), cup = box_without(4);
+  ts::GlModel gl_closed(closed, ts::build_lod_chain(closed)),
+      gl_open_below(open_below, ts::build_lod_chain(open_below)),
+      gl_cup(cup, ts::build_lod_chain(cup));
+  EXPECT_EQ(gl_closed.back_faces_hidden_above(0), 1.0);  // the box's top, metres
+  EXPECT_EQ(gl_open_below.back_faces_hidden_above(0), 1.0);
+  EXPECT_TRUE(std::isinf(gl_cup.back_faces_hidden_above(0)));
+
+  const ts::ObjectInstance at_origin;
+  const ts::Representation mesh{ts::ObjectKind::kMesh};
+  GLuint query = 0;
+  glGenQueries(1, &query);
+  auto shot = [&](ts::GlModel& m, const ts::Camera& cam, bool cull, GLuint* fragments) {
+    m.set_cull_hidden_back_faces(cull);
+    target.bind_and_clear();
+    glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, query);
+    m.draw(mesh, std::span(&at_origin, 1), cam);
+    glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
+    glGetQueryObjectuiv(query, GL_QUERY_RESULT, fragments);
+    return target.read_color();
+  };
+  for (ts::GlModel* m : {&gl_closed, &gl_open_below, &gl_cup}) {
+    for (double phi : {0.0, 130.0}) {
+      // 4 m out at 40 degrees: 3 m above the box's top.
+      const ts::Camera above = tstest::orbit({0, 0, 0.5}, 4.0, phi, 40.0);
+      GLuint both = 0, culled = 0;
+      const ts::Image a = shot(*m, above, false, &both), b = shot(*m, above, true, &culled);
+      EXPECT_EQ(a.rgba, b.rgba) << m->model().name << " phi " << phi;
+      if (m == &gl_cup)
+        EXPECT_EQ(culled, both);
+      else
+        EXPECT_LT(culled, both) << "phi " << phi;  // the far walls' insides
+      // Beside the box, under its top: its back faces are drawn as before.
+      const ts::Camera beside = tstest::orbit({0, 0, 0.5}, 4.0, phi, 3.0);
+      shot(*m, beside, false, &both);
+      shot(*m, beside, true, &culled);
+      EXPECT_EQ(culled, both) << "phi " << phi;
+    }
+  }
+  glDeleteQueries(1, &query);
+}
+
+// The default scene's forest: its full level qualifies, and from above it
+// looks the same without back faces (its cards' backs face down).
+TEST(Faces, ForestSeenFromAboveLooksTheSameWithoutBackFaces) {
+  const std::string data = tstest::shared_data();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
+  ts::GlContext ctx;
+  ts::gl::RenderTarget target(160, 90);
+  ts::ModelOptions o;
+  o.height_m = 10;
+  const ts::Model forest = ts::load_model(data + "/models_kenney_racing/decoration-forest.glb", o);
+  std::vector<ts::LodLevel> chain = ts::build_lod_chain(forest);
+  chain.resize(1);  // level 0 only: the simplification is not under test
+  ts::GlModel gl(forest, std::move(chain));
+  EXPECT_NEAR(gl.back_faces_hidden_above(0), 10.0, 1e-4);
+  std::vector<ts::ObjectInstance> grid;
+  for (int i = 0; i < 12; ++i)
+    grid.push_back({{(i % 4 - 1.5) * 30.0, (i / 4 - 1.0) * 30.0, 0.0}, 37.0 * i, 1.0});
+  const ts::Representation mesh{ts::ObjectKind::kMesh};
+  for (double elev : {8.0, 35.0}) {
+    ts::Camera cam = tstest::orbit({0, 0, 0}, 180.0, 20.0, elev, 40.0, 16.0 / 9.0);
+    ts::Image shots[2];
+    for (int cull = 0; cull < 2; ++cull) {
+      gl.set_cull_hidden_back_faces(cull == 1);
+      target.bind_and_clear();
+      gl.draw(mesh, grid, cam);
+      shots[cull] = target.read_color();
+    }
+    EXPECT_GT(ts::quality::ssim(shots[0].view(), shots[1].view()).ssim, 0.999) << "elev " << elev;
+  }
 }

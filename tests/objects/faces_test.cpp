@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 
 #include "gl/render_target.h"
@@ -243,4 +244,48 @@ TEST(Faces, ForestSeenFromAboveLooksTheSameWithoutBackFaces) {
     }
     EXPECT_GT(ts::quality::ssim(shots[0].view(), shots[1].view()).ssim, 0.999) << "elev " << elev;
   }
+}
+
+// Within one draw of several groups, the instances the camera is above are
+// moved first and drawn culled, the rest as before: every instance must
+// still be drawn once, where it stands, whichever side of the line it is on.
+TEST(Faces, GroupsMixingInstancesAboveAndBelowTheCameraDrawEveryInstance) {
+  ts::GlContext ctx;
+  ts::gl::RenderTarget target(128, 96);
+  const ts::Model open_below = box_without(5);
+  ts::GlModel gl(open_below, ts::build_lod_chain(open_below));
+  ASSERT_EQ(gl.back_faces_hidden_above(0), 1.0);
+  // Boxes 1 m tall on a slope: the camera at z = 2 is above those based
+  // below z = 1 and under the others, alternating along the row.
+  std::vector<ts::ObjectInstance> first, second;
+  for (int i = 0; i < 8; ++i) {
+    const ts::ObjectInstance o{{-7.0 + 2.0 * i, 6.0, i % 2 == 0 ? 0.5 : 1.8}, 20.0 * i, 0.8};
+    (i < 5 ? first : second).push_back(o);
+  }
+  const ts::Representation mesh{ts::ObjectKind::kMesh};
+  const ts::GlModel::Group groups[2] = {{mesh, first}, {mesh, second}};
+  ts::Camera cam = ts::Camera::look_at({0, -4, 2}, {0, 6, 1}, 70.0, 128.0 / 96.0);
+  cam.near_m = 0.1;
+  cam.far_m = 100;
+  ts::Image shots[2];
+  for (int cull = 0; cull < 2; ++cull) {
+    gl.set_cull_hidden_back_faces(cull == 1);
+    target.bind_and_clear();
+    gl.draw(groups, cam);
+    shots[cull] = target.read_color();
+  }
+  EXPECT_EQ(shots[0].rgba, shots[1].rgba);
+  // And every box is there: the pixel at its centre is not the sky's.
+  target.bind_and_clear();
+  const ts::Image sky = target.read_color();
+  for (const auto* group : {&first, &second})
+    for (const ts::ObjectInstance& o : *group) {
+      const glm::dvec4 c =
+          cam.view_projection() * glm::dvec4(o.position + glm::dvec3(0, 0, 0.4), 1);
+      const int x = int((c.x / c.w + 1) / 2 * 128), y = int((1 - c.y / c.w) / 2 * 96);
+      ASSERT_TRUE(x >= 0 && x < 128 && y >= 0 && y < 96) << o.position.x;
+      const std::size_t at = (std::size_t(y) * 128 + std::size_t(x)) * 4;
+      EXPECT_NE(std::memcmp(&shots[1].rgba[at], &sky.rgba[at], 3), 0)
+          << "box at x " << o.position.x;
+    }
 }

@@ -46,8 +46,10 @@ double GlModel::Impl::find_back_faces_hidden_above(int level) {
   const Image sky = target.read_color();
   const ObjectInstance identity;
   upload_instances(std::span(&identity, 1), levels[level].vao.id());
-  const gl::Program mark = objects::make_back_face_mark_program();
-  const GLuint p = mark.id();
+  // One program for every level: llvmpipe compiles a program's shaders at
+  // its first draw.
+  if (!back_face_mark_program) back_face_mark_program = objects::make_back_face_mark_program();
+  const GLuint p = back_face_mark_program->id();
   glUseProgram(p);
   const glm::dvec3 centre(model.center());
   const double r = std::max(model.bounding_radius(), 1e-6);

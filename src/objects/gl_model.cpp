@@ -191,6 +191,7 @@ GlModel::GlModel(const Model& model, std::vector<LodLevel> chain, Representation
   m.back_faces_hidden_above.resize(m.chain.size());
   for (std::size_t i = 0; i < m.chain.size(); ++i)
     m.back_faces_hidden_above[i] = m.find_back_faces_hidden_above(int(i));
+  m.back_face_mark_program.reset();  // not needed again
 }
 
 GlModel::~GlModel() = default;

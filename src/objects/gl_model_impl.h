@@ -88,8 +88,10 @@ struct GlModel::Impl {
   /// Per level, model metres above the base: GlModel::back_faces_hidden_above.
   std::vector<double> back_faces_hidden_above;
   bool cull_hidden_back_faces = true;
-  /// back_face_check.cpp: the verified height for `level` (+inf if none).
+  /// back_face_check.cpp: the verified height for `level` (+inf if none),
+  /// drawn with `back_face_mark_program` (made on first use).
   double find_back_faces_hidden_above(int level);
+  std::optional<gl::Program> back_face_mark_program;
 
   objects::ReliefImpostor& relief_impostor(int resolution);
   objects::OctahedralImpostor& octahedral_impostor(int resolution, int views);

@@ -188,10 +188,7 @@ GlModel::GlModel(const Model& model, std::vector<LodLevel> chain, Representation
   m.relief_program = objects::make_relief_program();
   m.octahedral_program = objects::make_octahedral_program();
   m.attach_instance_attributes(m.instance_vao.id());
-  m.back_faces_hidden_above.resize(m.chain.size());
-  for (std::size_t i = 0; i < m.chain.size(); ++i)
-    m.back_faces_hidden_above[i] = m.find_back_faces_hidden_above(int(i));
-  m.back_face_mark_program.reset();  // not needed again
+  m.back_faces_hidden_above = m.find_back_faces_hidden_above();
 }
 
 GlModel::~GlModel() = default;
@@ -307,8 +304,7 @@ std::size_t GlModel::bytes(const Representation& rep) {
 }
 
 double GlModel::back_faces_hidden_above(int level) const {
-  if (level < 0 || level >= int(impl_->chain.size()))
-    throw InputError(fmt::format("LOD level {} is not in 0..{}", level, impl_->chain.size() - 1));
+  check_representation({ObjectKind::kMesh, level}, *impl_);
   return impl_->back_faces_hidden_above[level];
 }
 

@@ -88,10 +88,9 @@ struct GlModel::Impl {
   /// Per level, model metres above the base: GlModel::back_faces_hidden_above.
   std::vector<double> back_faces_hidden_above;
   bool cull_hidden_back_faces = true;
-  /// back_face_check.cpp: the verified height for `level` (+inf if none),
-  /// drawn with `back_face_mark_program` (made on first use).
-  double find_back_faces_hidden_above(int level);
-  std::optional<gl::Program> back_face_mark_program;
+  /// back_face_check.cpp: back_faces_hidden_above for every level, drawn
+  /// once when the model is made.
+  std::vector<double> find_back_faces_hidden_above();
 
   objects::ReliefImpostor& relief_impostor(int resolution);
   objects::OctahedralImpostor& octahedral_impostor(int resolution, int views);

@@ -50,6 +50,11 @@ struct CalibrationDraw {
   /// The `instances` were spread in a grid over the image, not on one spot
   /// (see CostCalibrationOptions::spread).
   bool spread = false;
+  /// A spread batch of a mesh level whose back faces a camera above hides
+  /// (GlModel::back_faces_hidden_above), timed from above its top with them
+  /// culled (`culled`) and not: the pair gives the level's culled_fraction.
+  /// Every other draw is timed with them drawn, as below the top.
+  bool above = false, culled = false;
 };
 
 /// Draws each (model, representation) in `reps[model]` alone at each size,
@@ -68,6 +73,7 @@ std::vector<CalibrationDraw> measure_draw_costs(
 /// the models timed), each less its draw call. A mesh level with a spread
 /// batch takes its constant from it: (batch - one alone) / (n - 1), less
 /// its pixels, free of the flush that a single draw's constant is fitted beside.
+/// A level timed from above both ways takes its culled_fraction from the pair.
 void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& draws);
 
 /// A table of the prediction error per kind and size: measured / predicted

@@ -40,6 +40,10 @@ struct DrawSample {
 struct RepresentationCost {
   double fixed_ms = 0;
   double per_pixel_ms = 0;
+  /// A mesh level's time with its hidden back faces culled (the camera
+  /// above it: GlModel::culls_back_faces) as a fraction of its time with
+  /// them (the one above), measured from above; 1 where nothing is culled.
+  double culled_fraction = 1;
 };
 
 /// One timed draw of one representation: covered pixels (the on-screen disc
@@ -130,11 +134,13 @@ class DrawCostModel {
   /// Expected time of one instance of `model` drawn as `rep`: its own
   /// calibration when it has one (the model's, else any model's), else its
   /// kind's terms; the online refit applies to all.
+  /// `culled`: the draw culls the level's hidden back faces (its own
+  /// calibration's culled_fraction applies).
   double instance_ms(const Representation& rep, double triangles, double pixels,
-                     int model = kAnyModel) const;
+                     int model = kAnyModel, bool culled = false) const;
   /// Adds one instance drawn as `rep` to a frame's load.
   void add(FrameLoad& load, const Representation& rep, double triangles, double pixels,
-           int model = kAnyModel) const;
+           int model = kAnyModel, bool culled = false) const;
   /// Expected time of a frame: the fixed term plus every kind's load.
   double predict(const FrameLoad& load) const;
   /// Of predict(load), kind `kind`'s part: its draw calls and instances

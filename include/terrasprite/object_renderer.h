@@ -76,8 +76,16 @@ class GlModel {
   /// InputError for a level outside the chain.
   double back_faces_hidden_above(int level) const;
   /// Turns that culling off (draws every double-sided part with its back
-  /// faces, as the file says) or on again (the default): for comparisons.
+  /// faces, as the file says) or on again (the default): for comparisons
+  /// and for a cost calibration that times each level both ways.
   void set_cull_hidden_back_faces(bool on);
+  bool culls_hidden_back_faces() const;
+  /// Whether a draw of `instance` as `rep` from `camera` culls those back
+  /// faces: a mesh level with a finite back_faces_hidden_above, the culling
+  /// on, and the camera higher than the instance's base plus its scale times
+  /// that height. The draw and the cost model's prediction both ask this.
+  bool culls_back_faces(const Representation& rep, const ObjectInstance& instance,
+                        const Camera& camera) const;
 
   /// Draws `instances` with one instanced draw per part into the currently
   /// bound framebuffer, which must use the RenderTarget conventions

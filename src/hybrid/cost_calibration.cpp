@@ -18,14 +18,16 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// A camera looking level-ish (theta 75 deg) at the model's centre from where
-/// its bounding sphere spans `size_px` of the image height.
-Camera calibration_camera(const Model& m, const CostCalibrationOptions& o, int size_px) {
+/// A camera looking at the model's centre, `elevation_deg` above level
+/// (15: theta 75 deg), from where its bounding sphere spans `size_px` of the
+/// image height.
+Camera calibration_camera(const Model& m, const CostCalibrationOptions& o, int size_px,
+                          double elevation_deg = 15) {
   const double r = m.bounding_radius();
   const double ty = std::tan(glm::radians(o.fov_y_deg) / 2);
   const double k = double(size_px) / o.height * ty;  // r / sqrt(d^2 - r^2)
   const double dist = r * std::sqrt(1.0 + 1.0 / (k * k));
-  const double phi = glm::radians(30.0), elev = glm::radians(15.0);
+  const double phi = glm::radians(30.0), elev = glm::radians(elevation_deg);
   const glm::dvec3 c(m.center());
   const glm::dvec3 eye = c + dist * glm::dvec3(-std::sin(phi) * std::cos(elev),
                                                -std::cos(phi) * std::cos(elev), std::sin(elev));
@@ -134,6 +136,31 @@ DrawOverheads draw_overheads(const std::vector<CalibrationDraw>& draws) {
   return out;
 }
 
+/// For each mesh level of `timed` whose hidden back faces a camera above
+/// culls: a spread batch seen from 60 degrees up, with the culling on and
+/// off (the model's setting is left off).
+void time_culled_from_above(gl::RenderTarget& target, GlModel& model, std::size_t m,
+                            const std::vector<Representation>& timed,
+                            const CostCalibrationOptions& o, int size,
+                            std::vector<CalibrationDraw>& out) {
+  const Camera cam = calibration_camera(model.model(), o, size, 60);
+  const std::vector<ObjectInstance> grid = spread_instances(model.model(), cam, o, size, o.spread);
+  for (const Representation& rep : timed) {
+    if (rep.kind != ObjectKind::kMesh || !std::isfinite(model.back_faces_hidden_above(rep.level)))
+      continue;
+    const double tris = double(model.triangles(rep));
+    const std::size_t n = std::min(grid.size(), tris > 20000 ? std::size_t(8) : grid.size());
+    if (n < 2) continue;
+    for (bool culled : {false, true}) {
+      model.set_cull_hidden_back_faces(culled);
+      out.push_back({m, rep, size, tris, centred_pixels(size, o.width, o.height),
+                     time_instances(target, model, rep, cam, std::span(grid).first(n), o.repeats),
+                     int(n), 1, true, true, culled});
+    }
+    model.set_cull_hidden_back_faces(false);
+  }
+}
+
 }  // namespace
 
 std::vector<CalibrationDraw> measure_draw_costs(
@@ -146,6 +173,14 @@ std::vector<CalibrationDraw> measure_draw_costs(
   const int largest = *std::max_element(o.sizes_px.begin(), o.sizes_px.end());
   for (std::size_t m = 0; m < reps.size() && m < set.model_count(); ++m) {
     GlModel& model = set.model(m);
+    // Timed with every back face drawn, as a camera under the model's top
+    // sees it; the culled fraction from above comes from its own pair.
+    struct Restore {
+      GlModel& model;
+      bool on;
+      ~Restore() { model.set_cull_hidden_back_faces(on); }
+    } restore{model, model.culls_hidden_back_faces()};
+    model.set_cull_hidden_back_faces(false);
     std::vector<Representation> timed;
     for (const Representation& rep : reps[m]) {
       if (rep.kind == ObjectKind::kMesh) {
@@ -178,6 +213,8 @@ std::vector<CalibrationDraw> measure_draw_costs(
                time_instances(target, model, rep, cam, std::span(grid).first(n), o.repeats), int(n),
                1, true});
         }
+      if (size == smallest && o.spread > 1)
+        time_culled_from_above(target, model, m, timed, o, size, out);
       for (const Representation& rep : timed) {
         if (rep.kind == ObjectKind::kMesh && o.mesh_two_sizes && size != smallest &&
             size != largest)
@@ -255,7 +292,7 @@ void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& dr
   // 80 us flush, single draws put the constant of small levels anywhere
   // from a quarter to four times this.
   for (const CalibrationDraw& d : draws) {
-    if (!d.spread || d.rep.kind != ObjectKind::kMesh || d.instances < 2) continue;
+    if (!d.spread || d.above || d.rep.kind != ObjectKind::kMesh || d.instances < 2) continue;
     const auto one = std::find_if(draws.begin(), draws.end(), [&](const CalibrationDraw& s) {
       return !s.spread && s.instances == 1 && s.model == d.model && s.size_px == d.size_px &&
              s.rep.kind == d.rep.kind && s.rep.level == d.rep.level;
@@ -265,6 +302,23 @@ void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& dr
     RepresentationCost c = *own_cost;
     const double instance = (d.ms - one->ms) / double(d.instances - 1);
     c.fixed_ms = std::max(0.0, instance - c.per_pixel_ms * d.pixels);
+    model.set_cost(d.rep, c, int(d.model));
+  }
+  // A level timed from above with its hidden back faces culled and not:
+  // the ratio of the two batches (one flush each, small beside 8-24
+  // instances, and taken off) scales its fixed and per-pixel time where a frame culls them.
+  for (const CalibrationDraw& d : draws) {
+    if (!d.above || !d.culled) continue;
+    const auto drawn = std::find_if(draws.begin(), draws.end(), [&](const CalibrationDraw& s) {
+      return s.above && !s.culled && s.model == d.model && s.rep.kind == d.rep.kind &&
+             s.rep.level == d.rep.level && s.instances == d.instances;
+    });
+    const RepresentationCost* own_cost = model.cost(d.rep, int(d.model));
+    if (drawn == draws.end() || !own_cost || drawn->ms <= 0) continue;
+    RepresentationCost c = *own_cost;
+    const double culled = d.ms - overhead[0], full = drawn->ms - overhead[0];
+    if (culled <= 0 || full <= 0) continue;
+    c.culled_fraction = std::clamp(culled / full, 0.05, 1.0);
     model.set_cost(d.rep, c, int(d.model));
   }
 }
@@ -301,6 +355,12 @@ std::string calibration_report(const DrawCostModel& model,
   }
   s += fmt::format("  a timed draw's overhead (flush; once a frame, in no term): {:.4f} ms\n",
                    oh.overhead[0]);
+  std::string culled;
+  for (const CalibrationDraw& d : draws)
+    if (d.above && d.culled)
+      if (const RepresentationCost* c = model.cost(d.rep, int(d.model)))
+        culled += fmt::format(" {}:L{} {:.2f}", d.model, d.rep.level, c->culled_fraction);
+  if (!culled.empty()) s += "  culled from above / drawn (model:level fraction):" + culled + "\n";
   s += "  terms (ms): kind, per draw call, per instance, per triangle x 1e6, per pixel x 1e6\n";
   for (int k = 0; k < 3; ++k) {
     const DrawCostTerms& t = model.terms(ObjectKind(k));

@@ -152,16 +152,17 @@ double DrawCostModel::impostor_extra_ms(ObjectKind kind) const {
 }
 
 double DrawCostModel::instance_ms(const Representation& rep, double triangles, double pixels,
-                                  int model) const {
+                                  int model, bool culled) const {
   const RepresentationCost* c = find(rep, model);
   if (!c) return instance_ms(rep.kind, triangles, pixels);
   const int k = int(rep.kind);
-  return m(2 + 3 * k) * c->fixed_ms + m(3 + 3 * k) * c->per_pixel_ms * pixels +
+  const double f = culled ? c->culled_fraction : 1.0;
+  return f * (m(2 + 3 * k) * c->fixed_ms + m(3 + 3 * k) * c->per_pixel_ms * pixels) +
          impostor_extra_ms(rep.kind);
 }
 
 void DrawCostModel::add(FrameLoad& load, const Representation& rep, double triangles, double pixels,
-                        int model) const {
+                        int model, bool culled) const {
   const std::size_t k = std::size_t(rep.kind);
   DrawSample& s = load.kinds[k];
   s.instances += 1;
@@ -169,8 +170,9 @@ void DrawCostModel::add(FrameLoad& load, const Representation& rep, double trian
   s.pixels += pixels;
   const RepresentationCost* c = find(rep, model);
   const DrawCostTerms& t = terms_[k];
-  load.fixed_ms[k] += c ? c->fixed_ms : t.per_instance_ms + t.per_triangle_ms * triangles;
-  load.pixel_ms[k] += c ? c->per_pixel_ms * pixels : t.per_pixel_ms * pixels;
+  const double f = c && culled ? c->culled_fraction : 1.0;
+  load.fixed_ms[k] += c ? f * c->fixed_ms : t.per_instance_ms + t.per_triangle_ms * triangles;
+  load.pixel_ms[k] += c ? f * c->per_pixel_ms * pixels : t.per_pixel_ms * pixels;
 }
 
 std::array<double, DrawCostModel::kTerms> DrawCostModel::contributions(

@@ -150,7 +150,8 @@ long long HybridObjects::draw(const Camera& camera) {
   }
   int id = 0;
   for (std::size_t m = 0; m < s.set.model_count(); ++m) {
-    const Model& model = s.set.model(m).model();
+    const GlModel& gl_model = s.set.model(m);
+    const Model& model = gl_model.model();
     const auto instances = s.set.instances(m);
     const std::size_t first = frame.size();
     for (std::size_t i = 0; i < instances.size(); ++i, ++id) {
@@ -181,9 +182,10 @@ long long HybridObjects::draw(const Camera& camera) {
             f.shared_layout ? f.quality.at(w) : f.quality.at(v.phi_deg, v.theta_deg, v.size_px);
         const double err_px =
             f.error_m * instances[i].scale * px_per_m / std::max(v.distance_m, 1e-6);
-        inst.options.push_back({f.rep,
-                                s.cost.instance_ms(f.rep, double(f.triangles), pixels, int(m)),
-                                q.ssim, q.psnr, f.triangles, err_px});
+        const bool culled = gl_model.culls_back_faces(f.rep, instances[i], camera);
+        inst.options.push_back(
+            {f.rep, s.cost.instance_ms(f.rep, double(f.triangles), pixels, int(m), culled), q.ssim,
+             q.psnr, f.triangles, err_px});
       }
       if (o.cull_px > 0 && v.size_px < o.cull_px && !scenario_.full &&
           scenario_.policy != SelectionPolicy::kImpostorOnly)
@@ -293,7 +295,8 @@ long long HybridObjects::draw(const Camera& camera) {
     auto& g = groups[{m, int(r.kind), r.level, r.resolution}];
     g.first = r;
     g.second.push_back(s.set.instances(m)[i]);
-    s.cost.add(s.load, r, double(opt.triangles), pixels_of[k], int(m));
+    s.cost.add(s.load, r, double(opt.triangles), pixels_of[k], int(m),
+               s.set.model(m).culls_back_faces(r, g.second.back(), camera));
     st.triangles += opt.triangles;
     st.instances_by_kind[std::size_t(r.kind)] += 1;
   }

@@ -312,6 +312,19 @@ void GlModel::set_cull_hidden_back_faces(bool on) {
   impl_->cull_hidden_back_faces = on;
 }
 
+bool GlModel::culls_hidden_back_faces() const {
+  return impl_->cull_hidden_back_faces;
+}
+
+bool GlModel::culls_back_faces(const Representation& rep, const ObjectInstance& instance,
+                               const Camera& camera) const {
+  const Impl& m = *impl_;
+  if (rep.kind != ObjectKind::kMesh || !m.cull_hidden_back_faces) return false;
+  check_representation(rep, m);
+  const double above = m.back_faces_hidden_above[std::size_t(rep.level)];
+  return std::isfinite(above) && camera.position.z > instance.position.z + instance.scale * above;
+}
+
 void GlModel::draw(const Representation& rep, std::span<const ObjectInstance> instances,
                    const Camera& camera) {
   const Group group{rep, instances};
@@ -329,16 +342,11 @@ void GlModel::draw(std::span<const Group> groups, const Camera& camera) {
     check_representation(g.rep, m);
     const std::size_t begin = all.size();
     all.insert(all.end(), g.instances.begin(), g.instances.end());
-    const double above = g.rep.kind == ObjectKind::kMesh && m.cull_hidden_back_faces
-                             ? m.back_faces_hidden_above[g.rep.level]
-                             : INFINITY;
-    if (std::isfinite(above))
-      culled[i] =
-          GLsizei(std::stable_partition(all.begin() + begin, all.end(),
-                                        [&](const ObjectInstance& o) {
-                                          return camera.position.z > o.position.z + o.scale * above;
-                                        }) -
-                  (all.begin() + begin));
+    culled[i] = GLsizei(std::stable_partition(all.begin() + begin, all.end(),
+                                              [&](const ObjectInstance& o) {
+                                                return culls_back_faces(g.rep, o, camera);
+                                              }) -
+                        (all.begin() + begin));
   }
   if (all.empty()) return;
   // Impostors first built here would capture between draws.

@@ -77,5 +77,46 @@ TEST(CostCalibration, ASpreadBatchSetsAMeshLevelsConstant) {
   }
 }
 
+TEST(CostCalibration, APairFromAboveSetsALevelsCulledFraction) {
+  // Level 0 timed from above with its hidden back faces drawn and culled
+  // (24 spread instances, one flush each): culled, an instance costs 60%.
+  const double flush = 0.08, call = 0.002, per_triangle = 1e-4, per_pixel = 2e-6;
+  const int n = 8, spread = 24;
+  const double small = 380, large = 45000;
+  std::vector<CalibrationDraw> draws;
+  for (int level = 0; level < 2; ++level) {
+    const Representation rep{ObjectKind::kMesh, level};
+    const double tris = 4000.0 / (1 << level);
+    auto instance = [&](double px) { return per_triangle * tris + per_pixel * px; };
+    draws.push_back({0, rep, 22, tris, small, flush + call + instance(small)});
+    draws.push_back({0, rep, 360, tris, large, flush + call + instance(large)});
+    draws.push_back({0, rep, 22, tris, small, flush + call + n * instance(small), n});
+    draws.push_back({0, rep, 22, tris, small, flush + n * call + n * instance(small), n, n});
+  }
+  const Representation level0{ObjectKind::kMesh, 0};
+  const double drawn = spread * 1.5 * per_triangle * 4000;
+  draws.push_back({0, level0, 22, 4000, small, flush + call + drawn, spread, 1, true, true, false});
+  draws.push_back(
+      {0, level0, 22, 4000, small, flush + call + 0.6 * drawn, spread, 1, true, true, true});
+  DrawCostModel model;
+  fit_draw_costs(model, draws);
+  // The pair is neither a spread batch nor a draw of one: the rest is as before.
+  EXPECT_NEAR(model.terms(ObjectKind::kMesh).per_draw_ms, call, 1e-9);
+  for (int level = 0; level < 2; ++level) {
+    const double tris = 4000.0 / (1 << level);
+    const Representation rep{ObjectKind::kMesh, level};
+    const double alone = per_triangle * tris + per_pixel * large;
+    EXPECT_NEAR(model.instance_ms(rep, tris, large, 0), alone, 1e-9);
+    // The fraction is the pair's ratio with the flush off (the call, in
+    // both, moves it by 1e-4), and only where a level was timed both ways.
+    const double fraction = level == 0 ? 0.6 : 1.0;
+    EXPECT_NEAR(model.instance_ms(rep, tris, large, 0, true), fraction * alone, 1e-3 * alone)
+        << "level " << level;
+    FrameLoad load;
+    model.add(load, rep, tris, large, 0, true);
+    EXPECT_NEAR(model.predict(load), model.instance_ms(rep, tris, large, 0, true), 1e-12);
+  }
+}
+
 }  // namespace
 }  // namespace terrasprite

@@ -213,6 +213,24 @@ TEST(Faces, BackFacesAreCulledFromAboveOnlyWhereNoneShows) {
     }
   }
   glDeleteQueries(1, &query);
+
+  // The same answer as the cost model asks it, per instance: the camera
+  // (3.07 m up) above the box's top times the instance's scale, on its base.
+  const ts::Camera above = tstest::orbit({0, 0, 0.5}, 4.0, 0.0, 40.0),
+                   beside = tstest::orbit({0, 0, 0.5}, 4.0, 0.0, 3.0);
+  ts::ObjectInstance raised, tall;
+  raised.position.z = 2.5;
+  tall.scale = 4;
+  gl_open_below.set_cull_hidden_back_faces(true);
+  EXPECT_TRUE(gl_open_below.culls_back_faces(mesh, at_origin, above));
+  EXPECT_FALSE(gl_open_below.culls_back_faces(mesh, at_origin, beside));
+  EXPECT_FALSE(gl_open_below.culls_back_faces(mesh, raised, above));
+  EXPECT_FALSE(gl_open_below.culls_back_faces(mesh, tall, above));
+  EXPECT_FALSE(gl_open_below.culls_back_faces({ts::ObjectKind::kRelief}, at_origin, above));
+  gl_cup.set_cull_hidden_back_faces(true);
+  EXPECT_FALSE(gl_cup.culls_back_faces(mesh, at_origin, above));
+  gl_open_below.set_cull_hidden_back_faces(false);
+  EXPECT_FALSE(gl_open_below.culls_back_faces(mesh, at_origin, above));
 }
 
 // The default scene's forest: its full level qualifies, and from above it

@@ -4,8 +4,8 @@
 // into place when complete, never replacing a file terrasprite did not write.
 #pragma once
 #include <functional>
-#include <string_view>
 #include <string>
+#include <string_view>
 
 namespace terrasprite {
 

@@ -116,6 +116,13 @@ Model finish_model(RawModel raw, const std::string& path, const ModelOptions& op
   Model m;
   m.name = path;
   m.normals_from_file = raw.normals.size() == raw.positions.size();
+  // OBJ cannot say which faces are meant to be seen; glTF does, per material.
+  const bool single = options.double_sided        ? !*options.double_sided
+                      : raw.orientation_from_file ? false
+                                                  : closed_and_outward(raw.positions, raw.indices);
+  if (options.double_sided || single)
+    for (Material& mat : raw.materials) mat.double_sided = !single;
+  draw_opposite_twins_single_sided(raw);
   group_parts(raw, m);
   m.positions = std::move(raw.positions);
   if (m.normals_from_file) {
@@ -130,12 +137,6 @@ Model finish_model(RawModel raw, const std::string& path, const ModelOptions& op
   m.uvs = raw.uvs.size() == m.positions.size() ? std::move(raw.uvs)
                                                : std::vector<glm::vec2>(m.positions.size());
   m.materials = std::move(raw.materials);
-  // OBJ cannot say which faces are meant to be seen; glTF does, per material.
-  const bool single = options.double_sided        ? !*options.double_sided
-                      : raw.orientation_from_file ? false
-                                                  : closed_and_outward(m.positions, m.indices);
-  if (options.double_sided || single)
-    for (Material& mat : m.materials) mat.double_sided = !single;
   m.textures = std::move(raw.textures);
   m.texture_names = std::move(raw.texture_names);
 

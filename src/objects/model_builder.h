@@ -24,6 +24,14 @@ struct RawModel {
 
 Model finish_model(RawModel raw, const std::string& path, const ModelOptions& options);
 
+/// Moves each pair of a double-sided material's triangles on the same three
+/// positions, wound opposite ways, to a single-sided copy of the material
+/// (appended to `raw.materials`, one per material with pairs): each side
+/// then shows its own triangle, as modelled, and the other is culled at
+/// set-up instead of rasterised. Degenerate triangles are left alone.
+/// Returns the triangles moved.
+std::size_t draw_opposite_twins_single_sided(RawModel& raw);
+
 Model load_obj(const std::string& path, const ModelOptions& options);
 Model load_gltf(const std::string& path, const ModelOptions& options);
 

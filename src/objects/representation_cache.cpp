@@ -115,8 +115,9 @@ std::uint64_t model_files_hash(const std::string& model_file, const ModelOptions
 
 std::string model_source_key(const std::string& model_file, const ModelOptions& m) {
   const std::uint64_t h = model_files_hash(model_file, m);
-  // faces2: single-sided materials drawn without their back faces.
-  const std::string params = fmt::format("up{}|h{}|tex{}|c{},{},{},{}|faces2|ds{}", int(m.up),
+  // faces2: single-sided materials drawn without their back faces; faces3:
+  // a double-sided material's opposite twins drawn single-sided.
+  const std::string params = fmt::format("up{}|h{}|tex{}|c{},{},{},{}|faces3|ds{}", int(m.up),
                                          m.height_m, m.texture, m.color.r, m.color.g, m.color.b,
                                          m.color.a, m.double_sided ? int(*m.double_sided) : -1);
   return fmt::format("{:016x}{:016x}", h, fnv1a(params));

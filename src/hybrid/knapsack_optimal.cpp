@@ -168,6 +168,14 @@ KnapsackSolution optimal_knapsack(std::span<const KnapsackItem> items, double bu
   if (greedy.cost > budget) return greedy;  // even the cheapest choices exceed it
   const std::vector<Step>& steps = prepared.steps;
   const Relaxation lp = relax(items, prepared.hulls, steps, budget);
+  const double tolerance = 1e-9 * std::max(1.0, std::abs(lp.value));
+  if (greedy.benefit >= lp.value * (1 - std::max(0.0, options.gap)) - tolerance) {
+    // Close enough to the bound: the search could gain at most the gap.
+    greedy.upper_bound = std::max(lp.value, greedy.benefit);
+    greedy.proven_optimal = greedy.benefit >= lp.value - tolerance;
+    if (greedy.proven_optimal) greedy.upper_bound = greedy.benefit;
+    return greedy;
+  }
 
   // Items outside the core keep their LP choice; the core starts from the LP
   // choice too (feasible: whole steps only) and is searched exactly.
@@ -193,8 +201,8 @@ KnapsackSolution optimal_knapsack(std::span<const KnapsackItem> items, double bu
   KnapsackSolution best = own.benefit >= greedy.benefit ? std::move(own) : greedy;
   best.greedy_benefit = greedy.benefit;
   best.upper_bound = std::max(lp.value, best.benefit);
-  best.proven_optimal = (finished && core.size() == items.size()) ||
-                        best.benefit >= lp.value - 1e-9 * std::max(1.0, std::abs(lp.value));
+  best.proven_optimal =
+      (finished && core.size() == items.size()) || best.benefit >= lp.value - tolerance;
   if (best.proven_optimal) best.upper_bound = best.benefit;
   return best;
 }

@@ -24,13 +24,15 @@ double total_cheapest(const std::vector<KnapsackItem>& items) {
 }
 
 TEST(Knapsack, OptimalMatchesBruteForceAndGreedyNeverBeatsIt) {
+  OptimalOptions exact;
+  exact.gap = 0;
   for (unsigned seed = 1; seed <= 300; ++seed) {
     const auto items = random_items(6, 4, seed);
     std::mt19937 rng(seed + 1000);
     const double budget =
         total_cheapest(items) + std::uniform_real_distribution<double>(0, 15)(rng);
     const KnapsackSolution brute = brute_force_knapsack(items, budget);
-    const KnapsackSolution opt = optimal_knapsack(items, budget);
+    const KnapsackSolution opt = optimal_knapsack(items, budget, exact);
     const KnapsackSolution greedy = greedy_knapsack(items, budget);
     ASSERT_NEAR(opt.benefit, brute.benefit, 1e-9) << "seed " << seed;
     EXPECT_LE(opt.cost, budget + 1e-12) << "seed " << seed;
@@ -38,6 +40,30 @@ TEST(Knapsack, OptimalMatchesBruteForceAndGreedyNeverBeatsIt) {
     EXPECT_LE(greedy.benefit, opt.benefit + 1e-12) << "seed " << seed;
     EXPECT_LE(greedy.cost, budget + 1e-12) << "seed " << seed;
   }
+}
+
+TEST(Knapsack, WithinTheStatedGapOfBruteForce) {
+  // A gap as wide as 5% makes the shortcut (greedy, no search) common on
+  // these instances: it still never returns less than 95% of the optimum,
+  // nor less than greedy, and its bound is true.
+  OptimalOptions wide;
+  wide.gap = 0.05;
+  int shortcuts = 0;
+  for (unsigned seed = 1; seed <= 300; ++seed) {
+    const auto items = random_items(6, 4, seed);
+    std::mt19937 rng(seed + 1000);
+    const double budget =
+        total_cheapest(items) + std::uniform_real_distribution<double>(0, 15)(rng);
+    const KnapsackSolution brute = brute_force_knapsack(items, budget);
+    const KnapsackSolution opt = optimal_knapsack(items, budget, wide);
+    const KnapsackSolution greedy = greedy_knapsack(items, budget);
+    EXPECT_GE(opt.benefit, 0.95 * brute.benefit - 1e-9) << "seed " << seed;
+    EXPECT_GE(opt.benefit, greedy.benefit - 1e-12) << "seed " << seed;
+    EXPECT_GE(opt.upper_bound, brute.benefit - 1e-9) << "seed " << seed;
+    EXPECT_LE(opt.cost, budget + 1e-12) << "seed " << seed;
+    if (opt.benefit < brute.benefit - 1e-9) ++shortcuts;
+  }
+  EXPECT_GT(shortcuts, 0);  // the gap was used
 }
 
 TEST(Knapsack, CoreSearchNeverBelowGreedyOnLargeInstances) {

@@ -3,8 +3,9 @@
 // near instance, twelve far and tiny; under a budget below the floor the tiny
 // ones are left out (HybridOptions::cull_px), never the near one, and with
 // room in the budget nothing is; a kind left out of the draw is not drawn;
-// slow frames do not take the objects' budget below its floor.
-// GL (llvmpipe), about 0.2 s.
+// slow frames do not take the objects' budget below its floor; an instance
+// whose draw culls its hidden back faces is priced with its culled fraction.
+// GL (llvmpipe), about 0.25 s.
 #include "terrasprite/hybrid_objects.h"
 
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fstream>
 #include <memory>
 #include <string>
 
@@ -187,6 +189,65 @@ TEST(HybridObjects, TwoSlowFramesDoNotStarveTheObjectsOfTheFramesAfter) {
   EXPECT_LT(*std::min_element(bare.begin() + 14, bare.end()), 0.6 * steady);
   // ... with it, the frames whose 9 before are mostly steady keep 0.6 of it.
   for (std::size_t f = 14; f <= 18; ++f) EXPECT_GE(floored[f], 0.6 * steady - 1e-9) << f;
+}
+
+// One double-sided pyramid, closed and wound outward (no back face shows
+// from above; the test tower is wound inward), priced at 1 ms a level, a
+// quarter of that with its hidden back faces culled: the frame's
+// prediction takes the fraction only where the draw culls, the camera
+// above the pyramid's top and the culling on.
+TEST(HybridObjects, AnInstanceTheCameraIsAboveIsPricedWithItsCulledFraction) {
+  ts::GlContext ctx;
+  tstest::TempDir dir;
+  std::ofstream(dir / "pyramid.obj") << "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 3 0\n"
+                                        "f 2 1 5\nf 3 2 5\nf 4 3 5\nf 1 4 5\nf 1 2 3\nf 1 3 4\n";
+  struct {
+    ts::Terrain terrain;
+    ts::ObjectScene objects;
+  } w;
+  ts::TerrainOptions to;
+  to.synthetic_size = 65;
+  w.terrain = ts::load_terrain(to);
+  w.objects = ts::parse_object_scene(
+      R"({"models": [{"name": "p", "file": "pyramid.obj", "height_m": 30, "double_sided": true}],
+          "instances": [{"model": "p", "position": [0, 0]}]})",
+      "scene", dir.path.string(), w.terrain.heights);
+  ts::ObjectSet set(w.objects);
+  ts::GlModel& gl = set.model(0);
+  ASSERT_TRUE(std::isfinite(gl.back_faces_hidden_above(0)));
+  ts::DrawCostModel cost;
+  cost.set_frame_ms(0);
+  for (int level = 0; level < int(gl.chain().size()); ++level)
+    cost.set_cost({ts::ObjectKind::kMesh, level}, {1.0, 0.0, 0.25}, 0);
+  ts::HybridOptions o;
+  o.width = kW;
+  o.height = kH;
+  o.target_ms = 100;
+  ts::HybridObjects objects(set, {}, cost,
+                            {"pm",
+                             {ts::ObjectKind::kMesh},
+                             ts::SelectionPolicy::kGreedy,
+                             false,
+                             ts::HybridScenario::Control::kFixed,
+                             false},
+                            o);
+  ts::gl::RenderTarget target(kW, kH);
+  const glm::dvec3 centre(0, 0, w.terrain.heights.sample(0, 0) + 10);
+  auto predicted = [&](const ts::Camera& cam) {
+    target.bind_and_clear();
+    objects.draw(cam);
+    EXPECT_EQ(objects.last().instances_by_kind[0], 1);
+    return objects.last().predicted_by_kind_ms[0];
+  };
+  // 300 m out at 15 degrees: 78 m above the centre, over the 30 m top.
+  const ts::Camera above = tstest::orbit(centre, 300, 20, 15, 50, double(kW) / kH),
+                   level = tstest::orbit(centre, 300, 20, 0, 50, double(kW) / kH);
+  ASSERT_TRUE(gl.culls_back_faces({ts::ObjectKind::kMesh, 0}, set.instances(0)[0], above));
+  const double culled = predicted(above), drawn = predicted(level);
+  EXPECT_NEAR(culled, 0.25, 1e-9);
+  EXPECT_NEAR(drawn, 1.0, 1e-9);
+  gl.set_cull_hidden_back_faces(false);
+  EXPECT_NEAR(predicted(above), 1.0, 1e-9);
 }
 
 }  // namespace

@@ -305,8 +305,8 @@ void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& dr
     model.set_cost(d.rep, c, int(d.model));
   }
   // A level timed from above with its hidden back faces culled and not:
-  // the ratio of the two batches (one flush each, small beside 8-24
-  // instances, and taken off) scales its fixed and per-pixel time where a frame culls them.
+  // the ratio of the two batches, each less the timed draw's flush, scales
+  // its fixed and per-pixel time where a frame culls them.
   for (const CalibrationDraw& d : draws) {
     if (!d.above || !d.culled) continue;
     const auto drawn = std::find_if(draws.begin(), draws.end(), [&](const CalibrationDraw& s) {

@@ -169,40 +169,36 @@ KnapsackSolution optimal_knapsack(std::span<const KnapsackItem> items, double bu
   const std::vector<Step>& steps = prepared.steps;
   const Relaxation lp = relax(items, prepared.hulls, steps, budget);
   const double tolerance = 1e-9 * std::max(1.0, std::abs(lp.value));
-  if (greedy.benefit >= lp.value * (1 - std::max(0.0, options.gap)) - tolerance) {
-    // Close enough to the bound: the search could gain at most the gap.
-    greedy.upper_bound = std::max(lp.value, greedy.benefit);
-    greedy.proven_optimal = greedy.benefit >= lp.value - tolerance;
-    if (greedy.proven_optimal) greedy.upper_bound = greedy.benefit;
-    return greedy;
+  KnapsackSolution best = greedy;
+  bool searched_all = false;
+  // Within the stated gap of the bound, the search could gain at most the gap.
+  if (greedy.benefit < lp.value * (1 - std::max(0.0, options.gap)) - tolerance) {
+    // Items outside the core keep their LP choice; the core starts from the
+    // LP choice too (feasible: whole steps only) and is searched exactly.
+    const std::vector<int> core =
+        items.size() <= std::size_t(options.core_items)
+            ? [&] { std::vector<int> all(items.size()); std::iota(all.begin(), all.end(), 0); return all; }()
+            : core_items(items, steps, lp.break_ratio, options.core_items);
+    std::vector<int> choice = lp.choice;
+    double fixed_cost = 0, core_benefit = 0;
+    std::vector<char> in_core(items.size(), 0);
+    for (int i : core) in_core[std::size_t(i)] = 1;
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      const KnapsackChoice& c = items[i].choices[std::size_t(choice[i])];
+      if (in_core[i])
+        core_benefit += c.benefit;
+      else
+        fixed_cost += c.cost;
+    }
+    CoreSearch search(items, prepared, core, options.node_limit);
+    const bool finished = search.run(budget - fixed_cost, core_benefit - 1e-12, choice);
+    searched_all = finished && core.size() == items.size();
+    KnapsackSolution own = evaluate(items, std::move(choice));
+    if (own.benefit >= greedy.benefit) best = std::move(own);
   }
-
-  // Items outside the core keep their LP choice; the core starts from the LP
-  // choice too (feasible: whole steps only) and is searched exactly.
-  const std::vector<int> core =
-      items.size() <= std::size_t(options.core_items)
-          ? [&] { std::vector<int> all(items.size()); std::iota(all.begin(), all.end(), 0); return all; }()
-          : core_items(items, steps, lp.break_ratio, options.core_items);
-  std::vector<int> choice = lp.choice;
-  double fixed_cost = 0, core_benefit = 0;
-  std::vector<char> in_core(items.size(), 0);
-  for (int i : core) in_core[std::size_t(i)] = 1;
-  for (std::size_t i = 0; i < items.size(); ++i) {
-    const KnapsackChoice& c = items[i].choices[std::size_t(choice[i])];
-    if (in_core[i])
-      core_benefit += c.benefit;
-    else
-      fixed_cost += c.cost;
-  }
-  CoreSearch search(items, prepared, core, options.node_limit);
-  const bool finished = search.run(budget - fixed_cost, core_benefit - 1e-12, choice);
-
-  KnapsackSolution own = evaluate(items, std::move(choice));
-  KnapsackSolution best = own.benefit >= greedy.benefit ? std::move(own) : greedy;
   best.greedy_benefit = greedy.benefit;
   best.upper_bound = std::max(lp.value, best.benefit);
-  best.proven_optimal =
-      (finished && core.size() == items.size()) || best.benefit >= lp.value - tolerance;
+  best.proven_optimal = searched_all || best.benefit >= lp.value - tolerance;
   if (best.proven_optimal) best.upper_bound = best.benefit;
   return best;
 }

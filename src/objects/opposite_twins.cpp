@@ -49,17 +49,15 @@ std::size_t draw_opposite_twins_single_sided(RawModel& raw) {
     std::size_t triangle;
     auto tie() const { return std::tie(material, corners, triangle); }
   };
-  const std::size_t tris = raw.indices.size() / 3;
-  std::vector<std::array<Corner, 3>> canon(tris);
   std::vector<Entry> entries;
-  for (std::size_t t = 0; t < tris; ++t) {
+  for (std::size_t t = 0; t < raw.indices.size() / 3; ++t) {
     const int mat = raw.triangle_material[t];
     if (mat < 0 || std::size_t(mat) >= raw.materials.size() || !raw.materials[mat].double_sided)
       continue;
-    canon[t] = canonical(raw, t);
-    if (canon[t][0] == canon[t][1] || canon[t][1] == canon[t][2] || canon[t][0] == canon[t][2])
+    const std::array<Corner, 3> wound = canonical(raw, t);
+    if (wound[0] == wound[1] || wound[1] == wound[2] || wound[0] == wound[2])
       continue;  // degenerate: no sides
-    std::array<Corner, 3> key = canon[t];
+    std::array<Corner, 3> key = wound;
     if (key[2] < key[1]) std::swap(key[1], key[2]);
     entries.push_back({mat, key, t});
   }
@@ -67,33 +65,30 @@ std::size_t draw_opposite_twins_single_sided(RawModel& raw) {
             [](const Entry& a, const Entry& b) { return a.tie() < b.tie(); });
   std::vector<int> single_of(raw.materials.size(), -1);  // material -> its single-sided copy
   std::size_t paired = 0;
-  std::vector<std::size_t> list;
+  std::vector<bool> used(entries.size(), false);
   for (std::size_t first = 0, last = 0; first < entries.size(); first = last) {
     while (last < entries.size() && entries[last].material == entries[first].material &&
            entries[last].corners == entries[first].corners)
       ++last;
-    if (last - first < 2) continue;
-    list.clear();
-    for (std::size_t e = first; e < last; ++e) list.push_back(entries[e].triangle);
-    const int mat = entries[first].material;
-    // Each triangle with the first later one wound the other way, once.
-    std::vector<bool> used(list.size(), false);
-    for (std::size_t i = 0; i < list.size(); ++i) {
+    // Each triangle with the first later one wound the other way, once
+    // (the winding worked out again: few sets hold more than one).
+    for (std::size_t i = first; i + 1 < last; ++i) {
       if (used[i]) continue;
-      const std::array<Corner, 3>& a = canon[list[i]];
-      for (std::size_t j = i + 1; j < list.size(); ++j) {
-        const std::array<Corner, 3>& b = canon[list[j]];
+      const std::array<Corner, 3> a = canonical(raw, entries[i].triangle);
+      for (std::size_t j = i + 1; j < last; ++j) {
+        const std::array<Corner, 3> b = canonical(raw, entries[j].triangle);
         if (used[j] || b[1] != a[2] || b[2] != a[1]) continue;
         used[i] = used[j] = true;
-        if (single_of[std::size_t(mat)] < 0) {
-          Material copy = raw.materials[std::size_t(mat)];
+        const std::size_t mat = std::size_t(entries[i].material);
+        if (single_of[mat] < 0) {
+          Material copy = raw.materials[mat];
           copy.name += " (one side each)";
           copy.double_sided = false;
-          single_of[std::size_t(mat)] = int(raw.materials.size());
+          single_of[mat] = int(raw.materials.size());
           raw.materials.push_back(std::move(copy));
         }
-        raw.triangle_material[list[i]] = raw.triangle_material[list[j]] =
-            single_of[std::size_t(mat)];
+        raw.triangle_material[entries[i].triangle] = raw.triangle_material[entries[j].triangle] =
+            single_of[mat];
         paired += 2;
         break;
       }

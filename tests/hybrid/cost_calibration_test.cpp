@@ -12,28 +12,39 @@
 namespace terrasprite {
 namespace {
 
-TEST(CostCalibration, TheFlushIsNeitherADrawCallNorAnInstance) {
-  const double flush = 0.08, call = 0.002, per_triangle = 1e-4, per_pixel = 2e-6;
-  const int n = 8;
+// The made-up costs: a timed draw's flush, a draw call, an instance's
+// triangles and covered pixels; level l has 4000 / 2^l triangles.
+constexpr double flush = 0.08, call = 0.002, per_triangle = 1e-4, per_pixel = 2e-6;
+constexpr double small = 380, large = 45000;  // covered pixels at 22 and 360 px
+constexpr int n = 8;                          // the batch
+
+double triangles(int level) {
+  return 4000.0 / (1 << level);
+}
+
+/// Per mesh level below `levels`: one instance at two sizes; at the small
+/// size a batch of n in one call and the same n call by call.
+std::vector<CalibrationDraw> singles_and_batches(int levels) {
   std::vector<CalibrationDraw> draws;
-  for (int level = 0; level < 4; ++level) {
+  for (int level = 0; level < levels; ++level) {
     const Representation rep{ObjectKind::kMesh, level};
-    const double tris = 4000.0 / (1 << level);
+    const double tris = triangles(level);
     auto instance = [&](double px) { return per_triangle * tris + per_pixel * px; };
-    const double small = 380, large = 45000;
-    // One instance at two sizes; at the small size a batch of n in one call
-    // and the same n call by call.
     draws.push_back({0, rep, 22, tris, small, flush + call + instance(small)});
     draws.push_back({0, rep, 360, tris, large, flush + call + instance(large)});
     draws.push_back({0, rep, 22, tris, small, flush + call + n * instance(small), n});
     draws.push_back({0, rep, 22, tris, small, flush + n * call + n * instance(small), n, n});
   }
+  return draws;
+}
+
+TEST(CostCalibration, TheFlushIsNeitherADrawCallNorAnInstance) {
   DrawCostModel model;
-  fit_draw_costs(model, draws);
+  fit_draw_costs(model, singles_and_batches(4));
   EXPECT_NEAR(model.terms(ObjectKind::kMesh).per_draw_ms, call, 1e-9);
   for (int level = 0; level < 4; ++level) {
-    const double tris = 4000.0 / (1 << level);
-    for (double px : {0.0, 380.0, 45000.0})
+    const double tris = triangles(level);
+    for (double px : {0.0, small, large})
       EXPECT_NEAR(model.instance_ms({ObjectKind::kMesh, level}, tris, px, 0),
                   per_triangle * tris + per_pixel * px, 1e-9)
           << "level " << level << ", " << px << " px";
@@ -43,29 +54,25 @@ TEST(CostCalibration, TheFlushIsNeitherADrawCallNorAnInstance) {
 TEST(CostCalibration, ASpreadBatchSetsAMeshLevelsConstant) {
   // Levels 0 and 1 also have a batch of 24 spread over the image, where an
   // instance costs 1.5x its triangles alone (tiles not shared); 2 and 3 not.
-  const double flush = 0.08, call = 0.002, per_triangle = 1e-4, per_pixel = 2e-6;
-  const int n = 8, spread = 24;
-  const double small = 380, large = 45000;
-  std::vector<CalibrationDraw> draws;
-  for (int level = 0; level < 4; ++level) {
-    const Representation rep{ObjectKind::kMesh, level};
-    const double tris = 4000.0 / (1 << level);
-    auto instance = [&](double px) { return per_triangle * tris + per_pixel * px; };
-    draws.push_back({0, rep, 22, tris, small, flush + call + instance(small)});
-    draws.push_back({0, rep, 360, tris, large, flush + call + instance(large)});
-    draws.push_back({0, rep, 22, tris, small, flush + call + n * instance(small), n});
-    draws.push_back({0, rep, 22, tris, small, flush + n * call + n * instance(small), n, n});
-    if (level < 2)
-      draws.push_back({0, rep, 22, tris, small,
-                       flush + call + spread * (1.5 * per_triangle * tris + per_pixel * small),
-                       spread, 1, true});
-  }
+  const int spread = 24;
+  std::vector<CalibrationDraw> draws = singles_and_batches(4);
+  for (int level = 0; level < 2; ++level)
+    draws.push_back(
+        {0,
+         {ObjectKind::kMesh, level},
+         22,
+         triangles(level),
+         small,
+         flush + call + spread * (1.5 * per_triangle * triangles(level) + per_pixel * small),
+         spread,
+         1,
+         true});
   DrawCostModel model;
   fit_draw_costs(model, draws);
   // The spread batch does not disturb the call or the overhead.
   EXPECT_NEAR(model.terms(ObjectKind::kMesh).per_draw_ms, call, 1e-9);
   for (int level = 0; level < 4; ++level) {
-    const double tris = 4000.0 / (1 << level);
+    const double tris = triangles(level);
     const double alone = per_triangle * tris + per_pixel * small;
     const double spread_one = 1.5 * per_triangle * tris + per_pixel * small;
     // (batch - one alone) / (n - 1): the marginal spread instance.
@@ -80,19 +87,8 @@ TEST(CostCalibration, ASpreadBatchSetsAMeshLevelsConstant) {
 TEST(CostCalibration, APairFromAboveSetsALevelsCulledFraction) {
   // Level 0 timed from above with its hidden back faces drawn and culled
   // (24 spread instances, one flush each): culled, an instance costs 60%.
-  const double flush = 0.08, call = 0.002, per_triangle = 1e-4, per_pixel = 2e-6;
-  const int n = 8, spread = 24;
-  const double small = 380, large = 45000;
-  std::vector<CalibrationDraw> draws;
-  for (int level = 0; level < 2; ++level) {
-    const Representation rep{ObjectKind::kMesh, level};
-    const double tris = 4000.0 / (1 << level);
-    auto instance = [&](double px) { return per_triangle * tris + per_pixel * px; };
-    draws.push_back({0, rep, 22, tris, small, flush + call + instance(small)});
-    draws.push_back({0, rep, 360, tris, large, flush + call + instance(large)});
-    draws.push_back({0, rep, 22, tris, small, flush + call + n * instance(small), n});
-    draws.push_back({0, rep, 22, tris, small, flush + n * call + n * instance(small), n, n});
-  }
+  const int spread = 24;
+  std::vector<CalibrationDraw> draws = singles_and_batches(2);
   const Representation level0{ObjectKind::kMesh, 0};
   const double drawn = spread * 1.5 * per_triangle * 4000;
   draws.push_back({0, level0, 22, 4000, small, flush + call + drawn, spread, 1, true, true, false});
@@ -103,7 +99,7 @@ TEST(CostCalibration, APairFromAboveSetsALevelsCulledFraction) {
   // The pair is neither a spread batch nor a draw of one: the rest is as before.
   EXPECT_NEAR(model.terms(ObjectKind::kMesh).per_draw_ms, call, 1e-9);
   for (int level = 0; level < 2; ++level) {
-    const double tris = 4000.0 / (1 << level);
+    const double tris = triangles(level);
     const Representation rep{ObjectKind::kMesh, level};
     const double alone = per_triangle * tris + per_pixel * large;
     EXPECT_NEAR(model.instance_ms(rep, tris, large, 0), alone, 1e-9);

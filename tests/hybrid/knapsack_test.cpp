@@ -23,22 +23,35 @@ double total_cheapest(const std::vector<KnapsackItem>& items) {
   return cheapest(items).cost;
 }
 
+/// One of 300 small instances (6 items x 4 choices, a seeded budget over
+/// the cheapest), with brute force's and greedy's answers to it.
+struct SmallCase {
+  std::vector<KnapsackItem> items;
+  double budget = 0;
+  KnapsackSolution brute, greedy;
+};
+
+SmallCase small_case(unsigned seed) {
+  SmallCase c;
+  c.items = random_items(6, 4, seed);
+  std::mt19937 rng(seed + 1000);
+  c.budget = total_cheapest(c.items) + std::uniform_real_distribution<double>(0, 15)(rng);
+  c.brute = brute_force_knapsack(c.items, c.budget);
+  c.greedy = greedy_knapsack(c.items, c.budget);
+  return c;
+}
+
 TEST(Knapsack, OptimalMatchesBruteForceAndGreedyNeverBeatsIt) {
   OptimalOptions exact;
   exact.gap = 0;
   for (unsigned seed = 1; seed <= 300; ++seed) {
-    const auto items = random_items(6, 4, seed);
-    std::mt19937 rng(seed + 1000);
-    const double budget =
-        total_cheapest(items) + std::uniform_real_distribution<double>(0, 15)(rng);
-    const KnapsackSolution brute = brute_force_knapsack(items, budget);
-    const KnapsackSolution opt = optimal_knapsack(items, budget, exact);
-    const KnapsackSolution greedy = greedy_knapsack(items, budget);
-    ASSERT_NEAR(opt.benefit, brute.benefit, 1e-9) << "seed " << seed;
-    EXPECT_LE(opt.cost, budget + 1e-12) << "seed " << seed;
+    const SmallCase c = small_case(seed);
+    const KnapsackSolution opt = optimal_knapsack(c.items, c.budget, exact);
+    ASSERT_NEAR(opt.benefit, c.brute.benefit, 1e-9) << "seed " << seed;
+    EXPECT_LE(opt.cost, c.budget + 1e-12) << "seed " << seed;
     EXPECT_TRUE(opt.proven_optimal) << "seed " << seed;
-    EXPECT_LE(greedy.benefit, opt.benefit + 1e-12) << "seed " << seed;
-    EXPECT_LE(greedy.cost, budget + 1e-12) << "seed " << seed;
+    EXPECT_LE(c.greedy.benefit, opt.benefit + 1e-12) << "seed " << seed;
+    EXPECT_LE(c.greedy.cost, c.budget + 1e-12) << "seed " << seed;
   }
 }
 
@@ -50,18 +63,13 @@ TEST(Knapsack, WithinTheStatedGapOfBruteForce) {
   wide.gap = 0.05;
   int shortcuts = 0;
   for (unsigned seed = 1; seed <= 300; ++seed) {
-    const auto items = random_items(6, 4, seed);
-    std::mt19937 rng(seed + 1000);
-    const double budget =
-        total_cheapest(items) + std::uniform_real_distribution<double>(0, 15)(rng);
-    const KnapsackSolution brute = brute_force_knapsack(items, budget);
-    const KnapsackSolution opt = optimal_knapsack(items, budget, wide);
-    const KnapsackSolution greedy = greedy_knapsack(items, budget);
-    EXPECT_GE(opt.benefit, 0.95 * brute.benefit - 1e-9) << "seed " << seed;
-    EXPECT_GE(opt.benefit, greedy.benefit - 1e-12) << "seed " << seed;
-    EXPECT_GE(opt.upper_bound, brute.benefit - 1e-9) << "seed " << seed;
-    EXPECT_LE(opt.cost, budget + 1e-12) << "seed " << seed;
-    if (opt.benefit < brute.benefit - 1e-9) ++shortcuts;
+    const SmallCase c = small_case(seed);
+    const KnapsackSolution opt = optimal_knapsack(c.items, c.budget, wide);
+    EXPECT_GE(opt.benefit, 0.95 * c.brute.benefit - 1e-9) << "seed " << seed;
+    EXPECT_GE(opt.benefit, c.greedy.benefit - 1e-12) << "seed " << seed;
+    EXPECT_GE(opt.upper_bound, c.brute.benefit - 1e-9) << "seed " << seed;
+    EXPECT_LE(opt.cost, c.budget + 1e-12) << "seed " << seed;
+    if (opt.benefit < c.brute.benefit - 1e-9) ++shortcuts;
   }
   EXPECT_GT(shortcuts, 0);  // the gap was used
 }

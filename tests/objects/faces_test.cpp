@@ -221,9 +221,7 @@ TEST(Faces, OppositeTwinsAreDrawnSingleSidedAndLookTheSame) {
 TEST(Faces, ForestLooksTheSameWithItsTwinsSingleSided) {
   const std::string data = tstest::shared_data();
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
-  ts::ModelOptions o;
-  o.height_m = 10;
-  const ts::Model forest = ts::load_model(data + "/models_kenney_racing/decoration-forest.glb", o);
+  const ts::Model forest = tstest::forest_10m(data);
   long long single_sided = 0;
   for (const ts::MeshPart& p : forest.parts)
     if (!forest.materials[std::size_t(p.material)].double_sided) single_sided += p.index_count / 3;
@@ -334,9 +332,7 @@ TEST(Faces, ForestSeenFromAboveLooksTheSameWithoutBackFaces) {
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
   ts::GlContext ctx;
   ts::gl::RenderTarget target(160, 90);
-  ts::ModelOptions o;
-  o.height_m = 10;
-  const ts::Model forest = ts::load_model(data + "/models_kenney_racing/decoration-forest.glb", o);
+  const ts::Model forest = tstest::forest_10m(data);
   std::vector<ts::LodLevel> chain = ts::build_lod_chain(forest);
   chain.resize(1);  // level 0 only: the simplification is not under test
   ts::GlModel gl(forest, std::move(chain));

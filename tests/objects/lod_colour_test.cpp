@@ -8,9 +8,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "object_test_util.h"
 #include "terrasprite/lod_chain.h"
 #include "terrasprite/model.h"
-#include "test_util.h"
 
 namespace ts = terrasprite;
 
@@ -104,9 +104,7 @@ TEST(LodChainColour, SloppyLevelsKeepUvIslands) {
 TEST(LodChainColour, ForestSwatches) {
   const std::string data = tstest::shared_data();
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
-  ts::ModelOptions o;
-  o.height_m = 10.0;
-  const ts::Model m = ts::load_model(data + "/models_kenney_racing/decoration-forest.glb", o);
+  const ts::Model m = tstest::forest_10m(data);
   const std::vector<ts::LodLevel> chain = ts::build_lod_chain(m);
   for (std::size_t l = 0; l < chain.size(); ++l) {
     const ts::LodLevel& lv = chain[l];

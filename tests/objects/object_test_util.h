@@ -13,6 +13,14 @@
 
 namespace tstest {
 
+/// The default scene's forest (Kenney decoration-forest.glb), 10 m tall as
+/// the scene places it, from `data` (tstest::shared_data(), not empty).
+inline terrasprite::Model forest_10m(const std::string& data) {
+  terrasprite::ModelOptions o;
+  o.height_m = 10;
+  return terrasprite::load_model(data + "/models_kenney_racing/decoration-forest.glb", o);
+}
+
 /// A square pyramid (a 6-triangle "tower", model "t") written into `dir`, in
 /// a scene with the given model keys (height, colour) and instances (a JSON
 /// array), placed on `terrain`.

@@ -17,6 +17,7 @@
 #include "bench_commands.h"
 #include "cli_common.h"
 #include "hybrid_bench.h"
+#include "llvmpipe_threads.h"
 #include "objects_table.h"
 #include "terrasprite/camera_path.h"
 #include "terrasprite/cost_calibration.h"
@@ -52,6 +53,7 @@ struct HybridArgs {
   std::string budget_sweep, budget_fractions = "0.05,0.1,0.15,0.2,0.3,0.5";
   int cost_split = 0;
   std::string quality_diagnosis, diagnosis_conditions = "scene,sky", diagnosis_images;
+  std::string llvmpipe_threads = "auto";
 };
 
 /// Keeps `count` instances (0: all), drawn at random (seeded) so the model mix stays.
@@ -208,6 +210,9 @@ void run_bench(const HybridArgs& a) {
           fmt::format("--target-ms {}: not a positive number of milliseconds or auto", a.target));
   }
   if (!(a.full_over_target >= 1)) throw InputError("--full-over-target must be at least 1");
+  // Before the GL context below, the first of this process.
+  const std::optional<std::string> llvmpipe_threads =
+      apply_llvmpipe_threads(a.llvmpipe_threads, "--llvmpipe-threads");
   const std::vector<TableOptions> table_sampling = table_options(a);
   const Terrain terrain = load_terrain_verbose(a.terrain);
   check_lod_quads(a.terrain_quads, terrain.heights, "--terrain-quads");
@@ -315,6 +320,7 @@ void run_bench(const HybridArgs& a) {
   }
 
   result.gl_renderer = gl.renderer();
+  result.llvmpipe_threads = llvmpipe_threads;
   result.width = w;
   result.height = h;
   result.instances = int(set.instance_count());
@@ -514,6 +520,12 @@ void add_bench_hybrid(CLI::App& bench) {
                   "read-back's pace (its log slope, fitted online; 0: not at all)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 10.0));
+  cmd->add_option("--llvmpipe-threads", a->llvmpipe_threads,
+                  "llvmpipe's rasteriser threads (LP_NUM_THREADS; other drivers ignore it): a "
+                  "count (0: on the drawing thread), driver (the environment's, else one per "
+                  "core), or auto (the environment's if set, else 0 on at most 2 hardware "
+                  "threads, where it keeps frame times tight)")
+      ->capture_default_str();
   cmd->add_option("--frames", a->frames, "frames along the path")
       ->capture_default_str()
       ->check(CLI::Range(2, 100000));

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,8 @@ struct SelectionFigures {
 
 struct HybridBenchResult {
   std::string gl_renderer;
+  /// LP_NUM_THREADS as the run had it (apply_llvmpipe_threads), or nullopt: unset.
+  std::optional<std::string> llvmpipe_threads;
   double target_ms = 0;
   int width = 0, height = 0;
   int frames = 0, instances = 0, score_every = 1;

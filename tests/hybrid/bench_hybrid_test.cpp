@@ -5,10 +5,12 @@
 // occlusion culling; no timing is asserted.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <thread>
 #include <vector>
 
 #include "test_util.h"
@@ -42,6 +44,15 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "h.json"));
   for (const char* k : {"target_ms", "size", "scenarios", "full_triangles_max", "selection"})
     EXPECT_TRUE(j.contains(k)) << k;
+  // --llvmpipe-threads auto: the environment's LP_NUM_THREADS when set, else 0
+  // on a machine of at most two hardware threads (CI's), the driver's on more.
+  ASSERT_TRUE(j.contains("llvmpipe_threads"));
+  if (const char* env = std::getenv("LP_NUM_THREADS"))
+    EXPECT_EQ(j["llvmpipe_threads"], env);
+  else if (std::thread::hardware_concurrency() <= 2)
+    EXPECT_EQ(j["llvmpipe_threads"], "0");
+  else
+    EXPECT_TRUE(j["llvmpipe_threads"].is_null());
   std::set<std::string> names;
   for (const auto& s : j["scenarios"]) {
     names.insert(s["name"].get<std::string>());
@@ -92,10 +103,13 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
 
   // Without the culling (same tables, from the cache: about a second) nothing
   // is hidden and there is no full-culled scenario.
-  const tstest::CliResult nc = tstest::run_cli(args + " --no-occlusion-cull --json " +
-                                               (dir / "n.json") + " --out " + (dir / "n"));
+  // An explicit thread count is what the run records (and llvmpipe reads).
+  const tstest::CliResult nc =
+      tstest::run_cli(args + " --no-occlusion-cull --llvmpipe-threads 1 --json " +
+                      (dir / "n.json") + " --out " + (dir / "n"));
   ASSERT_EQ(nc.status, 0) << nc.output;
   const nlohmann::json nj = nlohmann::json::parse(std::ifstream(dir / "n.json"));
+  EXPECT_EQ(nj["llvmpipe_threads"], "1");
   ASSERT_EQ(nj["scenarios"].size(), 5u);
   for (const auto& s : nj["scenarios"]) {
     EXPECT_NE(s["name"], "full-culled");
@@ -148,7 +162,8 @@ TEST(BenchHybrid, BadInputExitsTwoWithoutOutput) {
   for (const std::string& bad : std::vector<std::string>{
            "--target-ms 0", "--path " + (dir / "path.json"), "--size 0x0",
            "--budget-fractions 0.1,x", "--diagnosis-conditions scene,moon", "--cull-px -1",
-           "--p95-margin -1", "--cost-split 3", "--cost-split -1"}) {
+           "--p95-margin -1", "--cost-split 3", "--cost-split -1", "--llvmpipe-threads x",
+           "--llvmpipe-threads -1", "--llvmpipe-threads 33", "--llvmpipe-threads 2x"}) {
     const tstest::CliResult r =
         tstest::run_cli("bench hybrid --frames 4 " + bad + " --out " + (dir / "o"));
     EXPECT_EQ(r.status, 2) << bad << ": " << r.output;

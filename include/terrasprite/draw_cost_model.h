@@ -74,13 +74,18 @@ struct FrameLoad {
 struct CostModelOptions {
   /// Online refit: recursive least squares with this forgetting factor per
   /// observed frame (1 = never forget).
-  double forgetting = 0.95;
+  double forgetting = 0.98;
   /// Prior standard deviation of each term as a fraction of its calibrated
   /// value: how far the evidence may move it.
   double prior_fraction = 0.5;
   /// Measurement noise of one frame time, as a fraction of the frame: how
   /// much one frame is trusted.
-  double noise_fraction = 0.15;
+  double noise_fraction = 0.25;
+  /// Per observed frame, each drawn term's multiplier keeps this fraction of
+  /// its distance from the frame's mean multiplier (its predicted over its
+  /// calibrated time), which stays: the calibrated ratios between terms are
+  /// trusted, the machine's pace is learnt whole. 1 turns it off.
+  double spread_retention = 0.95;
   /// Per impostor kind, an extra cost per instance drawn, learnt from the
   /// frames only (prior 0, standard deviation `impostor_extra_prior_ms`,
   /// never negative). An impostor costs more inside a frame than calibrated

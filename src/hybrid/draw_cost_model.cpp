@@ -255,6 +255,28 @@ void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
     predicted += z[std::size_t(i)] * multipliers_[std::size_t(i)];
   }
   if (!(predicted > 0) || !(measured_ms > 0)) return;
+  // The frame term and the kinds' terms rise and fall together in a closed
+  // loop, so a few noisy frames can trade one for another without changing
+  // the frame's prediction: simulated 160-frame runs at 22% frame noise left
+  // the meshes' multiplier at its 0.05 floor in 6 of 40. Their spread about
+  // the frame's mean multiplier is drawn in first (this frame's prediction
+  // stays as it was); a pace every term shares is kept whole.
+  if (options_.spread_retention < 1) {
+    double calibrated = 0;
+    for (int i = 0; i < kTerms; ++i)
+      if (in[std::size_t(i)] && !is_extra(i)) calibrated += z[std::size_t(i)];
+    double refit = 0;
+    for (int i = 0; i < kTerms; ++i)
+      if (in[std::size_t(i)] && !is_extra(i))
+        refit += z[std::size_t(i)] * multipliers_[std::size_t(i)];
+    if (calibrated > 0) {
+      const double mean = refit / calibrated;
+      for (int i = 0; i < kTerms; ++i)
+        if (in[std::size_t(i)] && !is_extra(i))
+          multipliers_[std::size_t(i)] =
+              mean + options_.spread_retention * (multipliers_[std::size_t(i)] - mean);
+    }
+  }
   // Relative residual, so one frame weighs the same at 10 ms and at 1 s.
   const double noise = predicted * predicted * options_.noise_fraction * options_.noise_fraction;
   const double lambda = options_.forgetting;

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
 #include <cstdlib>
 #include <thread>
 
@@ -21,14 +22,10 @@ std::optional<std::string> apply_llvmpipe_threads(const std::string& setting, co
     const unsigned cores = std::thread::hardware_concurrency();
     if (!env && cores > 0 && cores <= 2) count = 0;
   } else if (setting != "driver") {
-    std::size_t used = 0;
     int v = -1;
-    try {
-      v = std::stoi(setting, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != setting.size() || v < 0 || v > 32)
+    const char* const last = setting.data() + setting.size();
+    const auto [end, error] = std::from_chars(setting.data(), last, v);
+    if (error != std::errc() || end != last || v < 0 || v > 32)
       throw InputError(
           fmt::format("{} {}: not a thread count 0-32, auto or driver", option, setting));
     count = v;

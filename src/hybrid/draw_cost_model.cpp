@@ -262,13 +262,12 @@ void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
   // the frame's mean multiplier is drawn in first (this frame's prediction
   // stays as it was); a pace every term shares is kept whole.
   if (options_.spread_retention < 1) {
-    double calibrated = 0;
+    double calibrated = 0, refit = 0;  // a term not in the frame has z = 0
     for (int i = 0; i < kTerms; ++i)
-      if (in[std::size_t(i)] && !is_extra(i)) calibrated += z[std::size_t(i)];
-    double refit = 0;
-    for (int i = 0; i < kTerms; ++i)
-      if (in[std::size_t(i)] && !is_extra(i))
+      if (!is_extra(i)) {
+        calibrated += z[std::size_t(i)];
         refit += z[std::size_t(i)] * multipliers_[std::size_t(i)];
+      }
     if (calibrated > 0) {
       const double mean = refit / calibrated;
       for (int i = 0; i < kTerms; ++i)

@@ -56,6 +56,7 @@ struct HybridBenchResult {
   std::string gl_renderer;
   /// LP_NUM_THREADS as the run had it (apply_llvmpipe_threads), or nullopt: unset.
   std::optional<std::string> llvmpipe_threads;
+  int msaa = 1;  ///< samples a pixel of every image drawn (--msaa)
   double target_ms = 0;
   int width = 0, height = 0;
   int frames = 0, instances = 0, score_every = 1;
@@ -128,6 +129,7 @@ struct QualityDiagnosisInput {
   /// The tables in context (calibrate_tables_in_context), when measured:
   /// their prediction is reported next to the raw tables'.
   const std::vector<QualityTable>* context_tables = nullptr;
+  int samples = 1;  ///< a pixel's, as the walkthrough draws (RasterOptions::samples)
 };
 /// Per checkpoint, on-screen size bucket and representation: the tables'
 /// predicted SSIM against the one measured (hybrid_quality_diagnosis.cpp).
@@ -140,6 +142,7 @@ struct QualityContextInput {
   std::vector<Camera> cameras;  ///< walkthrough views (not the checkpoints')
   int width = 0, height = 0, terrain_quads = 64;
   double max_impostor_size_px = 0;  ///< as HybridOptions: impostors not offered past it
+  int samples = 1;                  ///< a pixel's, as the walkthrough draws
 };
 /// The tables in context: at each camera, each model's visible instances are
 /// drawn over the terrain at full geometry and at each representation of
@@ -172,6 +175,7 @@ struct BudgetSweepInput {
   /// per kind drawn, `predicted_ms`, `alone_ms`, `in_frame_ms`), over this
   /// many interleaved rounds of redraws.
   int cost_split_rounds = 0;
+  int samples = 1;  ///< a pixel's, as the walkthrough draws
 };
 /// Quality against budget, without the controller: at each checkpoint each
 /// scenario selects once under a fixed budget (a fraction of full

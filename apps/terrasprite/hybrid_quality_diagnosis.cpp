@@ -90,10 +90,10 @@ struct Shot {
 /// tables do) and reads colour and depth back.
 class Shooter {
  public:
-  Shooter(Scene& ground, int w, int h, int quads, bool sky)
+  Shooter(Scene& ground, int w, int h, int quads, bool sky, int samples)
       : ground_(ground),
-        terrain_(ground, w, h, quads, hybrid_terrain_raster()),
-        target_(w, h),
+        terrain_(ground, w, h, quads, hybrid_terrain_raster(samples)),
+        target_(w, h, samples),
         sky_(sky) {}
   Shot shoot(SceneObjects& objects, const Camera& cam, int repeats = 1) {
     Shot s;
@@ -278,7 +278,8 @@ nlohmann::json diagnose_hybrid_quality(const QualityDiagnosisInput& in) {
   for (const std::string& condition : in.conditions) {
     const int scale = condition == "scene4" ? 4 : 1;
     const int h = in.height * scale;
-    Shooter shooter(in.ground, in.width * scale, h, in.terrain_quads, condition == "sky");
+    Shooter shooter(in.ground, in.width * scale, h, in.terrain_quads, condition == "sky",
+                    in.samples);
     for (const PathCheckpoint& cp : in.checkpoints) {
       const Camera& cam = in.path[std::size_t(cp.frame)];
       const std::vector<Item> all = visible_items(set, cam, h);
@@ -365,7 +366,7 @@ nlohmann::json calibrate_tables_in_context(const QualityContextInput& in,
   // Observations per model and representation (the table's row index).
   std::vector<std::vector<std::vector<QualityObservation>>> obs(tables.size());
   for (std::size_t m = 0; m < tables.size(); ++m) obs[m].resize(tables[m].representations.size());
-  Shooter shooter(in.ground, in.width, in.height, in.terrain_quads, false);
+  Shooter shooter(in.ground, in.width, in.height, in.terrain_quads, false, in.samples);
   for (const Camera& cam : in.cameras) {
     const std::vector<Item> all = visible_items(set, cam, in.height);
     const std::vector<Item> none;
@@ -431,7 +432,7 @@ nlohmann::json calibrate_tables_in_context(const QualityContextInput& in,
 
 nlohmann::json quality_budget_sweep(const BudgetSweepInput& in) {
   nlohmann::json out = nlohmann::json::array();
-  Shooter shooter(in.ground, in.width, in.height, in.terrain_quads, false);
+  Shooter shooter(in.ground, in.width, in.height, in.terrain_quads, false, in.samples);
   // The budget fractions are of full geometry's predicted time.
   const HybridScenario full_scenario = full_geometry_scenario();
   HybridOptions o = in.options;

@@ -141,6 +141,7 @@ nlohmann::json hybrid_json(const HybridBenchResult& r) {
   }
   const SelectionFigures& f = r.selection;
   nlohmann::json j = {{"gl_renderer", r.gl_renderer},
+                      {"msaa", r.msaa},
                       {"llvmpipe_threads",
                        r.llvmpipe_threads ? nlohmann::json(*r.llvmpipe_threads) : nlohmann::json()},
                       {"target_ms", r.target_ms},
@@ -192,10 +193,10 @@ void write_hybrid_report(const HybridBenchResult& r, OutputDir& out) {
     << fmt::format(
            "<h1>Hybrid objects walkthrough</h1><p>{} instances, {} x {}, {} frames (full geometry "
            "and "
-           "scores every {} frames), target {} ms, terrain alone {:.1f} ms; {}, LP_NUM_THREADS "
-           "{}.</p>\n",
-           r.instances, r.width, r.height, r.frames, r.score_every, r.target_ms, r.terrain_ms,
-           r.gl_renderer, r.llvmpipe_threads.value_or("unset"));
+           "scores every {} frames), {} sample{} a pixel, target {} ms, terrain alone {:.1f} ms; "
+           "{}, LP_NUM_THREADS {}.</p>\n",
+           r.instances, r.width, r.height, r.frames, r.score_every, r.msaa, r.msaa > 1 ? "s" : "",
+           r.target_ms, r.terrain_ms, r.gl_renderer, r.llvmpipe_threads.value_or("unset"));
   if (!plot_error.empty()) h << "<p><b>Plots missing:</b> " << plot_error << "</p>\n";
   h << scenario_table_html(r);
   h << fmt::format(

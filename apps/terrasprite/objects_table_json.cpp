@@ -134,6 +134,7 @@ std::string table_cache_key(const std::string& model_file, const ModelOptions& m
                         fmt::join(o.sizes_px, ","), o.angle_step_deg, o.full_sphere, o.views,
                         o.timing_instances, fmt::join(o.ssim_targets, ","),
                         fmt::join(o.psnr_targets, ","));
+  if (o.samples > 1) params += fmt::format("|ms{}", o.samples);  // single-sampled keys as before
   return model_source_key(model_file, m) + fmt::format("{:016x}", fnv1a(params));
 }
 

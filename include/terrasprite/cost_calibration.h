@@ -15,8 +15,9 @@
 namespace terrasprite {
 
 struct CostCalibrationOptions {
-  int width = 1280, height = 720;                 ///< the image the frames are drawn in
-  double fov_y_deg = 60;                          ///< the walkthrough camera's
+  int width = 1280, height = 720;  ///< the image the frames are drawn in
+  int samples = 1;                 ///< its samples a pixel (MSAA), 1 to GL_MAX_SAMPLES
+  double fov_y_deg = 60;           ///< the walkthrough camera's
   std::vector<int> sizes_px{48, 192, 768, 1536};  ///< bounding-sphere diameters on screen
   int repeats = 3;                                ///< median of this many timed draws
   /// An impostor's per-pixel work does not depend on the model it shows (a

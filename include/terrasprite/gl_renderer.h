@@ -37,12 +37,14 @@ class GlRenderer : public Renderer {
   /// the renderer's; the projection keeps the camera's aspect); std::nullopt
   /// returns to the own target. Read-back then reads `target`.
   void set_output(std::optional<GlTarget> target);
-  /// The own target's colour texture (sky transparent on LOD-sprite keyframes).
+  /// The own target's colour texture (sky transparent on LOD-sprite keyframes),
+  /// resolved first when the target is multisampled.
   unsigned color_texture() const;
   void read_back(Frame& frame, ReadBack what) override;
 
  protected:
-  GlRenderer(int width, int height);
+  /// `samples` > 1: the own target is multisampled (gl::RenderTarget).
+  GlRenderer(int width, int height, int samples = 1);
   /// Binds the output framebuffer and sets every GL state the renderers rely
   /// on (viewport, zero-to-one clip control, reversed-Z depth test and write,
   /// no blending, culling, scissor or stencil, full colour mask), then clears

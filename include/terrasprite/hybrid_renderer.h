@@ -17,15 +17,17 @@
 namespace terrasprite {
 
 /// How the walkthrough's terrain is rasterised: by every scenario, and by
-/// anything that must draw the same views (the quality diagnosis' shots).
-RasterOptions hybrid_terrain_raster();
+/// anything that must draw the same views (the quality diagnosis' shots),
+/// with `samples` a pixel (RasterOptions::samples).
+RasterOptions hybrid_terrain_raster(int samples = 1);
 
 class HybridRenderer : public Renderer {
  public:
   /// `objects` may be null (terrain alone). `scene`, `objects` must outlive
-  /// it. Needs a current GL context. Throws InputError for a bad `quads`.
+  /// it. Needs a current GL context. Throws InputError for a bad `quads` or
+  /// `samples` (a pixel's, as RasterOptions::samples).
   HybridRenderer(Scene& scene, HybridObjects* objects, std::string name, int width, int height,
-                 int terrain_quads = 64);
+                 int terrain_quads = 64, int samples = 1);
   ~HybridRenderer() override;
   Frame draw(const Camera& camera) override;
   void read_back(Frame& frame, ReadBack what) override;

@@ -38,6 +38,10 @@ struct RasterOptions {
   /// against 2.4. Off by default: a camera under the drawn surface (a path
   /// at human height over a coarse grid) would see through it.
   bool cull_back_faces = false;
+  /// Samples a pixel of the own target (MSAA), 1 to GL_MAX_SAMPLES (4 on
+  /// llvmpipe); other counts throw InputError. Edges smaller than a pixel
+  /// then show as coverage, not as a staircase that moves with the camera.
+  int samples = 1;
 };
 
 /// Draws one grid mesh of `scene` with one indexed draw call into a

@@ -23,6 +23,9 @@ struct TableOptions {
   bool full_sphere = false;  ///< theta up to 180 (from below too)
   int views = 12;            ///< octahedral views per side
   int timing_instances = 1;  ///< instances drawn (3 times, median) to time a representation
+  /// Samples a pixel (MSAA) of every image drawn, the reference's included:
+  /// 1 to GL_MAX_SAMPLES, as the scene that uses the table draws.
+  int samples = 1;
   std::vector<double> ssim_targets{0.90, 0.95, 0.98, 0.99};
   std::vector<double> psnr_targets{20, 25, 30, 35};
 };

@@ -57,6 +57,14 @@ struct FramebufferTraits {
   }
   static void destroy(GLuint i) { glDeleteFramebuffers(1, &i); }
 };
+struct RenderbufferTraits {
+  static GLuint create() {
+    GLuint i;
+    glCreateRenderbuffers(1, &i);
+    return i;
+  }
+  static void destroy(GLuint i) { glDeleteRenderbuffers(1, &i); }
+};
 struct VertexArrayTraits {
   static GLuint create() {
     GLuint i;
@@ -81,6 +89,7 @@ struct ProgramTraits {
 using Buffer = Object<BufferTraits>;
 using Texture = Object<TextureTraits>;
 using Framebuffer = Object<FramebufferTraits>;
+using Renderbuffer = Object<RenderbufferTraits>;
 using VertexArray = Object<VertexArrayTraits>;
 using Query = Object<QueryTraits>;
 using Program = Object<ProgramTraits>;

@@ -12,8 +12,9 @@ struct GlRenderer::Base {
   gl::FrameTimer timer;
 };
 
-GlRenderer::GlRenderer(int width, int height)
-    : base_(std::make_unique<Base>(Base{gl::RenderTarget(width, height), std::nullopt, {}})) {}
+GlRenderer::GlRenderer(int width, int height, int samples)
+    : base_(std::make_unique<Base>(
+          Base{gl::RenderTarget(width, height, samples), std::nullopt, {}})) {}
 
 GlRenderer::~GlRenderer() = default;
 
@@ -34,6 +35,7 @@ void GlRenderer::set_output(std::optional<GlTarget> target) {
 }
 
 unsigned GlRenderer::color_texture() const {
+  base_->own.resolve();
   return base_->own.color_texture();
 }
 

@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: MIT
 #include "gl/render_target.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
+#include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "terrasprite/frame.h"
 
@@ -16,7 +19,17 @@ glm::dmat4 projection_reversed_z(const Camera& c) {
   return glm::perspectiveRH_ZO(glm::radians(c.fov_y_deg), c.aspect, c.far_m, c.near_m);
 }
 
-RenderTarget::RenderTarget(int width, int height) : width_(width), height_(height) {
+int max_samples() {
+  GLint n = 1;
+  glGetIntegerv(GL_MAX_SAMPLES, &n);
+  return std::max(1, int(n));
+}
+
+RenderTarget::RenderTarget(int width, int height, int samples)
+    : width_(width), height_(height), samples_(samples) {
+  if (samples < 1 || samples > max_samples())
+    throw std::invalid_argument("render target: " + std::to_string(samples) + " samples (1 to " +
+                                std::to_string(max_samples()) + " here)");
   glTextureStorage2D(color_.id(), 1, GL_RGBA8, width, height);
   glTextureStorage2D(depth_.id(), 1, GL_DEPTH_COMPONENT32F, width, height);
   for (GLuint t : {color_.id(), depth_.id()}) {
@@ -29,6 +42,23 @@ RenderTarget::RenderTarget(int width, int height) : width_(width), height_(heigh
   glNamedFramebufferTexture(fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
   if (glCheckNamedFramebufferStatus(fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::logic_error("render target framebuffer incomplete");
+  if (samples_ > 1) {
+    glNamedRenderbufferStorageMultisample(ms_color_.id(), samples_, GL_RGBA8, width, height);
+    glNamedRenderbufferStorageMultisample(ms_depth_.id(), samples_, GL_DEPTH_COMPONENT32F, width,
+                                          height);
+    glNamedFramebufferRenderbuffer(ms_fbo_.id(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                                   ms_color_.id());
+    glNamedFramebufferRenderbuffer(ms_fbo_.id(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                   ms_depth_.id());
+    if (glCheckNamedFramebufferStatus(ms_fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw std::logic_error("multisampled render target framebuffer incomplete");
+  }
+}
+
+void RenderTarget::resolve() const {
+  if (samples_ > 1)
+    glBlitNamedFramebuffer(ms_fbo_.id(), fbo_.id(), 0, 0, width_, height_, 0, 0, width_, height_,
+                           GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
 }
 
 void bind_for_drawing(GLuint fbo, int width, int height) {
@@ -61,12 +91,26 @@ void bind_for_reading(GLuint fbo) {
     glNamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
   }
 }
+
+// glReadPixels cannot read a multisampled framebuffer: `fbo`'s resolved copy
+// when it is one (held by `copy`), else `fbo` itself.
+GLuint readable(GLuint fbo, int width, int height, std::optional<RenderTarget>& copy) {
+  if (fbo == 0) return 0;
+  GLint samples = 0;
+  glGetNamedFramebufferParameteriv(fbo, GL_SAMPLES, &samples);
+  if (samples <= 1) return fbo;
+  copy.emplace(width, height);
+  glBlitNamedFramebuffer(fbo, copy->framebuffer(), 0, 0, width, height, 0, 0, width, height,
+                         GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  return copy->framebuffer();
+}
 }  // namespace
 
 Image read_color(GLuint fbo, int width, int height) {
   Image img(width, height);
   std::vector<std::uint8_t> raw(img.rgba.size());
-  bind_for_reading(fbo);
+  std::optional<RenderTarget> copy;
+  bind_for_reading(readable(fbo, width, height, copy));
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
   const std::size_t row = static_cast<std::size_t>(width) * 4;
@@ -77,7 +121,8 @@ Image read_color(GLuint fbo, int width, int height) {
 
 std::vector<float> read_depth_raw(GLuint fbo, int width, int height) {
   std::vector<float> raw(static_cast<std::size_t>(width) * height);
-  bind_for_reading(fbo);
+  std::optional<RenderTarget> copy;
+  bind_for_reading(readable(fbo, width, height, copy));
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, raw.data());
   return raw;
@@ -98,15 +143,17 @@ std::vector<float> read_depth(GLuint fbo, int width, int height, double near_m, 
 }
 
 void RenderTarget::bind_and_clear() {
-  bind_for_drawing(fbo_.id(), width_, height_);
+  bind_for_drawing(framebuffer(), width_, height_);
   clear_to_sky();
 }
 
 Image RenderTarget::read_color() const {
+  resolve();
   return gl::read_color(fbo_.id(), width_, height_);
 }
 
 std::vector<float> RenderTarget::read_depth(double near_m, double far_m) const {
+  resolve();
   return gl::read_depth(fbo_.id(), width_, height_, near_m, far_m);
 }
 

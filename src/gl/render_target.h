@@ -26,18 +26,29 @@ inline glm::dmat4 view_projection_reversed_z(const Camera& c) {
 void bind_for_drawing(GLuint fbo, int width, int height);
 /// Clears the bound framebuffer to the sky colour and far (0) depth.
 void clear_to_sky();
-/// Colour of `fbo` (0 = the default back buffer), top row first.
+/// Colour of `fbo` (0 = the default back buffer), top row first. A
+/// multisampled `fbo` is resolved first (into a framebuffer made for the
+/// read), as are the depth reads below.
 Image read_color(GLuint fbo, int width, int height);
 /// Depth of `fbo` as stored: reversed Z (near 1, far and nothing drawn 0),
-/// bottom row first.
+/// bottom row first. Of a multisampled `fbo`, one sample's depth per pixel
+/// (GL's resolve of depth picks one).
 std::vector<float> read_depth_raw(GLuint fbo, int width, int height);
 /// Linear depth of `fbo` in metres along the view axis (+inf where nothing was
 /// drawn) for the camera whose near/far planes drew it.
 std::vector<float> read_depth(GLuint fbo, int width, int height, double near_m, double far_m);
 
+/// The most samples a multisampled RenderTarget may have here (GL_MAX_SAMPLES:
+/// 4 on llvmpipe). Needs a current context.
+int max_samples();
+
 class RenderTarget {
  public:
-  RenderTarget(int width, int height);
+  /// `samples` > 1 draws multisampled (MSAA), into renderbuffers, resolved
+  /// into the colour and depth textures by resolve() and by every read.
+  /// `samples` must be 1 to max_samples() (else std::invalid_argument: the
+  /// callers check what users give).
+  RenderTarget(int width, int height, int samples = 1);
   /// Binds the framebuffer, sets viewport, clip control and depth state, and
   /// clears to the sky colour and far depth.
   void bind_and_clear();
@@ -46,17 +57,24 @@ class RenderTarget {
   /// Linear depth in metres along the view axis (+inf where nothing was drawn)
   /// for the camera whose near/far planes drew this image.
   std::vector<float> read_depth(double near_m, double far_m) const;
+  /// Copies the samples' average into the textures (a no-op when single-sampled).
+  void resolve() const;
+  /// The textures hold what was drawn once resolve() has run (always, single-sampled).
   GLuint color_texture() const { return color_.id(); }
   GLuint depth_texture() const { return depth_.id(); }
-  GLuint framebuffer() const { return fbo_.id(); }
+  /// The framebuffer drawn into (the multisampled one when samples() > 1).
+  GLuint framebuffer() const { return samples_ > 1 ? ms_fbo_.id() : fbo_.id(); }
   int width() const { return width_; }
   int height() const { return height_; }
+  int samples() const { return samples_; }
 
  private:
-  int width_, height_;
+  int width_, height_, samples_;
   Texture color_{GL_TEXTURE_2D};
   Texture depth_{GL_TEXTURE_2D};
-  Framebuffer fbo_;
+  Framebuffer fbo_;  ///< the textures
+  Renderbuffer ms_color_, ms_depth_;
+  Framebuffer ms_fbo_;  ///< the renderbuffers, when samples_ > 1
 };
 
 }  // namespace terrasprite::gl

@@ -167,7 +167,7 @@ std::vector<CalibrationDraw> measure_draw_costs(
     ObjectSet& set, const std::vector<std::vector<Representation>>& reps,
     const CostCalibrationOptions& o) {
   std::vector<CalibrationDraw> out;
-  gl::RenderTarget target(o.width, o.height);
+  gl::RenderTarget target(o.width, o.height, o.samples);
   std::map<std::pair<int, int>, int> impostor_models;  // (kind, resolution) -> models timed
   const int smallest = *std::min_element(o.sizes_px.begin(), o.sizes_px.end());
   const int largest = *std::max_element(o.sizes_px.begin(), o.sizes_px.end());

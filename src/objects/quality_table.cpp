@@ -76,8 +76,8 @@ struct Shot {
 // one draw at a time exactly.)
 class ShotSet {
  public:
-  ShotSet(int side, std::size_t count) {
-    for (std::size_t k = 0; k < count; ++k) targets_.emplace_back(side, side);
+  ShotSet(int side, std::size_t count, int samples) {
+    for (std::size_t k = 0; k < count; ++k) targets_.emplace_back(side, side, samples);
   }
 
   /// Appends the shots of `reps` (in order, at most `count`) seen by `cam` to `out`.
@@ -199,7 +199,7 @@ QualityTable measure_quality_table(GlModel& model, const TableOptions& o,
   std::size_t slot = 0;
   for (int size : o.sizes_px) {
     const int side = image_side(size);
-    ShotSet shot_set(side, drawn.size());
+    ShotSet shot_set(side, drawn.size(), o.samples);
     for (auto [phi, theta] : angles) {
       const Camera cam = view_camera(m, phi, theta, size, side);
       auto shots = std::make_shared<std::vector<Shot>>();
@@ -224,7 +224,7 @@ QualityTable measure_quality_table(GlModel& model, const TableOptions& o,
       if (progress) progress(++done, total);
     }
     scoring.wait();
-    gl::RenderTarget target(side, side);
+    gl::RenderTarget target(side, side, o.samples);
     const Camera timing_cam = view_camera(m, 30.0, 60.0, size, side);
     for (RepresentationQuality& q : t.representations)
       q.cost.push_back(

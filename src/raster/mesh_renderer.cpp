@@ -8,8 +8,20 @@
 #include "gl/frame_timer.h"
 #include "gl/render_target.h"
 #include "scene/terrain_gpu.h"
+#include "terrasprite/error.h"
 
 namespace terrasprite {
+namespace {
+
+int checked_samples(int samples) {
+  const int most = gl::max_samples();
+  if (samples < 1 || samples > most)
+    throw InputError(
+        fmt::format("samples {}: this GL offers 1 to {} samples a pixel", samples, most));
+  return samples;
+}
+
+}  // namespace
 
 struct MeshRenderer::State {
   Scene& scene;
@@ -18,7 +30,8 @@ struct MeshRenderer::State {
 };
 
 MeshRenderer::MeshRenderer(Scene& scene, int width, int height, int quads, RasterOptions options)
-    : GlRenderer(width, height), s_(std::make_unique<State>(State{scene, quads, options})) {
+    : GlRenderer(width, height, checked_samples(options.samples)),
+      s_(std::make_unique<State>(State{scene, quads, options})) {
   scene.prepare(quads);  // upload now, not inside the first timed frame
 }
 

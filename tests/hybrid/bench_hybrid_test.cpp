@@ -46,6 +46,7 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
     EXPECT_TRUE(j.contains(k)) << k;
   // --llvmpipe-threads auto: the environment's LP_NUM_THREADS when set, else 0
   // on a machine of at most two hardware threads (CI's), the driver's on more.
+  EXPECT_EQ(j["msaa"], 4);  // the default: 4 samples a pixel
   ASSERT_TRUE(j.contains("llvmpipe_threads"));
   if (const char* env = std::getenv("LP_NUM_THREADS"))
     EXPECT_EQ(j["llvmpipe_threads"], env);
@@ -116,6 +117,22 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
     EXPECT_EQ(s["occluded_per_frame"].get<double>(), 0.0) << s["name"];
   }
 
+  // One sample a pixel (the tables are measured again, under their own key:
+  // about 3 s): recorded, and culling what the terrain hides leaves every
+  // checkpoint as it was, as it does multisampled (above, where the culling
+  // reads one sample's depth).
+  const tstest::CliResult ms =
+      tstest::run_cli(args + " --msaa 1 --json " + (dir / "m.json") + " --out " + (dir / "m"));
+  ASSERT_EQ(ms.status, 0) << ms.output;
+  const nlohmann::json mj = nlohmann::json::parse(std::ifstream(dir / "m.json"));
+  EXPECT_EQ(mj["msaa"], 1);
+  for (const auto& s : mj["scenarios"]) {
+    if (s["name"] != "full-culled") continue;
+    for (const auto& c : s["checkpoints"]) {
+      EXPECT_EQ(c["ssim"].get<double>(), 1.0) << c["name"];
+    }
+  }
+
   // The controller replayed on this run's frames (well under a second).
   const tstest::CliResult rp =
       tstest::run_cli("bench replay-controller " + (dir / "h") +
@@ -163,7 +180,8 @@ TEST(BenchHybrid, BadInputExitsTwoWithoutOutput) {
            "--target-ms 0", "--path " + (dir / "path.json"), "--size 0x0",
            "--budget-fractions 0.1,x", "--diagnosis-conditions scene,moon", "--cull-px -1",
            "--p95-margin -1", "--cost-split 3", "--cost-split -1", "--llvmpipe-threads x",
-           "--llvmpipe-threads -1", "--llvmpipe-threads 33", "--llvmpipe-threads 2x"}) {
+           "--llvmpipe-threads -1", "--llvmpipe-threads 33", "--llvmpipe-threads 2x", "--msaa 0",
+           "--msaa 65", "--msaa 64"}) {  // 64: over what any GL offers
     const tstest::CliResult r =
         tstest::run_cli("bench hybrid --frames 4 " + bad + " --out " + (dir / "o"));
     EXPECT_EQ(r.status, 2) << bad << ": " << r.output;

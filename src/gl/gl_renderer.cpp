@@ -75,8 +75,16 @@ void GlRenderer::read_framebuffer(unsigned fbo, int w, int h, const Camera& came
 }
 
 void GlRenderer::read_back(Frame& frame, ReadBack what) {
-  const GlTarget t = output();
-  read_framebuffer(t.framebuffer, t.width, t.height, frame.camera, frame, what);
+  if (base_->external) {
+    const GlTarget& t = *base_->external;
+    read_framebuffer(t.framebuffer, t.width, t.height, frame.camera, frame, what);
+    return;
+  }
+  // The own target resolves into its own textures: no copy made per read.
+  gl::RenderTarget& own = base_->own;
+  own.resolve();
+  read_framebuffer(own.resolved_framebuffer(), own.width(), own.height(), frame.camera, frame,
+                   what);
 }
 
 }  // namespace terrasprite

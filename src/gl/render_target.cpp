@@ -43,21 +43,20 @@ RenderTarget::RenderTarget(int width, int height, int samples)
   if (glCheckNamedFramebufferStatus(fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::logic_error("render target framebuffer incomplete");
   if (samples_ > 1) {
-    glNamedRenderbufferStorageMultisample(ms_color_.id(), samples_, GL_RGBA8, width, height);
-    glNamedRenderbufferStorageMultisample(ms_depth_.id(), samples_, GL_DEPTH_COMPONENT32F, width,
+    Multisampled& m = ms_.emplace();
+    glNamedRenderbufferStorageMultisample(m.color.id(), samples_, GL_RGBA8, width, height);
+    glNamedRenderbufferStorageMultisample(m.depth.id(), samples_, GL_DEPTH_COMPONENT32F, width,
                                           height);
-    glNamedFramebufferRenderbuffer(ms_fbo_.id(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
-                                   ms_color_.id());
-    glNamedFramebufferRenderbuffer(ms_fbo_.id(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
-                                   ms_depth_.id());
-    if (glCheckNamedFramebufferStatus(ms_fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    glNamedFramebufferRenderbuffer(m.fbo.id(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m.color.id());
+    glNamedFramebufferRenderbuffer(m.fbo.id(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m.depth.id());
+    if (glCheckNamedFramebufferStatus(m.fbo.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw std::logic_error("multisampled render target framebuffer incomplete");
   }
 }
 
 void RenderTarget::resolve() const {
-  if (samples_ > 1)
-    glBlitNamedFramebuffer(ms_fbo_.id(), fbo_.id(), 0, 0, width_, height_, 0, 0, width_, height_,
+  if (ms_)
+    glBlitNamedFramebuffer(ms_->fbo.id(), fbo_.id(), 0, 0, width_, height_, 0, 0, width_, height_,
                            GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
 }
 
@@ -93,13 +92,13 @@ void bind_for_reading(GLuint fbo) {
 }
 
 // glReadPixels cannot read a multisampled framebuffer: `fbo`'s resolved copy
-// when it is one (held by `copy`), else `fbo` itself.
+// when it is one (held by `copy`, made unless it has the size), else `fbo` itself.
 GLuint readable(GLuint fbo, int width, int height, std::optional<RenderTarget>& copy) {
   if (fbo == 0) return 0;
   GLint samples = 0;
   glGetNamedFramebufferParameteriv(fbo, GL_SAMPLES, &samples);
   if (samples <= 1) return fbo;
-  copy.emplace(width, height);
+  if (!copy || copy->width() != width || copy->height() != height) copy.emplace(width, height);
   glBlitNamedFramebuffer(fbo, copy->framebuffer(), 0, 0, width, height, 0, 0, width, height,
                          GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
   return copy->framebuffer();
@@ -120,9 +119,14 @@ Image read_color(GLuint fbo, int width, int height) {
 }
 
 std::vector<float> read_depth_raw(GLuint fbo, int width, int height) {
-  std::vector<float> raw(static_cast<std::size_t>(width) * height);
   std::optional<RenderTarget> copy;
-  bind_for_reading(readable(fbo, width, height, copy));
+  return read_depth_raw(fbo, width, height, copy);
+}
+
+std::vector<float> read_depth_raw(GLuint fbo, int width, int height,
+                                  std::optional<RenderTarget>& scratch) {
+  std::vector<float> raw(static_cast<std::size_t>(width) * height);
+  bind_for_reading(readable(fbo, width, height, scratch));
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, raw.data());
   return raw;

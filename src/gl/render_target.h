@@ -4,6 +4,7 @@
 // keeps float depth precise across a whole terrain.
 #pragma once
 #include <glm/glm.hpp>
+#include <optional>
 #include <vector>
 
 #include "gl/gl_objects.h"
@@ -34,6 +35,12 @@ Image read_color(GLuint fbo, int width, int height);
 /// bottom row first. Of a multisampled `fbo`, one sample's depth per pixel
 /// (GL's resolve of depth picks one).
 std::vector<float> read_depth_raw(GLuint fbo, int width, int height);
+class RenderTarget;
+/// As above, resolving a multisampled `fbo` into `scratch`, which is made (or
+/// remade at another size) when needed and kept for the next read: for a
+/// read every frame, which should not create GL objects every frame.
+std::vector<float> read_depth_raw(GLuint fbo, int width, int height,
+                                  std::optional<RenderTarget>& scratch);
 /// Linear depth of `fbo` in metres along the view axis (+inf where nothing was
 /// drawn) for the camera whose near/far planes drew it.
 std::vector<float> read_depth(GLuint fbo, int width, int height, double near_m, double far_m);
@@ -63,7 +70,9 @@ class RenderTarget {
   GLuint color_texture() const { return color_.id(); }
   GLuint depth_texture() const { return depth_.id(); }
   /// The framebuffer drawn into (the multisampled one when samples() > 1).
-  GLuint framebuffer() const { return samples_ > 1 ? ms_fbo_.id() : fbo_.id(); }
+  GLuint framebuffer() const { return ms_ ? ms_->fbo.id() : fbo_.id(); }
+  /// The framebuffer of the textures: what was drawn once resolve() has run.
+  GLuint resolved_framebuffer() const { return fbo_.id(); }
   int width() const { return width_; }
   int height() const { return height_; }
   int samples() const { return samples_; }
@@ -73,8 +82,11 @@ class RenderTarget {
   Texture color_{GL_TEXTURE_2D};
   Texture depth_{GL_TEXTURE_2D};
   Framebuffer fbo_;  ///< the textures
-  Renderbuffer ms_color_, ms_depth_;
-  Framebuffer ms_fbo_;  ///< the renderbuffers, when samples_ > 1
+  struct Multisampled {
+    Renderbuffer color, depth;
+    Framebuffer fbo;
+  };
+  std::optional<Multisampled> ms_;  ///< when samples_ > 1
 };
 
 }  // namespace terrasprite::gl

@@ -65,6 +65,8 @@ struct HybridObjects::Impl {
   std::array<bool, 3> drawn_kinds{true, true, true};  ///< set_drawn_kinds
   /// The objects' budgets of the last frames as computed, before the floor.
   std::deque<double> recent_budgets;
+  /// The occlusion test's resolve of a multisampled target, kept between frames.
+  std::optional<gl::RenderTarget> depth_scratch;
 
   Impl(ObjectSet& s, const DrawCostModel& c, const HybridOptions& o)
       : set(s),
@@ -143,8 +145,8 @@ long long HybridObjects::draw(const Camera& camera) {
     const auto r0 = std::chrono::steady_clock::now();
     GLint fbo = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
-    occluder = DepthOcclusion(gl::read_depth_raw(GLuint(fbo), o.width, o.height), o.width, o.height,
-                              camera);
+    occluder = DepthOcclusion(gl::read_depth_raw(GLuint(fbo), o.width, o.height, s.depth_scratch),
+                              o.width, o.height, camera);
     st.occlusion_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count();
   }

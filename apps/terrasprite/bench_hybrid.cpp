@@ -18,6 +18,7 @@
 #include "cli_common.h"
 #include "gl/render_target.h"
 #include "hybrid_bench.h"
+#include "hybrid_bench_args.h"
 #include "llvmpipe_threads.h"
 #include "objects_table.h"
 #include "terrasprite/camera_path.h"
@@ -32,31 +33,6 @@
 
 namespace terrasprite::cli {
 namespace {
-
-struct HybridArgs {
-  TerrainOptions terrain;
-  std::string scene, models_dir = "../shared/data", size = "320x180", path, json, cache;
-  std::string out = "out/bench_hybrid";
-  std::string target = "auto";
-  double full_over_target = 5;
-  int frames = 160, score_every = 2, instances = 0, terrain_quads = 64;
-  double cull_px = 4;
-  bool occlusion_cull = true;
-  double p95_margin = BudgetControllerOptions{}.quantile_margin;
-  double pace_max_slope = FramePaceOptions{}.max_slope;
-  std::string table_sizes = "200,50,16", relief_resolutions = "32,64,128,256",
-              octahedral_resolutions = "32,64,128";
-  double table_angle_step = 45;
-  bool table_full_sphere = true;
-  std::string figure6 = "C";
-  std::string calibration_sizes = "auto";
-  int quality_context_frames = 0;
-  std::string budget_sweep, budget_fractions = "0.05,0.1,0.15,0.2,0.3,0.5";
-  int cost_split = 0;
-  std::string quality_diagnosis, diagnosis_conditions = "scene,sky", diagnosis_images;
-  std::string llvmpipe_threads = "auto";
-  int msaa = 4;
-};
 
 /// Keeps `count` instances (0: all), drawn at random (seeded) so the model mix stays.
 void subsample(ObjectScene& scene, int count) {
@@ -175,7 +151,9 @@ std::vector<PathCheckpoint> snapped(std::vector<PathCheckpoint> cps, int score_e
   return cps;
 }
 
-void run_bench(const HybridArgs& a) {
+}  // namespace
+
+void run_bench_hybrid(const HybridArgs& a) {
   auto [w, h] = parse_size(a.size, "--size");
   check_outputs(a.out, {a.json, a.quality_diagnosis, a.budget_sweep});
   // Checked before any work (the tables take minutes when not cached).
@@ -360,24 +338,24 @@ void run_bench(const HybridArgs& a) {
     // 5 times over the target" made the default (auto) target.
     HybridObjects full_objects(set, tables, cost, full_geometry_scenario(), ho);
     HybridRenderer full_only(ground, &full_objects, "full", w, h, a.terrain_quads, a.msaa);
-    // Twelve frames spread over the path: six (as for the terrain) fell on
-    // the heaviest stretches and put the run's median at 2.7-3.7x the target.
-    // A first pass unmeasured: the first draws of each mesh run 1.5-2x
-    // slower (uploads, first-use faults) and set the target too high.
+    // Timed on the frames the run draws full geometry on (every
+    // --score-every-th), so that the target is full / 5 over the run's own
+    // sample: twelve frames spread over the path put the run's median at
+    // 4.8x a target rounded to nearest (six, as for the terrain, at
+    // 2.7-3.7x). A first pass of twelve unmeasured: the first draws of each
+    // mesh run 1.5-2x slower (uploads, first-use faults).
+    for (int k = 0; k < 12; ++k) full_only.draw(path[std::size_t(k * (path.size() - 1) / 11)]);
     std::vector<double> ms;
-    for (int pass = 0; pass < 2; ++pass)
-      for (int k = 0; k < 12; ++k) {
-        const double t = full_only.draw(path[std::size_t(k * (path.size() - 1) / 11)]).ms;
-        if (pass == 1) ms.push_back(t);
-      }
+    for (std::size_t f = 0; f < path.size(); f += std::size_t(a.score_every))
+      ms.push_back(full_only.draw(path[f]).ms);
     result.full_ms_at_start = summarize(ms).median;
     result.target_auto = target_ms == 0;
     if (result.target_auto)
-      target_ms = std::max(1.0, std::round(result.full_ms_at_start / a.full_over_target));
+      target_ms = std::max(1.0, std::floor(result.full_ms_at_start / a.full_over_target));
     fmt::print(stderr,
                "terrain alone {:.1f} ms (median of 6 path frames), full geometry {:.1f} ms (median "
-               "of 12); target {:.0f} ms{}\n",
-               result.terrain_ms, result.full_ms_at_start, target_ms,
+               "of {}); target {:.0f} ms{}\n",
+               result.terrain_ms, result.full_ms_at_start, ms.size(), target_ms,
                result.target_auto ? fmt::format(" (auto: full / {:g})", a.full_over_target) : "");
   }
   result.target_ms = target_ms;
@@ -481,132 +459,10 @@ void run_bench(const HybridArgs& a) {
       100 * result.selection.gain_max);
 }
 
-}  // namespace
-
 HybridScenario full_geometry_scenario() {
   return {
       "full", {ObjectKind::kMesh}, SelectionPolicy::kStatic, true, HybridScenario::Control::kNone,
       false};
-}
-
-void add_bench_hybrid(CLI::App& bench) {
-  auto* cmd = bench.add_subcommand(
-      "hybrid", "objects under a frame-time budget: the hybrid walkthrough (Figures 4-6, Table 2)");
-  auto a = std::make_shared<HybridArgs>();
-  add_terrain_options(*cmd, a->terrain);
-  cmd->add_option("--scene", a->scene,
-                  "scene file (JSON); default: the built-in 400-instance scene");
-  cmd->add_option("--models-dir", a->models_dir, "where the default scene's models are")
-      ->capture_default_str();
-  cmd->add_option("--instances", a->instances, "keep this many instances, drawn at random (0: all)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1000000));
-  cmd->add_option("--target-ms", a->target,
-                  "target frame time, ms, or auto: full geometry's median time over twelve path "
-                  "frames (timed first) / --full-over-target")
-      ->capture_default_str();
-  cmd->add_option("--full-over-target", a->full_over_target,
-                  "auto target: full geometry's time over the target")
-      ->capture_default_str();
-  cmd->add_option("--size", a->size, "image size WxH")->capture_default_str();
-  cmd->add_option("--cull-px", a->cull_px,
-                  "budgeted scenarios may leave instances under this on-screen diameter (px) "
-                  "undrawn when the budget cannot draw every one at its cheapest (0: never)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1e6));
-  cmd->add_flag("!--no-occlusion-cull", a->occlusion_cull,
-                "draw instances hidden behind the terrain too (no depth read-back; no "
-                "full-culled scenario)");
-  cmd->add_option("--p95-margin", a->p95_margin,
-                  "budgeted scenarios: standard errors of the controller's 40-frame p95 estimate "
-                  "it keeps under the target (frame time first; 1 or 0: object quality first, "
-                  "the p95 then lands nearer +10-15%)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 10.0));
-  cmd->add_option("--pace-max-slope", a->pace_max_slope,
-                  "with occlusion culling: the most the frame's prediction may follow the "
-                  "read-back's pace (its log slope, fitted online; 0: not at all)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 10.0));
-  cmd->add_option("--llvmpipe-threads", a->llvmpipe_threads,
-                  "llvmpipe's rasteriser threads (LP_NUM_THREADS; other drivers ignore it): a "
-                  "count (0: on the drawing thread), driver (the environment's, else one per "
-                  "core), or auto (the environment's if set, else 0 on at most 2 hardware "
-                  "threads, where it keeps frame times tight)")
-      ->capture_default_str();
-  cmd->add_option("--msaa", a->msaa,
-                  "samples a pixel (multisampled anti-aliasing) of every image the bench draws: "
-                  "the tables, the cost calibration and every scenario, full geometry "
-                  "included; 1 to what the GL offers (4 on llvmpipe; GL 4.5 offers at least "
-                  "4). Without it, object SSIM on small objects measures where their aliased "
-                  "edges fall: full geometry moved 1/16 pixel scored 0.91-0.94 on the forests")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 64));
-  cmd->add_option("--frames", a->frames, "frames along the path")
-      ->capture_default_str()
-      ->check(CLI::Range(2, 100000));
-  cmd->add_option("--score-every", a->score_every, "draw full geometry and score every n-th frame")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 1000));
-  cmd->add_option("--path", a->path,
-                  "JSON path file (with optional checkpoints); default: the walkthrough");
-  cmd->add_option("--terrain-quads", a->terrain_quads, "terrain: coarse mesh quads per side")
-      ->capture_default_str();
-  cmd->add_option("--table-sizes", a->table_sizes, "quality tables: on-screen sizes, px")
-      ->capture_default_str();
-  cmd->add_option("--table-angle-step", a->table_angle_step,
-                  "quality tables: degrees between views")
-      ->capture_default_str()
-      ->check(CLI::Range(1.0, 180.0));
-  cmd->add_option("--table-full-sphere", a->table_full_sphere,
-                  "quality tables: views from below too (theta to 180): the walkthrough sees "
-                  "most instances from 18-28 degrees below their centre, and hemisphere tables "
-                  "clamped there mispredicted every kind")
-      ->capture_default_str();
-  cmd->add_option("--relief-resolutions", a->relief_resolutions, "relief impostor resolutions")
-      ->capture_default_str();
-  cmd->add_option("--octahedral-resolutions", a->octahedral_resolutions,
-                  "octahedral impostor resolutions")
-      ->capture_default_str();
-  cmd->add_option("--calibration-sizes", a->calibration_sizes,
-                  "cost calibration: on-screen sizes, px (each representation timed alone); auto: "
-                  "image height / 8, / 2 and x 2")
-      ->capture_default_str();
-  cmd->add_option("--quality-context-frames", a->quality_context_frames,
-                  "the quality tables in context: rescale each representation's expected SSIM "
-                  "to what it scores over the terrain in this many walkthrough views (0: the "
-                  "tables as measured; with full-sphere tables it gains little: see the note)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1000));
-  cmd->add_option("--budget-sweep", a->budget_sweep,
-                  "instead of the walkthrough: at each checkpoint, pm and mixed-optimal under "
-                  "fixed budgets (--budget-fractions of full geometry's predicted frame), scored "
-                  "and timed (JSON to this file)");
-  cmd->add_option("--budget-fractions", a->budget_fractions, "for --budget-sweep")
-      ->capture_default_str();
-  cmd->add_option("--cost-split", a->cost_split,
-                  "for --budget-sweep: also time each frame split by kind, over this many "
-                  "interleaved rounds of redraws (each kind alone over the terrain and its "
-                  "share of the whole frame, against its prediction; 0: not)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1000));
-  cmd->add_option("--quality-diagnosis", a->quality_diagnosis,
-                  "instead of the walkthrough: per checkpoint, size bucket and representation, "
-                  "the tables' predicted SSIM against the measured one (JSON to this file)");
-  cmd->add_option("--diagnosis-conditions", a->diagnosis_conditions,
-                  "for --quality-diagnosis: scene, sky, scene4 (comma-separated)")
-      ->capture_default_str();
-  cmd->add_option("--diagnosis-images", a->diagnosis_images,
-                  "for --quality-diagnosis: write the images of every instance drawn (existing "
-                  "directory)");
-  cmd->add_option("--figure6", a->figure6, "checkpoint shown in Figure 6")->capture_default_str();
-  cmd->add_option("--cache", a->cache,
-                  "quality-table and representation cache directory (default: "
-                  "~/.cache/terrasprite/objects)");
-  cmd->add_option("--json", a->json, "also write the JSON here");
-  cmd->add_option("--out", a->out, "output directory (JSON, figures, index.html)")
-      ->capture_default_str();
-  cmd->callback([a] { run_bench(*a); });
 }
 
 }  // namespace terrasprite::cli

@@ -65,8 +65,9 @@ std::vector<TableOptions> table_options(const HybridArgs& a) {
     for (int r : o.resolutions)
       if (r < 16 || r > 512) throw InputError(fmt::format("{}: {} is outside 16..512", option, r));
     for (int px : o.sizes_px)
-      if (px < 16 || px > 2048)
-        throw InputError(fmt::format("--table-sizes: {} is outside 16..2048", px));
+      if (px < kMinTableSizePx || px > kMaxTableSizePx)
+        throw InputError(fmt::format("--table-sizes: {} is outside {}..{}", px, kMinTableSizePx,
+                                     kMaxTableSizePx));
     out.push_back(std::move(o));
   }
   return out;

@@ -21,7 +21,7 @@ struct HybridArgs {
   bool occlusion_cull = true;
   double p95_margin = BudgetControllerOptions{}.quantile_margin;
   double pace_max_slope = FramePaceOptions{}.max_slope;
-  std::string table_sizes = "200,50,16", relief_resolutions = "32,64,128,256",
+  std::string table_sizes = "200,50,16,8,4", relief_resolutions = "32,64,128,256",
               octahedral_resolutions = "32,64,128";
   double table_angle_step = 45;
   bool table_full_sphere = true;

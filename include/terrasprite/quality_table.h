@@ -13,6 +13,11 @@
 
 namespace terrasprite {
 
+/// On-screen sizes a table may sample, px. 4 is where an instance is a few
+/// pixels (the walkthrough's far instances: a table whose smallest size is
+/// 16 px predicts them from the 16 px samples).
+constexpr int kMinTableSizePx = 4, kMaxTableSizePx = 2048;
+
 struct TableOptions {
   std::vector<ObjectKind> kinds{ObjectKind::kMesh, ObjectKind::kRelief, ObjectKind::kOctahedral};
   std::vector<int> resolutions{16, 32, 64, 128, 256, 512};  ///< impostor texels per face / view

@@ -34,7 +34,9 @@ void check(const TableOptions& o) {
   if (o.kinds.empty() || o.sizes_px.empty())
     throw InputError("objects table: no representations or no sizes to measure");
   for (int s : o.sizes_px)
-    if (s < 16 || s > 2048) throw InputError(fmt::format("--sizes-px: {} is outside 16..2048", s));
+    if (s < kMinTableSizePx || s > kMaxTableSizePx)
+      throw InputError(
+          fmt::format("--sizes-px: {} is outside {}..{}", s, kMinTableSizePx, kMaxTableSizePx));
   if (!(o.angle_step_deg > 0 && o.angle_step_deg <= 180))
     throw InputError(fmt::format("--angle-step: {} is outside (0, 180]", o.angle_step_deg));
 }

@@ -181,7 +181,8 @@ TEST(BenchHybrid, BadInputExitsTwoWithoutOutput) {
            "--budget-fractions 0.1,x", "--diagnosis-conditions scene,moon", "--cull-px -1",
            "--p95-margin -1", "--cost-split 3", "--cost-split -1", "--llvmpipe-threads x",
            "--llvmpipe-threads -1", "--llvmpipe-threads 33", "--llvmpipe-threads 2x", "--msaa 0",
-           "--msaa 65", "--msaa 64"}) {  // 64: over what any GL offers
+           "--msaa 65", "--msaa 64",  // 64: over what any GL offers
+           "--table-sizes 3", "--table-sizes 2049", "--table-sizes 16,x"}) {
     const tstest::CliResult r =
         tstest::run_cli("bench hybrid --frames 4 " + bad + " --out " + (dir / "o"));
     EXPECT_EQ(r.status, 2) << bad << ": " << r.output;

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "terrasprite/error.h"
 #include "terrasprite/gl_context.h"
 #include "test_util.h"
 
@@ -69,6 +70,30 @@ TEST(QualityTable, IdenticalScoresOneAndQualityHoldsAsSizeShrinks) {
     if (e.kind == ts::ObjectKind::kMesh) {
       EXPECT_TRUE(e.choice.has_value());
     }
+}
+
+// The walkthrough's far instances are 4-16 px: a table may sample them
+// (from 4 px), and refuses sizes it cannot draw. CI cost: well under 1 s.
+TEST(QualityTable, SizesFromFourPixelsAndNoneOutsideTheRange) {
+  const std::string data = tstest::shared_data();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
+  ts::GlContext ctx;
+  ts::ModelOptions mo;
+  mo.height_m = 1.0;
+  const ts::Model m = ts::load_model(data + "/models_scans/teapot.obj", mo);
+  ts::GlModel gl(m, ts::build_lod_chain(m));
+  ts::TableOptions o;
+  o.kinds = {ts::ObjectKind::kMesh};
+  o.angle_step_deg = 90;
+  for (int bad : {ts::kMinTableSizePx - 1, ts::kMaxTableSizePx + 1}) {
+    o.sizes_px = {bad};
+    EXPECT_THROW(ts::measure_quality_table(gl, o), ts::InputError) << bad;
+  }
+  o.sizes_px = {ts::kMinTableSizePx};
+  const ts::QualityTable t = ts::measure_quality_table(gl, o);
+  ASSERT_FALSE(t.representations.empty());
+  ASSERT_EQ(t.representations[0].samples.size(), 5u);
+  for (const ts::QualitySample& s : t.representations[0].samples) EXPECT_DOUBLE_EQ(s.ssim, 1.0);
 }
 
 TEST(QualityTable, CliJsonContractAndCache) {

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <random>
 #include <sstream>
@@ -335,8 +336,8 @@ void run_bench_hybrid(const HybridArgs& a) {
     return;
   }
   {
-    // Full geometry on the same six path frames: the issue's "full at least
-    // 5 times over the target" made the default (auto) target.
+    // Full geometry timed before the walk: the issue's "full at least 5
+    // times over the target" made the default (auto) target.
     HybridObjects full_objects(set, tables, cost, full_geometry_scenario(), ho);
     HybridRenderer full_only(ground, &full_objects, "full", w, h, a.terrain_quads, a.msaa);
     // Timed on the frames the run draws full geometry on (every
@@ -345,17 +346,24 @@ void run_bench_hybrid(const HybridArgs& a) {
     // 4.8x a target rounded to nearest (six, as for the terrain, at
     // 2.7-3.7x). A first pass of twelve unmeasured: the first draws of each
     // mesh run 1.5-2x slower (uploads, first-use faults).
+    // Two timed passes, the lower median kept: a slow spell of the host
+    // during one pass (152 ms against the walk's 124) set a target full
+    // geometry was only 4.1x over.
     for (int k = 0; k < 12; ++k) full_only.draw(path[std::size_t(k * (path.size() - 1) / 11)]);
     std::vector<double> ms;
-    for (std::size_t f = 0; f < path.size(); f += std::size_t(a.score_every))
-      ms.push_back(full_only.draw(path[f]).ms);
-    result.full_ms_at_start = summarize(ms).median;
+    result.full_ms_at_start = std::numeric_limits<double>::infinity();
+    for (int pass = 0; pass < 2; ++pass) {
+      ms.clear();
+      for (std::size_t f = 0; f < path.size(); f += std::size_t(a.score_every))
+        ms.push_back(full_only.draw(path[f]).ms);
+      result.full_ms_at_start = std::min(result.full_ms_at_start, summarize(ms).median);
+    }
     result.target_auto = target_ms == 0;
     if (result.target_auto)
       target_ms = std::max(1.0, std::floor(result.full_ms_at_start / a.full_over_target));
     fmt::print(stderr,
-               "terrain alone {:.1f} ms (median of 6 path frames), full geometry {:.1f} ms (median "
-               "of {}); target {:.0f} ms{}\n",
+               "terrain alone {:.1f} ms (median of 6 path frames), full geometry {:.1f} ms (the "
+               "lower of two medians of {}); target {:.0f} ms{}\n",
                result.terrain_ms, result.full_ms_at_start, ms.size(), target_ms,
                result.target_auto ? fmt::format(" (auto: full / {:g})", a.full_over_target) : "");
   }

@@ -14,6 +14,7 @@
 #include <map>
 #include <random>
 #include <sstream>
+#include <tuple>
 
 #include "bench_commands.h"
 #include "cli_common.h"
@@ -153,19 +154,25 @@ std::vector<PathCheckpoint> snapped(std::vector<PathCheckpoint> cps, int score_e
   return cps;
 }
 
-}  // namespace
-
-void run_bench_hybrid(const HybridArgs& a) {
-  auto [w, h] = parse_size(a.size, "--size");
-  check_outputs(a.out, {a.json, a.quality_diagnosis, a.budget_sweep});
-  // Checked before any work (the tables take minutes when not cached).
+/// What the command line gives once checked: every check runs before any
+/// work (the tables take minutes when not cached).
+struct CheckedArgs {
+  int width = 0, height = 0;
   std::vector<std::string> conditions;
-  for (const std::string& c : split_list(a.diagnosis_conditions)) {
-    if (c != "scene" && c != "sky" && c != "scene4")
-      throw InputError(fmt::format("--diagnosis-conditions: '{}' is not scene, sky or scene4", c));
-    conditions.push_back(c);
-  }
   std::vector<double> fractions;
+  double target_ms = 0;  ///< 0: auto, decided once full geometry has been timed
+  std::vector<int> calibration_sizes;
+};
+
+CheckedArgs check_args(const HybridArgs& a) {
+  CheckedArgs c;
+  std::tie(c.width, c.height) = parse_size(a.size, "--size");
+  check_outputs(a.out, {a.json, a.quality_diagnosis, a.budget_sweep});
+  for (const std::string& k : split_list(a.diagnosis_conditions)) {
+    if (k != "scene" && k != "sky" && k != "scene4")
+      throw InputError(fmt::format("--diagnosis-conditions: '{}' is not scene, sky or scene4", k));
+    c.conditions.push_back(k);
+  }
   for (const std::string& f : split_list(a.budget_fractions)) {
     std::size_t used = 0;
     double v = 0;
@@ -176,23 +183,151 @@ void run_bench_hybrid(const HybridArgs& a) {
     }
     if (used != f.size() || !(v > 0 && v <= 4))
       throw InputError(fmt::format("--budget-fractions: '{}' is not a number in (0, 4]", f));
-    fractions.push_back(v);
+    c.fractions.push_back(v);
   }
   if (a.cost_split > 0 && a.budget_sweep.empty())
     throw InputError("--cost-split: only with --budget-sweep");
-  double target_ms = 0;  // 0: auto, decided once full geometry has been timed
   if (a.target != "auto") {
     std::size_t used = 0;
     try {
-      target_ms = std::stod(a.target, &used);
+      c.target_ms = std::stod(a.target, &used);
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used != a.target.size() || !(target_ms > 0) || !std::isfinite(target_ms))
+    if (used != a.target.size() || !(c.target_ms > 0) || !std::isfinite(c.target_ms))
       throw InputError(
           fmt::format("--target-ms {}: not a positive number of milliseconds or auto", a.target));
   }
   if (!(a.full_over_target >= 1)) throw InputError("--full-over-target must be at least 1");
+  const int h = c.height;
+  c.calibration_sizes = a.calibration_sizes == "auto"
+                            ? std::vector<int>{std::max(8, h / 8), std::max(16, h / 2), 2 * h}
+                            : int_list(a.calibration_sizes, "--calibration-sizes");
+  for (int px : c.calibration_sizes)
+    if (px < 4 || px > 8192)
+      throw InputError(fmt::format("--calibration-sizes: {} is outside 4..8192", px));
+  return c;
+}
+
+/// The run's figures on standard output: Table 2, then a line per scenario.
+void print_summary(const HybridBenchResult& result, bool occlusion_cull) {
+  const double target_ms = result.target_ms;
+  fmt::print("{}\n", table2_markdown(result));
+  for (const HybridScenarioResult& s : result.scenarios)
+    fmt::print(
+        "{:14} median {:7.1f} ms  p95 {:7.1f} ms  p99 {:7.1f} ms  (target {:.0f} ms, {:.0f}% "
+        "within +10%)  "
+        "mean SSIM {:.4f}, objects {:.4f}, {:.2f} switches/frame\n",
+        s.name, s.ms.median, s.ms.p95, s.ms.p99, target_ms, 100 * s.within_10pct, s.mean_ssim,
+        s.mean_ssim_objects, s.switches_per_frame);
+  fmt::print("full geometry's median over the run: {:.1f}x the target\n",
+             result.scenarios.front().ms.median / target_ms);
+  if (occlusion_cull) {
+    const HybridScenarioResult& culled = result.scenarios.back();
+    fmt::print(
+        "occlusion culling: {:.0f} instances a frame behind the terrain (mean); full geometry "
+        "without them: median {:.1f} ms ({:.1f}x the target), mean SSIM against full {:.4f}; "
+        "depth read-back and pyramid {:.2f} ms a frame\n",
+        culled.occluded_per_frame, culled.ms.median, culled.ms.median / target_ms, culled.mean_ssim,
+        culled.occlusion_ms);
+  }
+  fmt::print(
+      "selection (optimal): {:.3f} ms/frame median, p95 {:.3f}; of which the policy {:.3f}, p95 "
+      "{:.3f}; objective optimal {:.5f} vs greedy {:.5f} (mean gain {:.3f}%, max {:.3f}%)\n",
+      result.selection.ms_per_frame, result.selection.ms_p95, result.selection.policy_ms_per_frame,
+      result.selection.policy_ms_p95, result.selection.objective_optimal,
+      result.selection.objective_greedy, 100 * result.selection.gain_mean,
+      100 * result.selection.gain_max);
+}
+
+/// The tables in context (`--quality-context-frames n`): rescaled by what
+/// each representation scores over the terrain in n walkthrough frames
+/// spread along `path`, none within a frame of a checkpoint. Returns the report.
+nlohmann::json tables_in_context(QualityContextInput qi, const std::vector<Camera>& path,
+                                 const std::vector<PathCheckpoint>& checkpoints, int n,
+                                 std::vector<QualityTable>& tables) {
+  const int frames = int(path.size());
+  auto near_checkpoint = [&](int f) {
+    return std::any_of(checkpoints.begin(), checkpoints.end(),
+                       [&](const PathCheckpoint& c) { return std::abs(c.frame - f) <= 1; });
+  };
+  for (int k = 0; k < n; ++k) {
+    int f = int(std::lround((k + 0.5) * (frames - 1) / n));
+    for (int step = 0; step < frames && near_checkpoint(f); ++step) f = (f + 1) % frames;
+    qi.cameras.push_back(path[std::size_t(f)]);
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  nlohmann::json report = calibrate_tables_in_context(qi, tables);
+  std::map<std::string, std::vector<double>> by_kind;
+  for (const auto& row : report)
+    by_kind[row["kind"].get<std::string>()].push_back(row["error_scale"].get<double>());
+  std::string line;
+  for (auto& [kind, v] : by_kind) line += fmt::format(" {} {:.2f},", kind, summarize(v).median);
+  fmt::print(stderr,
+             "quality tables in context ({} views, {:.1f} s): median error scale per kind:{}\n", n,
+             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), line);
+  return report;
+}
+
+/// The tables time 50-200 px in a small image; the walkthrough draws
+/// instances up to larger than the image: every representation timed at
+/// `sizes_px` in an image of the frames' size, and `cost` fitted per kind.
+/// Returns the calibration's report.
+std::string calibrate_for_walk(ObjectSet& set, const std::vector<QualityTable>& tables, int w,
+                               int h, int samples, double fov_y_deg,
+                               const std::vector<int>& sizes_px, DrawCostModel& cost) {
+  CostCalibrationOptions co;
+  co.width = w;
+  co.height = h;
+  co.samples = samples;
+  co.fov_y_deg = fov_y_deg;
+  co.sizes_px = sizes_px;
+  std::vector<std::vector<Representation>> reps(set.model_count());
+  for (std::size_t m = 0; m < set.model_count(); ++m)
+    for (const RepresentationQuality& r : tables[m].representations) reps[m].push_back(r.rep);
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<CalibrationDraw> draws = measure_draw_costs(set, reps, co);
+  fmt::print(stderr, "cost model from the tables' draws only: {}", calibration_report(cost, draws));
+  fit_draw_costs(cost, draws);
+  std::string report = calibration_report(cost, draws);
+  fmt::print(stderr, "after calibration ({} draws, {:.1f} s): {}", draws.size(),
+             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), report);
+  return report;
+}
+
+/// Full geometry's frame time (ms) before the walk, on the frames the run
+/// scores it on (every `score_every`-th; their count in `timed_frames`), so
+/// that the auto target is full / 5 over the run's own sample: twelve
+/// frames spread over the path put the run's median at 4.8x a target
+/// rounded to nearest (six, as for the terrain, at 2.7-3.7x). A first pass
+/// of twelve unmeasured: the first draws of each mesh run 1.5-2x slower
+/// (uploads, first-use faults). Two timed passes, the lower median kept: a
+/// slow spell of the host during one pass (152 ms against the walk's 124)
+/// set a target full geometry was only 4.1x over.
+double timed_full_ms(ObjectSet& set, const std::vector<QualityTable>& tables,
+                     const DrawCostModel& cost, const HybridOptions& ho, Scene& ground,
+                     const std::vector<Camera>& path, int w, int h, int terrain_quads, int samples,
+                     int score_every, int& timed_frames) {
+  HybridObjects full_objects(set, tables, cost, full_geometry_scenario(), ho);
+  HybridRenderer full_only(ground, &full_objects, "full", w, h, terrain_quads, samples);
+  for (int k = 0; k < 12; ++k) full_only.draw(path[std::size_t(k * (path.size() - 1) / 11)]);
+  double best = std::numeric_limits<double>::infinity();
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<double> ms;
+    for (std::size_t f = 0; f < path.size(); f += std::size_t(score_every))
+      ms.push_back(full_only.draw(path[f]).ms);
+    best = std::min(best, summarize(ms).median);
+    timed_frames = int(ms.size());
+  }
+  return best;
+}
+
+}  // namespace
+
+void run_bench_hybrid(const HybridArgs& a) {
+  const CheckedArgs args = check_args(a);
+  const int w = args.width, h = args.height;
+  double target_ms = args.target_ms;
   // Before the GL context below, the first of this process.
   const std::optional<std::string> llvmpipe_threads =
       apply_llvmpipe_threads(a.llvmpipe_threads, "--llvmpipe-threads");
@@ -245,66 +380,20 @@ void run_bench_hybrid(const HybridArgs& a) {
   for (const TableOptions& o : table_sampling)
     for (int px : o.sizes_px) ho.max_impostor_size_px = std::max(ho.max_impostor_size_px, 2.0 * px);
   const std::vector<QualityTable> tables_as_measured = tables;
-  if (a.quality_context_frames > 0) {
-    // The tables in context: walkthrough frames other than the checkpoints'.
-    QualityContextInput qi{set, ground, {}, w, h, a.terrain_quads, ho.max_impostor_size_px, a.msaa};
-    const int n = a.quality_context_frames, frames = int(path.size());
-    for (int k = 0; k < n; ++k) {
-      int f = int(std::lround((k + 0.5) * (frames - 1) / n));
-      auto near_checkpoint = [&](int f) {
-        return std::any_of(checkpoints.begin(), checkpoints.end(),
-                           [&](const PathCheckpoint& c) { return std::abs(c.frame - f) <= 1; });
-      };
-      for (int step = 0; step < frames && near_checkpoint(f); ++step) f = (f + 1) % frames;
-      qi.cameras.push_back(path[std::size_t(f)]);
-    }
-    const auto t0 = std::chrono::steady_clock::now();
-    result.quality_context = calibrate_tables_in_context(qi, tables);
-    std::map<std::string, std::vector<double>> by_kind;
-    for (const auto& row : result.quality_context)
-      by_kind[row["kind"].get<std::string>()].push_back(row["error_scale"].get<double>());
-    std::string line;
-    for (auto& [kind, v] : by_kind) line += fmt::format(" {} {:.2f},", kind, summarize(v).median);
-    fmt::print(
-        stderr, "quality tables in context ({} views, {:.1f} s): median error scale per kind:{}\n",
-        n, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), line);
-  }
+  if (a.quality_context_frames > 0)
+    result.quality_context =
+        tables_in_context({set, ground, {}, w, h, a.terrain_quads, ho.max_impostor_size_px, a.msaa},
+                          path, checkpoints, a.quality_context_frames, tables);
   if (!a.quality_diagnosis.empty()) {
     const nlohmann::json j = diagnose_hybrid_quality(
-        {set, tables_as_measured, ground, path, checkpoints, w, h, a.terrain_quads, conditions,
+        {set, tables_as_measured, ground, path, checkpoints, w, h, a.terrain_quads, args.conditions,
          a.diagnosis_images, a.quality_context_frames > 0 ? &tables : nullptr, a.msaa});
     write_json(j, a.quality_diagnosis);
     return;
   }
   DrawCostModel cost = calibrated_cost(tables);
-  {
-    // The tables time 50-200 px in a small image; the walkthrough draws
-    // instances up to larger than the image: time every representation at
-    // those sizes in an image of the frames' size, and fit per kind.
-    CostCalibrationOptions co;
-    co.width = w;
-    co.height = h;
-    co.samples = a.msaa;
-    co.fov_y_deg = path.front().fov_y_deg;
-    co.sizes_px = a.calibration_sizes == "auto"
-                      ? std::vector<int>{std::max(8, h / 8), std::max(16, h / 2), 2 * h}
-                      : int_list(a.calibration_sizes, "--calibration-sizes");
-    for (int px : co.sizes_px)
-      if (px < 4 || px > 8192)
-        throw InputError(fmt::format("--calibration-sizes: {} is outside 4..8192", px));
-    std::vector<std::vector<Representation>> reps(set.model_count());
-    for (std::size_t m = 0; m < set.model_count(); ++m)
-      for (const RepresentationQuality& r : tables[m].representations) reps[m].push_back(r.rep);
-    const auto t0 = std::chrono::steady_clock::now();
-    const std::vector<CalibrationDraw> draws = measure_draw_costs(set, reps, co);
-    fmt::print(stderr, "cost model from the tables' draws only: {}",
-               calibration_report(cost, draws));
-    fit_draw_costs(cost, draws);
-    result.calibration = calibration_report(cost, draws);
-    fmt::print(stderr, "after calibration ({} draws, {:.1f} s): {}", draws.size(),
-               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
-               result.calibration);
-  }
+  result.calibration = calibrate_for_walk(set, tables, w, h, a.msaa, path.front().fov_y_deg,
+                                          args.calibration_sizes, cost);
 
   result.gl_renderer = gl.renderer();
   result.llvmpipe_threads = llvmpipe_threads;
@@ -329,44 +418,25 @@ void run_bench_hybrid(const HybridArgs& a) {
     for (const HybridScenario& sc : scenarios(a.occlusion_cull))
       if (sc.name == "pm" || sc.name == "mixed-optimal") swept.push_back(sc);
     write_json(quality_budget_sweep({set, tables, cost, ground, path, checkpoints, w, h,
-                                     a.terrain_quads, ho, swept, fractions,
+                                     a.terrain_quads, ho, swept, args.fractions,
                                      a.quality_context_frames > 0 ? &tables_as_measured : nullptr,
                                      a.cost_split, a.msaa}),
                a.budget_sweep);
     return;
   }
-  {
-    // Full geometry timed before the walk: the issue's "full at least 5
-    // times over the target" made the default (auto) target.
-    HybridObjects full_objects(set, tables, cost, full_geometry_scenario(), ho);
-    HybridRenderer full_only(ground, &full_objects, "full", w, h, a.terrain_quads, a.msaa);
-    // Timed on the frames the run draws full geometry on (every
-    // --score-every-th), so that the target is full / 5 over the run's own
-    // sample: twelve frames spread over the path put the run's median at
-    // 4.8x a target rounded to nearest (six, as for the terrain, at
-    // 2.7-3.7x). A first pass of twelve unmeasured: the first draws of each
-    // mesh run 1.5-2x slower (uploads, first-use faults).
-    // Two timed passes, the lower median kept: a slow spell of the host
-    // during one pass (152 ms against the walk's 124) set a target full
-    // geometry was only 4.1x over.
-    for (int k = 0; k < 12; ++k) full_only.draw(path[std::size_t(k * (path.size() - 1) / 11)]);
-    std::vector<double> ms;
-    result.full_ms_at_start = std::numeric_limits<double>::infinity();
-    for (int pass = 0; pass < 2; ++pass) {
-      ms.clear();
-      for (std::size_t f = 0; f < path.size(); f += std::size_t(a.score_every))
-        ms.push_back(full_only.draw(path[f]).ms);
-      result.full_ms_at_start = std::min(result.full_ms_at_start, summarize(ms).median);
-    }
-    result.target_auto = target_ms == 0;
-    if (result.target_auto)
-      target_ms = std::max(1.0, std::floor(result.full_ms_at_start / a.full_over_target));
-    fmt::print(stderr,
-               "terrain alone {:.1f} ms (median of 6 path frames), full geometry {:.1f} ms (the "
-               "lower of two medians of {}); target {:.0f} ms{}\n",
-               result.terrain_ms, result.full_ms_at_start, ms.size(), target_ms,
-               result.target_auto ? fmt::format(" (auto: full / {:g})", a.full_over_target) : "");
-  }
+  // Full geometry timed before the walk: the issue's "full at least 5
+  // times over the target" made the default (auto) target.
+  int timed_frames = 0;
+  result.full_ms_at_start = timed_full_ms(set, tables, cost, ho, ground, path, w, h,
+                                          a.terrain_quads, a.msaa, a.score_every, timed_frames);
+  result.target_auto = target_ms == 0;
+  if (result.target_auto)
+    target_ms = std::max(1.0, std::floor(result.full_ms_at_start / a.full_over_target));
+  fmt::print(stderr,
+             "terrain alone {:.1f} ms (median of 6 path frames), full geometry {:.1f} ms (the "
+             "lower of two medians of {}); target {:.0f} ms{}\n",
+             result.terrain_ms, result.full_ms_at_start, timed_frames, target_ms,
+             result.target_auto ? fmt::format(" (auto: full / {:g})", a.full_over_target) : "");
   result.target_ms = target_ms;
   ho.target_ms = target_ms;
   std::vector<std::unique_ptr<HybridObjects>> objects;
@@ -440,32 +510,7 @@ void run_bench_hybrid(const HybridArgs& a) {
   write_json(j, out.file("hybrid.json"));
   if (!a.json.empty()) write_json(j, a.json);
   out.commit();
-  fmt::print("{}\n", table2_markdown(result));
-  for (const HybridScenarioResult& s : result.scenarios)
-    fmt::print(
-        "{:14} median {:7.1f} ms  p95 {:7.1f} ms  p99 {:7.1f} ms  (target {:.0f} ms, {:.0f}% "
-        "within +10%)  "
-        "mean SSIM {:.4f}, objects {:.4f}, {:.2f} switches/frame\n",
-        s.name, s.ms.median, s.ms.p95, s.ms.p99, target_ms, 100 * s.within_10pct, s.mean_ssim,
-        s.mean_ssim_objects, s.switches_per_frame);
-  fmt::print("full geometry's median over the run: {:.1f}x the target\n",
-             result.scenarios.front().ms.median / target_ms);
-  if (a.occlusion_cull) {
-    const HybridScenarioResult& culled = result.scenarios.back();
-    fmt::print(
-        "occlusion culling: {:.0f} instances a frame behind the terrain (mean); full geometry "
-        "without them: median {:.1f} ms ({:.1f}x the target), mean SSIM against full {:.4f}; "
-        "depth read-back and pyramid {:.2f} ms a frame\n",
-        culled.occluded_per_frame, culled.ms.median, culled.ms.median / target_ms, culled.mean_ssim,
-        culled.occlusion_ms);
-  }
-  fmt::print(
-      "selection (optimal): {:.3f} ms/frame median, p95 {:.3f}; of which the policy {:.3f}, p95 "
-      "{:.3f}; objective optimal {:.5f} vs greedy {:.5f} (mean gain {:.3f}%, max {:.3f}%)\n",
-      result.selection.ms_per_frame, result.selection.ms_p95, result.selection.policy_ms_per_frame,
-      result.selection.policy_ms_p95, result.selection.objective_optimal,
-      result.selection.objective_greedy, 100 * result.selection.gain_mean,
-      100 * result.selection.gain_max);
+  print_summary(result, a.occlusion_cull);
 }
 
 HybridScenario full_geometry_scenario() {

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <tuple>
@@ -154,6 +155,17 @@ std::vector<PathCheckpoint> snapped(std::vector<PathCheckpoint> cps, int score_e
   return cps;
 }
 
+/// `text` as a number when all of it is one (std::stod accepts "1x" as 1).
+std::optional<double> whole_number_text(const std::string& text) {
+  std::size_t used = 0;
+  try {
+    const double v = std::stod(text, &used);
+    if (used == text.size()) return v;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
 /// What the command line gives once checked: every check runs before any
 /// work (the tables take minutes when not cached).
 struct CheckedArgs {
@@ -174,29 +186,19 @@ CheckedArgs check_args(const HybridArgs& a) {
     c.conditions.push_back(k);
   }
   for (const std::string& f : split_list(a.budget_fractions)) {
-    std::size_t used = 0;
-    double v = 0;
-    try {
-      v = std::stod(f, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != f.size() || !(v > 0 && v <= 4))
+    const std::optional<double> v = whole_number_text(f);
+    if (!v || !(*v > 0 && *v <= 4))
       throw InputError(fmt::format("--budget-fractions: '{}' is not a number in (0, 4]", f));
-    c.fractions.push_back(v);
+    c.fractions.push_back(*v);
   }
   if (a.cost_split > 0 && a.budget_sweep.empty())
     throw InputError("--cost-split: only with --budget-sweep");
   if (a.target != "auto") {
-    std::size_t used = 0;
-    try {
-      c.target_ms = std::stod(a.target, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != a.target.size() || !(c.target_ms > 0) || !std::isfinite(c.target_ms))
+    const std::optional<double> t = whole_number_text(a.target);
+    if (!t || !(*t > 0) || !std::isfinite(*t))
       throw InputError(
           fmt::format("--target-ms {}: not a positive number of milliseconds or auto", a.target));
+    c.target_ms = *t;
   }
   if (!(a.full_over_target >= 1)) throw InputError("--full-over-target must be at least 1");
   const int h = c.height;
@@ -295,29 +297,23 @@ std::string calibrate_for_walk(ObjectSet& set, const std::vector<QualityTable>& 
   return report;
 }
 
-/// Full geometry's frame time (ms) before the walk, on the frames the run
-/// scores it on (every `score_every`-th; their count in `timed_frames`), so
-/// that the auto target is full / 5 over the run's own sample: twelve
-/// frames spread over the path put the run's median at 4.8x a target
-/// rounded to nearest (six, as for the terrain, at 2.7-3.7x). A first pass
-/// of twelve unmeasured: the first draws of each mesh run 1.5-2x slower
-/// (uploads, first-use faults). Two timed passes, the lower median kept: a
-/// slow spell of the host during one pass (152 ms against the walk's 124)
-/// set a target full geometry was only 4.1x over.
-double timed_full_ms(ObjectSet& set, const std::vector<QualityTable>& tables,
-                     const DrawCostModel& cost, const HybridOptions& ho, Scene& ground,
-                     const std::vector<Camera>& path, int w, int h, int terrain_quads, int samples,
-                     int score_every, int& timed_frames) {
-  HybridObjects full_objects(set, tables, cost, full_geometry_scenario(), ho);
-  HybridRenderer full_only(ground, &full_objects, "full", w, h, terrain_quads, samples);
-  for (int k = 0; k < 12; ++k) full_only.draw(path[std::size_t(k * (path.size() - 1) / 11)]);
+/// `full`'s frame time (ms) before the walk, on the frames the run scores
+/// full geometry on (every `score_every`-th), so that the auto target is
+/// full / 5 over the run's own sample: twelve frames spread over the path
+/// put the run's median at 4.8x a target rounded to nearest (six, as for
+/// the terrain, at 2.7-3.7x). A first pass of twelve unmeasured: the first
+/// draws of each mesh run 1.5-2x slower (uploads, first-use faults). Two
+/// timed passes, the lower median kept: a slow spell of the host during one
+/// pass (152 ms against the walk's 124) set a target full geometry was only
+/// 4.1x over.
+double timed_full_ms(HybridRenderer& full, const std::vector<Camera>& path, int score_every) {
+  for (int k = 0; k < 12; ++k) full.draw(path[std::size_t(k * (path.size() - 1) / 11)]);
   double best = std::numeric_limits<double>::infinity();
   for (int pass = 0; pass < 2; ++pass) {
     std::vector<double> ms;
     for (std::size_t f = 0; f < path.size(); f += std::size_t(score_every))
-      ms.push_back(full_only.draw(path[f]).ms);
+      ms.push_back(full.draw(path[f]).ms);
     best = std::min(best, summarize(ms).median);
-    timed_frames = int(ms.size());
   }
   return best;
 }
@@ -424,18 +420,20 @@ void run_bench_hybrid(const HybridArgs& a) {
                a.budget_sweep);
     return;
   }
-  // Full geometry timed before the walk: the issue's "full at least 5
-  // times over the target" made the default (auto) target.
-  int timed_frames = 0;
-  result.full_ms_at_start = timed_full_ms(set, tables, cost, ho, ground, path, w, h,
-                                          a.terrain_quads, a.msaa, a.score_every, timed_frames);
+  {
+    // Full geometry timed before the walk: the issue's "full at least 5
+    // times over the target" made the default (auto) target.
+    HybridObjects full_objects(set, tables, cost, full_geometry_scenario(), ho);
+    HybridRenderer full_only(ground, &full_objects, "full", w, h, a.terrain_quads, a.msaa);
+    result.full_ms_at_start = timed_full_ms(full_only, path, a.score_every);
+  }
   result.target_auto = target_ms == 0;
   if (result.target_auto)
     target_ms = std::max(1.0, std::floor(result.full_ms_at_start / a.full_over_target));
   fmt::print(stderr,
              "terrain alone {:.1f} ms (median of 6 path frames), full geometry {:.1f} ms (the "
-             "lower of two medians of {}); target {:.0f} ms{}\n",
-             result.terrain_ms, result.full_ms_at_start, timed_frames, target_ms,
+             "lower of two medians of the scored frames); target {:.0f} ms{}\n",
+             result.terrain_ms, result.full_ms_at_start, target_ms,
              result.target_auto ? fmt::format(" (auto: full / {:g})", a.full_over_target) : "");
   result.target_ms = target_ms;
   ho.target_ms = target_ms;

@@ -28,15 +28,20 @@ ts::QualityTable small_table(const ts::Model& m, ts::GlContext&) {
   return ts::measure_quality_table(gl, o);
 }
 
+// The teapot scan, 1 m tall.
+ts::Model teapot(const std::string& data) {
+  ts::ModelOptions mo;
+  mo.height_m = 1.0;
+  return ts::load_model(data + "/models_scans/teapot.obj", mo);
+}
+
 }  // namespace
 
 TEST(QualityTable, IdenticalScoresOneAndQualityHoldsAsSizeShrinks) {
   const std::string data = tstest::shared_data();
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
   ts::GlContext ctx;
-  ts::ModelOptions mo;
-  mo.height_m = 1.0;
-  const ts::Model m = ts::load_model(data + "/models_scans/teapot.obj", mo);
+  const ts::Model m = teapot(data);
   const ts::QualityTable t = small_table(m, ctx);
   ASSERT_FALSE(t.representations.empty());
   const ts::RepresentationQuality& full = t.representations[0];
@@ -78,9 +83,7 @@ TEST(QualityTable, SizesFromFourPixelsAndNoneOutsideTheRange) {
   const std::string data = tstest::shared_data();
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
   ts::GlContext ctx;
-  ts::ModelOptions mo;
-  mo.height_m = 1.0;
-  const ts::Model m = ts::load_model(data + "/models_scans/teapot.obj", mo);
+  const ts::Model m = teapot(data);
   ts::GlModel gl(m, ts::build_lod_chain(m));
   ts::TableOptions o;
   o.kinds = {ts::ObjectKind::kMesh};

@@ -21,11 +21,15 @@ namespace {
 // 5: octahedral views on the horizon raised to 4 degrees.
 constexpr const char* kFormat = "terrasprite-objects-table-6";
 
-// Infinite PSNR (identical images) is written as the string "inf": JSON has no infinity.
+// Infinite PSNR (identical images) is written as the string "inf": JSON has
+// no infinity. A score that could not be measured (NaN) is null, read back
+// as NaN, which the interpolator skips: a table holding one must still load.
 nlohmann::json number(double v) {
+  if (std::isnan(v)) return nullptr;
   return std::isinf(v) ? nlohmann::json("inf") : nlohmann::json(v);
 }
 double number(const nlohmann::json& v) {
+  if (v.is_null()) return NAN;
   return v.is_string() && v == "inf" ? INFINITY : v.get<double>();
 }
 
@@ -54,7 +58,7 @@ nlohmann::json table_json(const QualityTable& t, const TableOptions& o) {
                          {"theta_deg", s.theta_deg},
                          {"size_px", s.size_px},
                          {"psnr", number(s.psnr)},
-                         {"ssim", s.ssim}});
+                         {"ssim", number(s.ssim)}});
     r["cost"] = cost;
     r["samples"] = samples;
     reps.push_back(r);
@@ -108,7 +112,7 @@ QualityTable table_from_json(const nlohmann::json& j) {
         q.cost.push_back({c.at("size_px"), c.at("ms_per_instance")});
       for (const auto& s : r.at("samples"))
         q.samples.push_back({s.at("phi_deg"), s.at("theta_deg"), s.at("size_px"),
-                             number(s.at("psnr")), s.at("ssim")});
+                             number(s.at("psnr")), number(s.at("ssim"))});
       t.representations.push_back(std::move(q));
     }
     for (const auto& e : j.at("table")) {

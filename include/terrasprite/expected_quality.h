@@ -24,8 +24,9 @@ struct ExpectedQuality {
 /// clamps to the largest sampled theta.
 class QualityInterpolator {
  public:
-  /// Copies the samples. A representation without samples (or a full-detail
-  /// mesh) reads as perfect quality.
+  /// Copies the samples, less those whose SSIM is not finite (the nearest
+  /// scored views stand in for them). A representation without samples (or
+  /// a full-detail mesh) reads as perfect quality.
   explicit QualityInterpolator(const RepresentationQuality& rep);
   /// phi in degrees (any range), theta in degrees from straight above, size
   /// in pixels (> 0).

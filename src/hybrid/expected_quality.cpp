@@ -25,6 +25,9 @@ double capped_psnr(double psnr) {
 QualityInterpolator::QualityInterpolator(const RepresentationQuality& rep) {
   theta_max_ = 0;
   for (const QualitySample& s : rep.samples) {
+    // A sample without a score (NaN: nothing was measured there) is no
+    // evidence: the nearest scored views stand in for it.
+    if (!std::isfinite(s.ssim)) continue;
     auto it = std::find_if(slices_.begin(), slices_.end(),
                            [&](const SizeSlice& sl) { return sl.size_px == s.size_px; });
     if (it == slices_.end()) {

@@ -214,7 +214,17 @@ QualityTable measure_quality_table(GlModel& model, const TableOptions& o,
           const bool same = q.rep.kind == ObjectKind::kMesh && q.rep.level == 0;
           const Shot& s = same ? ref : (*shots)[next++];
           std::vector<std::uint8_t> mask(ref.covered.size());
-          for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = ref.covered[i] | s.covered[i];
+          bool any = false;
+          for (std::size_t i = 0; i < mask.size(); ++i) {
+            mask[i] = ref.covered[i] | s.covered[i];
+            any = any || mask[i];
+          }
+          // Neither image covers a sample (a flat model edge-on at 4 px):
+          // both show only the background, and the whole images say so
+          // (SSIM 1). Masked, the scores were 0 / 0: NaN samples made the
+          // expected quality of every nearby view NaN and the cached table
+          // unreadable (JSON null).
+          if (!any) mask.clear();
           const double psnr = quality::psnr(ref.color.view(), s.color.view(), mask).rgb;
           const double ssim = quality::ssim(ref.color.view(), s.color.view(),
                                             {quality::SsimMode::kWang, false, false}, mask)

@@ -170,5 +170,25 @@ TEST(ExpectedQuality, InterpolatesBetweenSizesAndViews) {
   EXPECT_EQ(QualityInterpolator(RepresentationQuality{}).at(0, 0, 10).ssim, 1.0);
 }
 
+// A sample without a score (NaN, as an older table may hold) is skipped:
+// the views around it are priced from their scored neighbours, never NaN,
+// which the knapsack cannot order.
+TEST(ExpectedQuality, SamplesWithoutAScoreAreSkipped) {
+  RepresentationQuality rep;
+  for (int size : {4, 8})
+    for (double phi : {0.0, 90.0, 180.0, 270.0})
+      rep.samples.push_back(
+          {phi, 90, size, 30.0, size == 4 && phi == 180.0 ? std::nan("") : 0.8 + size / 100.0});
+  const QualityInterpolator q(rep);
+  for (double phi = 0; phi < 360; phi += 15)
+    for (double size : {3.0, 4.0, 5.5, 8.0}) {
+      const double ssim = q.at(phi, 90, size).ssim;
+      EXPECT_TRUE(std::isfinite(ssim)) << phi << " " << size;
+      EXPECT_GE(ssim, 0.84 - 1e-12);
+      EXPECT_LE(ssim, 0.88 + 1e-12);
+    }
+  EXPECT_NEAR(q.at(180, 90, 4).ssim, 0.84, 1e-12);  // its scored neighbours' value
+}
+
 }  // namespace
 }  // namespace terrasprite

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "object_test_util.h"
 #include "terrasprite/error.h"
 #include "terrasprite/gl_context.h"
 #include "test_util.h"
@@ -99,6 +100,36 @@ TEST(QualityTable, SizesFromFourPixelsAndNoneOutsideTheRange) {
   for (const ts::QualitySample& s : t.representations[0].samples) EXPECT_DOUBLE_EQ(s.ssim, 1.0);
 }
 
+// A flat model seen edge-on covers no pixel: neither image shows it, so
+// the view scores as identical. Masked to no pixel, its scores were NaN,
+// which made every nearby view's expected quality NaN (the default scene's
+// forest and beetle at 4 px). CI cost: under 1 s.
+TEST(QualityTable, AViewWhereNothingIsCoveredScoresAsIdentical) {
+  ts::GlContext ctx;
+  const ts::Model flat = tstest::colored_box(1.f, 1.f, 0.f);
+  ts::GlModel gl(flat, ts::build_lod_chain(flat));
+  ts::TableOptions o;
+  o.kinds = {ts::ObjectKind::kMesh, ts::ObjectKind::kOctahedral};
+  o.resolutions = {32};
+  o.sizes_px = {ts::kMinTableSizePx, 16};
+  o.angle_step_deg = 90;
+  o.full_sphere = false;
+  o.timing_instances = 1;
+  const ts::QualityTable t = ts::measure_quality_table(gl, o);
+  int edge_on = 0;
+  for (const ts::RepresentationQuality& q : t.representations)
+    for (const ts::QualitySample& s : q.samples) {
+      EXPECT_TRUE(std::isfinite(s.ssim)) << ts::object_kind_name(q.rep.kind) << " theta "
+                                         << s.theta_deg << " at " << s.size_px << " px";
+      EXPECT_FALSE(std::isnan(s.psnr));
+      if (q.rep.kind == ts::ObjectKind::kMesh && q.rep.level == 0 && s.theta_deg == 90) {
+        EXPECT_DOUBLE_EQ(s.ssim, 1.0);
+        ++edge_on;
+      }
+    }
+  EXPECT_EQ(edge_on, 8);  // 4 azimuths x 2 sizes
+}
+
 TEST(QualityTable, CliJsonContractAndCache) {
   const std::string data = tstest::shared_data();
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
@@ -126,6 +157,20 @@ TEST(QualityTable, CliJsonContractAndCache) {
       tstest::run_cli(args + " --json " + (dir / "b.json") + " --out " + (dir / "b"));
   ASSERT_EQ(second.status, 0) << second.output;
   EXPECT_TRUE(nlohmann::json::parse(std::ifstream(dir / "b.json"))["cached"].get<bool>());
+  // A score that could not be measured is written as null and read back
+  // (NaN, which the interpolator skips): the table stays cached, not
+  // rejected as unreadable and measured again on every run.
+  for (const auto& e : std::filesystem::directory_iterator(dir / "cache")) {
+    if (e.path().extension() != ".json") continue;
+    nlohmann::json cached = nlohmann::json::parse(std::ifstream(e.path()));
+    cached["representations"][1]["samples"][0]["ssim"] = nullptr;
+    std::ofstream(e.path()) << cached.dump();
+  }
+  const tstest::CliResult with_null =
+      tstest::run_cli(args + " --json " + (dir / "n.json") + " --out " + (dir / "n"));
+  ASSERT_EQ(with_null.status, 0) << with_null.output;
+  EXPECT_EQ(with_null.output.find("warning"), std::string::npos) << with_null.output;
+  EXPECT_TRUE(nlohmann::json::parse(std::ifstream(dir / "n.json"))["cached"].get<bool>());
   const tstest::CliResult third =
       tstest::run_cli(args + " --views 6 --json " + (dir / "c.json") + " --out " + (dir / "c"));
   ASSERT_EQ(third.status, 0) << third.output;

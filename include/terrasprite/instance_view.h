@@ -18,8 +18,9 @@ struct InstanceView {
   /// Diameter of the bounding sphere on screen, pixels (the tables' size_px);
   /// the full image height when the camera is inside the sphere.
   double size_px = 0;
-  /// Pixels the instance can cover: its on-screen disc (pi/4 size_px^2)
-  /// clipped to the image (the disc's bounding square's share inside it).
+  /// Pixels the instance can cover: the ellipse inscribed in its bounding
+  /// sphere's on-screen box (exact per axis, near spheres included),
+  /// clipped to the image; a far sphere's is its disc, pi/4 size_px^2.
   double pixels = 0;
   double phi_deg = 0;    ///< azimuth of the camera around the model, its own frame
   double theta_deg = 0;  ///< 0: camera straight above the model, 90: level with it

@@ -40,21 +40,29 @@ InstanceView view_instance(const Camera& camera, int height_px, const ObjectInst
                   ? height_px * (r / std::sqrt(v.distance_m * v.distance_m - r * r)) / ty
                   : double(height_px);
   v.size_px = std::min(v.size_px, 4.0 * height_px);
-  // Where the centre lands on screen (pixels from the image centre; behind
-  // the eye it is anywhere: the whole image), and the disc's share inside.
+  // The pixels it can cover: the sphere's silhouette's extent along each
+  // image axis, clipped to the image, and the ellipse inscribed in that
+  // box. Each extent is exact: the tangent planes through the eye that
+  // contain the other axis. (A disc of size_px around the projected centre
+  // is right for far spheres only: a near one's centre can project far
+  // outside the image while the sphere fills a side of it. Such an
+  // instance got no pixels, so no weight, and the policy drew it at its
+  // coarsest: a forest patch the camera stood in became a green slab, and
+  // the frame's object SSIM fell to 0.79.)
   const double width_px = height_px * camera.aspect;
-  const double half = v.size_px / 2;
-  double cx = 0, cy = 0;
-  if (z > 1e-9) {
-    cx = x / (z * tx) * width_px / 2;
-    cy = y / (z * ty) * height_px / 2;
-  }
-  auto overlap = [&](double c, double extent) {
-    return std::max(0.0, std::min(c + half, extent / 2) - std::max(c - half, -extent / 2));
+  auto extent = [&](double across, double tan_half, double extent_px) {
+    const double d = std::hypot(across, z);
+    if (d <= r) return extent_px;  // the eye is within the sphere's slab: it spans the axis
+    const double centre = std::atan2(across, z), half = std::asin(r / d);
+    const double to_px = extent_px / 2 / tan_half;
+    // Angles from the view axis; past +-90 degrees is behind the eye.
+    auto at = [&](double a) {
+      return a <= -M_PI / 2 ? -INFINITY : a >= M_PI / 2 ? INFINITY : std::tan(a) * to_px;
+    };
+    const double lo = at(centre - half), hi = at(centre + half);
+    return std::max(0.0, std::min(hi, extent_px / 2) - std::max(lo, -extent_px / 2));
   };
-  const double covered =
-      z > 1e-9 ? overlap(cx, width_px) * overlap(cy, height_px) : width_px * double(height_px);
-  v.pixels = M_PI / 4 * covered;
+  v.pixels = M_PI / 4 * extent(x, tx, width_px) * extent(y, ty, double(height_px));
   // The camera's direction from the centre, in the model's frame.
   const glm::dvec3 d = heading_rotate(-to / std::max(v.distance_m, 1e-12), -heading);
   v.theta_deg = glm::degrees(std::acos(std::clamp(d.z, -1.0, 1.0)));

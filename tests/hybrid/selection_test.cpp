@@ -111,6 +111,35 @@ TEST(Selection, InstanceBehindTheCameraIsNotInView) {
   EXPECT_EQ(select_representations(SelectionPolicy::kOptimal, {}, 10.0).cost_ms, 0.0);
 }
 
+// The pixels an instance can cover weigh its quality in the knapsack. A far
+// sphere covers its disc; a near one whose centre projects far outside the
+// image still fills a side of it. Its pixels were once 0 (a disc around the
+// projected centre), so the policy drew it at its coarsest. CI: microseconds.
+TEST(Selection, ANearInstanceBesideTheViewStillCoversItsPixels) {
+  Camera cam;
+  cam.position = {0, 0, 0};
+  cam.yaw_deg = 0;  // looking north (+y)
+  cam.aspect = 16.0 / 9.0;
+  cam.near_m = 0.1;
+  const int h = 180;
+  const double w = h * cam.aspect, tx = std::tan(M_PI / 6) * cam.aspect;
+  // Far ahead: the disc of its on-screen diameter.
+  const InstanceView far = view_instance(cam, h, ObjectInstance{{0, 200, 0}, 0, 1}, {0, 0, 0}, 2);
+  ASSERT_TRUE(far.visible);
+  EXPECT_NEAR(far.pixels, M_PI / 4 * far.size_px * far.size_px, 0.01 * far.pixels);
+  // 11 m sphere, centre 12 m to the right and 3 m ahead: its silhouette
+  // spans 13.2-138.8 degrees right of the view axis, the image's right part.
+  const InstanceView near = view_instance(cam, h, ObjectInstance{{12, 3, 0}, 0, 1}, {0, 0, 0}, 11);
+  ASSERT_TRUE(near.visible);
+  const double left = std::tan(std::atan2(12.0, 3.0) - std::asin(11 / std::hypot(12.0, 3.0)));
+  const double across = w / 2 - left / tx * w / 2;  // from there to the image's right edge
+  EXPECT_NEAR(near.pixels, M_PI / 4 * across * h, 1e-6 * near.pixels);
+  EXPECT_GT(near.pixels, 0.25 * w * h);
+  // The eye inside the sphere: the whole image.
+  const InstanceView inside = view_instance(cam, h, ObjectInstance{{1, 1, 0}, 0, 1}, {0, 0, 0}, 5);
+  EXPECT_NEAR(inside.pixels, M_PI / 4 * w * h, 1e-6 * inside.pixels);
+}
+
 TEST(Selection, HysteresisHoldsAndCountsSwitches) {
   auto instances = scene(1);
   SelectionHysteresis h({.hold_frames = 5, .min_gain = 0.0});

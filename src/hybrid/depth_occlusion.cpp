@@ -6,20 +6,9 @@
 #include <limits>
 #include <stdexcept>
 
+#include "hybrid/sphere_tangents.h"
+
 namespace terrasprite {
-namespace {
-
-/// Extreme slopes a = u / z of the lines through the eye tangent to a circle
-/// at (u, z), z > r, radius r: the roots of a^2 (z^2 - r^2) - 2 a u z +
-/// u^2 - r^2 = 0. A plane through the eye that holds the other image axis is
-/// tangent to the sphere exactly when its line is tangent to this circle.
-std::pair<double, double> tangent_slopes(double u, double z, double r) {
-  const double root = r * std::sqrt(u * u + z * z - r * r);
-  const double den = z * z - r * r;
-  return {(u * z - root) / den, (u * z + root) / den};
-}
-
-}  // namespace
 
 SphereOnScreen sphere_on_screen(const Camera& camera, int width, int height, glm::dvec3 centre_m,
                                 double radius_m) {

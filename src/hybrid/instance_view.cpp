@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hybrid/sphere_tangents.h"
+
 namespace terrasprite {
 namespace {
 
@@ -51,15 +53,22 @@ InstanceView view_instance(const Camera& camera, int height_px, const ObjectInst
   // the frame's object SSIM fell to 0.79.)
   const double width_px = height_px * camera.aspect;
   auto extent = [&](double across, double tan_half, double extent_px) {
-    const double d = std::hypot(across, z);
-    if (d <= r) return extent_px;  // the eye is within the sphere's slab: it spans the axis
-    const double centre = std::atan2(across, z), half = std::asin(r / d);
     const double to_px = extent_px / 2 / tan_half;
-    // Angles from the view axis; past +-90 degrees is behind the eye.
-    auto at = [&](double a) {
-      return a <= -M_PI / 2 ? -INFINITY : a >= M_PI / 2 ? INFINITY : std::tan(a) * to_px;
-    };
-    const double lo = at(centre - half), hi = at(centre + half);
+    double lo = 0, hi = 0;  // slopes of the two tangents, times to_px
+    if (z > r) {            // both tangents in front of the eye (nearly every instance)
+      const auto [a, b] = tangent_slopes(across, z, r);
+      lo = a * to_px;
+      hi = b * to_px;
+    } else {  // one tangent lies behind the eye: by angle, past +-90 degrees unbounded
+      const double d = std::hypot(across, z);
+      if (d <= r) return extent_px;  // the eye is within the sphere's slab: it spans the axis
+      const double centre = std::atan2(across, z), half = std::asin(r / d);
+      auto at = [&](double a) {
+        return a <= -M_PI / 2 ? -INFINITY : a >= M_PI / 2 ? INFINITY : std::tan(a) * to_px;
+      };
+      lo = at(centre - half);
+      hi = at(centre + half);
+    }
     return std::max(0.0, std::min(hi, extent_px / 2) - std::max(lo, -extent_px / 2));
   };
   v.pixels = M_PI / 4 * extent(x, tx, width_px) * extent(y, ty, double(height_px));

@@ -93,14 +93,17 @@ void bind_for_reading(GLuint fbo) {
 
 // glReadPixels cannot read a multisampled framebuffer: `fbo`'s resolved copy
 // when it is one (held by `copy`, made unless it has the size), else `fbo` itself.
-GLuint readable(GLuint fbo, int width, int height, std::optional<RenderTarget>& copy) {
+// `mask`: the buffers the caller reads. A depth read resolves no colour: in
+// llvmpipe that resolve is a full pass over every sample of the image.
+GLuint readable(GLuint fbo, int width, int height, std::optional<RenderTarget>& copy,
+                GLbitfield mask) {
   if (fbo == 0) return 0;
   GLint samples = 0;
   glGetNamedFramebufferParameteriv(fbo, GL_SAMPLES, &samples);
   if (samples <= 1) return fbo;
   if (!copy || copy->width() != width || copy->height() != height) copy.emplace(width, height);
-  glBlitNamedFramebuffer(fbo, copy->framebuffer(), 0, 0, width, height, 0, 0, width, height,
-                         GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  glBlitNamedFramebuffer(fbo, copy->framebuffer(), 0, 0, width, height, 0, 0, width, height, mask,
+                         GL_NEAREST);
   return copy->framebuffer();
 }
 }  // namespace
@@ -109,7 +112,7 @@ Image read_color(GLuint fbo, int width, int height) {
   Image img(width, height);
   std::vector<std::uint8_t> raw(img.rgba.size());
   std::optional<RenderTarget> copy;
-  bind_for_reading(readable(fbo, width, height, copy));
+  bind_for_reading(readable(fbo, width, height, copy, GL_COLOR_BUFFER_BIT));
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
   const std::size_t row = static_cast<std::size_t>(width) * 4;
@@ -126,7 +129,7 @@ std::vector<float> read_depth_raw(GLuint fbo, int width, int height) {
 std::vector<float> read_depth_raw(GLuint fbo, int width, int height,
                                   std::optional<RenderTarget>& scratch) {
   std::vector<float> raw(static_cast<std::size_t>(width) * height);
-  bind_for_reading(readable(fbo, width, height, scratch));
+  bind_for_reading(readable(fbo, width, height, scratch, GL_DEPTH_BUFFER_BIT));
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, raw.data());
   return raw;

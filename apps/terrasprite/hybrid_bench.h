@@ -47,6 +47,9 @@ struct SelectionFigures {
   /// Of which the policy (the knapsack) and the hysteresis: the issue's
   /// "under 1 ms" is the knapsack's; viewing 400 instances is apart.
   double policy_ms_per_frame = 0, policy_ms_p95 = 0;
+  /// Viewing and pricing the instances, on whichever thread ran it (beside
+  /// the occlusion read-back: then not in ms_per_frame).
+  double view_ms_per_frame = 0, view_ms_p95 = 0;
   double objective_greedy = 0, objective_optimal = 0;  ///< means over the same frames
   double gain_mean = 0, gain_max = 0;  ///< relative gain of optimal over greedy per frame
   int frames = 0;

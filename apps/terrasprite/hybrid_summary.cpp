@@ -12,6 +12,7 @@ void annotate_frame(const HybridObjects& objects, FrameResult& r) {
   const HybridFrameStats& s = objects.last();
   r.counters = {{"selection_ms", s.selection_ms},
                 {"policy_ms", s.policy_ms},
+                {"view_ms", s.view_ms},
                 {"predicted_ms", s.predicted_ms},
                 {"budget_ms", s.budget_ms},
                 {"objects_budget_ms", s.objects_budget_ms},
@@ -70,12 +71,13 @@ HybridScenarioResult summarise(const RendererRun& run, double target_ms,
 
 SelectionFigures selection_figures(const RendererRun& run) {
   SelectionFigures f;
-  std::vector<double> ms, policy;
+  std::vector<double> ms, policy, view;
   double g = 0, o = 0;
   for (const FrameResult& r : run.frames) {
     ms.push_back(r.counters.at("selection_ms"));
     if (const auto p = r.counters.find("policy_ms"); p != r.counters.end())
       policy.push_back(p->second);
+    if (const auto v = r.counters.find("view_ms"); v != r.counters.end()) view.push_back(v->second);
     const auto gi = r.counters.find("objective_greedy");
     if (gi == r.counters.end()) continue;
     const double og = gi->second, oo = r.counters.at("objective_optimal");
@@ -93,6 +95,11 @@ SelectionFigures selection_figures(const RendererRun& run) {
     const Summary p = summarize(policy);
     f.policy_ms_per_frame = p.median;
     f.policy_ms_p95 = p.p95;
+  }
+  if (!view.empty()) {
+    const Summary v = summarize(view);
+    f.view_ms_per_frame = v.median;
+    f.view_ms_p95 = v.p95;
   }
   if (f.frames) {
     f.objective_greedy = g / f.frames;

@@ -89,8 +89,15 @@ struct HybridFrameStats {
   /// Depth read-back (mostly waiting for the terrain's rasterisation) and
   /// occlusion pyramid, wall time; not in selection_ms.
   double occlusion_ms = 0;
-  double selection_ms = 0;  ///< view, occlusion tests, options and policy, CPU wall time
-  double policy_ms = 0;     ///< of which the policy and hysteresis
+  /// View, occlusion tests, options and policy: wall time on the drawing
+  /// thread. With occlusion culling the viewing and pricing run on another
+  /// thread beside the read-back (view_ms), and only a wait for them counts.
+  double selection_ms = 0;
+  /// Viewing and pricing every instance in the frustum, wall time on the
+  /// thread that ran it: the work selection_ms no longer holds when it ran
+  /// beside the read-back.
+  double view_ms = 0;
+  double policy_ms = 0;  ///< of which the policy and hysteresis
   /// The factor on the frame's prediction after the read-back for the
   /// machine's pace it showed (FramePace; 1 without occlusion culling).
   double pace = 1;

@@ -4,6 +4,8 @@
 // draw each (model, representation) group with one instanced draw.
 #include "terrasprite/hybrid_objects.h"
 
+#include <tbb/task_group.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -36,6 +38,13 @@ bool offered(const HybridScenario& s, ObjectKind k) {
 
 using GroupKey = std::tuple<std::size_t, int, int, int>;  // model, kind, level, resolution
 
+/// An instance in the view frustum, its options listed and priced.
+struct Viewed {
+  std::size_t model = 0, index = 0;
+  InstanceView view;
+  InstanceOptions options;
+};
+
 }  // namespace
 
 struct HybridObjects::Impl {
@@ -67,6 +76,11 @@ struct HybridObjects::Impl {
   std::deque<double> recent_budgets;
   /// The occlusion test's resolve of a multisampled target, kept between frames.
   std::optional<gl::RenderTarget> depth_scratch;
+
+  /// Every instance in `camera`'s frustum with its options, in model order.
+  /// Reads only what no frame changes until the selection (tables, cost
+  /// model, instances): it runs beside the occlusion read-back.
+  std::vector<Viewed> view_and_price(const Camera& camera, const HybridScenario& scenario) const;
 
   Impl(ObjectSet& s, const DrawCostModel& c, const HybridOptions& o)
       : set(s),
@@ -112,6 +126,53 @@ HybridObjects::HybridObjects(ObjectSet& set, const std::vector<QualityTable>& ta
   }
 }
 
+std::vector<Viewed> HybridObjects::Impl::view_and_price(const Camera& camera,
+                                                        const HybridScenario& scenario) const {
+  const HybridOptions& o = options;
+  const double image_px = double(o.width) * o.height;
+  const double px_per_m = o.height / (2 * std::tan(glm::radians(camera.fov_y_deg) / 2));
+  std::vector<Viewed> out;
+  int id = 0;
+  for (std::size_t m = 0; m < set.model_count(); ++m) {
+    const GlModel& gl_model = set.model(m);
+    const Model& model = gl_model.model();
+    const auto instances = set.instances(m);
+    for (std::size_t i = 0; i < instances.size(); ++i, ++id) {
+      const InstanceView v = view_instance(camera, o.height, instances[i],
+                                           glm::dvec3(model.center()), model.bounding_radius());
+      if (!v.visible || offers[m].empty()) continue;
+      InstanceOptions inst{id, v.size_px, std::min(1.0, v.pixels / image_px), {}};
+      // One table lookup per instance; every representation on the same views reuses it.
+      const double radius = model.bounding_radius() * instances[i].scale;
+      const QualityInterpolator::Weights w =
+          offers[m].front().quality.weights(v.phi_deg, v.theta_deg, v.size_px);
+      for (const Offer& f : offers[m]) {
+        if (scenario.full && !(f.rep.kind == ObjectKind::kMesh && f.rep.level == 0)) continue;
+        // Beyond the tables' sizes an impostor's quality is unknown, and
+        // near the camera it is far worse than they say (checkpoint D).
+        // Within two radii the camera is inside or at the impostor's box.
+        if (f.rep.kind != ObjectKind::kMesh && o.max_impostor_size_px > 0 &&
+            (v.size_px > o.max_impostor_size_px || v.distance_m < 2 * radius) &&
+            scenario.policy != SelectionPolicy::kImpostorOnly)
+          continue;
+        const ExpectedQuality q =
+            f.shared_layout ? f.quality.at(w) : f.quality.at(v.phi_deg, v.theta_deg, v.size_px);
+        const double err_px =
+            f.error_m * instances[i].scale * px_per_m / std::max(v.distance_m, 1e-6);
+        const bool culled = gl_model.culls_back_faces(f.rep, instances[i], camera);
+        inst.options.push_back(
+            {f.rep, cost.instance_ms(f.rep, double(f.triangles), v.pixels, int(m), culled), q.ssim,
+             q.psnr, f.triangles, err_px});
+      }
+      if (o.cull_px > 0 && v.size_px < o.cull_px && !scenario.full &&
+          scenario.policy != SelectionPolicy::kImpostorOnly)
+        inst.options.push_back(not_drawn_option());
+      out.push_back({m, i, v, std::move(inst)});
+    }
+  }
+  return out;
+}
+
 HybridObjects::~HybridObjects() = default;
 
 void HybridObjects::prepare() {
@@ -124,16 +185,8 @@ long long HybridObjects::draw(const Camera& camera) {
   Impl& s = *impl_;
   const auto t0 = std::chrono::steady_clock::now();
   const HybridOptions& o = s.options;
-  const double image_px = double(o.width) * o.height;
-  const double px_per_m = o.height / (2 * std::tan(glm::radians(camera.fov_y_deg) / 2));
-  std::vector<InstanceOptions> frame;
-  std::vector<std::pair<std::size_t, std::size_t>> where;  // (model, instance index)
-  std::vector<double> pixels_of;                           // covered pixels, per entry
   HybridFrameStats st;
-  // The terrain is drawn: what lies behind it needs no representation. The
-  // read-back waits for its rasterisation; flushing it earlier, to overlap
-  // it with viewing the instances, only moved the wait into the selection's
-  // time (p95 2.4 ms against 1.0) on the two cores the rasteriser shares.
+  // The terrain is drawn: what lies behind it needs no representation.
   DepthOcclusion occluder;
   GLint viewport[4] = {0, 0, 0, 0};
   if (scenario_.cull_occluded) glGetIntegerv(GL_VIEWPORT, viewport);
@@ -141,7 +194,22 @@ long long HybridObjects::draw(const Camera& camera) {
   // would be wrong, and a wrong mapping could hide what shows.
   const bool cull = scenario_.cull_occluded && viewport[0] == 0 && viewport[1] == 0 &&
                     viewport[2] == o.width && viewport[3] == o.height;
+  // Every instance in the frustum, viewed and priced, on another thread
+  // while the read-back waits for the terrain's rasterisation: with
+  // llvmpipe rasterising on the drawing thread (LP_NUM_THREADS=0, two
+  // cores) the other core is idle then. Nothing here needs the depth; the
+  // occlusion test filters after. (Flushing the terrain earlier instead, to
+  // rasterise it beside the viewing, only moved the wait into the
+  // selection's time, p95 2.4 ms against 1.0, when llvmpipe had threads.)
+  std::vector<Viewed> viewed;
+  tbb::task_group views;
   if (cull) {
+    views.run([&] {
+      const auto v0 = std::chrono::steady_clock::now();
+      viewed = s.view_and_price(camera, scenario_);
+      st.view_ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - v0).count();
+    });
     const auto r0 = std::chrono::steady_clock::now();
     GLint fbo = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
@@ -149,62 +217,38 @@ long long HybridObjects::draw(const Camera& camera) {
                               o.width, o.height, camera);
     st.occlusion_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count();
+  } else {
+    const auto v0 = std::chrono::steady_clock::now();
+    viewed = s.view_and_price(camera, scenario_);
+    st.view_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - v0).count();
   }
-  int id = 0;
-  for (std::size_t m = 0; m < s.set.model_count(); ++m) {
-    const GlModel& gl_model = s.set.model(m);
-    const Model& model = gl_model.model();
-    const auto instances = s.set.instances(m);
-    const std::size_t first = frame.size();
-    for (std::size_t i = 0; i < instances.size(); ++i, ++id) {
-      const InstanceView v = view_instance(camera, o.height, instances[i],
-                                           glm::dvec3(model.center()), model.bounding_radius());
-      if (!v.visible || s.offers[m].empty()) continue;
-      if (cull &&
-          occluder.hidden(sphere_on_screen(camera, o.width, o.height, v.centre_m, v.radius_m))) {
-        ++st.occluded;
-        continue;
-      }
-      InstanceOptions inst{id, v.size_px, std::min(1.0, v.pixels / image_px), {}};
-      const double pixels = v.pixels;
-      // One table lookup per instance; every representation on the same views reuses it.
-      const double radius = model.bounding_radius() * instances[i].scale;
-      const QualityInterpolator::Weights w =
-          s.offers[m].front().quality.weights(v.phi_deg, v.theta_deg, v.size_px);
-      for (const Offer& f : s.offers[m]) {
-        if (scenario_.full && !(f.rep.kind == ObjectKind::kMesh && f.rep.level == 0)) continue;
-        // Beyond the tables' sizes an impostor's quality is unknown, and
-        // near the camera it is far worse than they say (checkpoint D).
-        // Within two radii the camera is inside or at the impostor's box.
-        if (f.rep.kind != ObjectKind::kMesh && o.max_impostor_size_px > 0 &&
-            (v.size_px > o.max_impostor_size_px || v.distance_m < 2 * radius) &&
-            scenario_.policy != SelectionPolicy::kImpostorOnly)
-          continue;
-        const ExpectedQuality q =
-            f.shared_layout ? f.quality.at(w) : f.quality.at(v.phi_deg, v.theta_deg, v.size_px);
-        const double err_px =
-            f.error_m * instances[i].scale * px_per_m / std::max(v.distance_m, 1e-6);
-        const bool culled = gl_model.culls_back_faces(f.rep, instances[i], camera);
-        inst.options.push_back(
-            {f.rep, s.cost.instance_ms(f.rep, double(f.triangles), pixels, int(m), culled), q.ssim,
-             q.psnr, f.triangles, err_px});
-      }
-      if (o.cull_px > 0 && v.size_px < o.cull_px && !scenario_.full &&
-          scenario_.policy != SelectionPolicy::kImpostorOnly)
-        inst.options.push_back(not_drawn_option());
-      long long lo = inst.options.front().triangles;
-      for (const auto& opt : inst.options) lo = std::min(lo, opt.triangles);
-      st.triangles_min += lo;
-      st.triangles_max += model.triangles();
-      frame.push_back(std::move(inst));
-      where.push_back({m, i});
-      pixels_of.push_back(pixels);
+  views.wait();
+  std::vector<InstanceOptions> frame;
+  std::vector<std::pair<std::size_t, std::size_t>> where;  // (model, instance index)
+  std::vector<double> pixels_of;                           // covered pixels, per entry
+  for (Viewed& c : viewed) {
+    if (cull && occluder.hidden(sphere_on_screen(camera, o.width, o.height, c.view.centre_m,
+                                                 c.view.radius_m))) {
+      ++st.occluded;
+      continue;
     }
-    // A draw call per (model, representation) the knapsack cannot see as a
-    // fixed cost: each visible instance of the model carries its share of it
-    // (at most one call per representation for all of them).
-    const double visible = double(frame.size() - first);
-    for (std::size_t k = first; k < frame.size(); ++k) {
+    long long lo = c.options.options.front().triangles;
+    for (const auto& opt : c.options.options) lo = std::min(lo, opt.triangles);
+    st.triangles_min += lo;
+    st.triangles_max += s.set.model(c.model).model().triangles();
+    frame.push_back(std::move(c.options));
+    where.push_back({c.model, c.index});
+    pixels_of.push_back(c.view.pixels);
+  }
+  // A draw call per (model, representation) the knapsack cannot see as a
+  // fixed cost: each visible instance of the model carries its share of it
+  // (at most one call per representation for all of them).
+  for (std::size_t first = 0; first < frame.size();) {
+    std::size_t end = first;
+    while (end < frame.size() && where[end].first == where[first].first) ++end;
+    const double visible = double(end - first);
+    for (std::size_t k = first; k < end; ++k) {
       double cheapest = INFINITY;
       for (RepresentationOption& opt : frame[k].options) {
         if (is_drawn(opt.rep)) opt.cost_ms += s.cost.terms(opt.rep.kind).per_draw_ms / visible;
@@ -212,6 +256,7 @@ long long HybridObjects::draw(const Camera& camera) {
       }
       st.floor_ms += cheapest;
     }
+    first = end;
   }
   st.visible = int(frame.size());
   const auto t1 = std::chrono::steady_clock::now();

@@ -83,11 +83,13 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
   }
   const auto& sel = j["selection"];
   for (const char* k : {"policy", "ms_per_frame", "objective_greedy", "objective_optimal",
-                        "policy_ms_per_frame", "policy_ms_p95"})
+                        "policy_ms_per_frame", "policy_ms_p95", "view_ms_per_frame", "view_ms_p95"})
     EXPECT_TRUE(sel.contains(k)) << k;
   // The policy is part of each frame's selection, so of its median too.
   EXPECT_GT(sel["policy_ms_per_frame"].get<double>(), 0.0);
   EXPECT_LE(sel["policy_ms_per_frame"].get<double>(), sel["ms_per_frame"].get<double>());
+  // Every frame views some instance, on whichever thread.
+  EXPECT_GT(sel["view_ms_per_frame"].get<double>(), 0.0);
   EXPECT_GE(sel["objective_optimal"].get<double>(), sel["objective_greedy"].get<double>());
   // The tables in context: an error scale per (model, representation) seen
   // in the context views (this short path's may show none).

@@ -97,7 +97,7 @@ struct HybridFrameStats {
   /// thread that ran it: the work selection_ms no longer holds when it ran
   /// beside the read-back.
   double view_ms = 0;
-  double policy_ms = 0;  ///< of which the policy and hysteresis
+  double policy_ms = 0;  ///< of selection_ms, the policy and hysteresis
   /// The factor on the frame's prediction after the read-back for the
   /// machine's pace it showed (FramePace; 1 without occlusion culling).
   double pace = 1;
@@ -135,7 +135,10 @@ class HybridObjects : public SceneObjects {
                 HybridScenario scenario, const HybridOptions& options);
   ~HybridObjects() override;
 
-  /// Selects and draws every visible instance; returns the triangles.
+  /// Selects and draws every visible instance; returns the triangles. On the
+  /// thread that owns the GL context; with occlusion culling it views the
+  /// instances on a TBB worker during the depth read-back, joined before the
+  /// choice (it reads only the set, the tables and the cost model).
   long long draw(const Camera& camera) override;
   /// The measured time of the whole frame just drawn (terrain included).
   void feedback(double measured_ms);

@@ -205,8 +205,8 @@ void write_hybrid_report(const HybridBenchResult& r, OutputDir& out) {
       "<p>Selection (optimal): {:.3f} ms per frame (median), p95 {:.3f} ms, of which the policy "
       "{:.3f} ms (median), p95 {:.3f} ms; viewing and pricing the instances {:.3f} ms (median), "
       "p95 {:.3f} ms (on another thread, beside the depth read-back, when culling); objective "
-      "optimal {:.5f} "
-      "vs greedy {:.5f} on the same frames (mean gain {:.3f}%, largest {:.3f}%).</p>\n",
+      "optimal {:.5f} vs greedy {:.5f} on the same frames (mean gain {:.3f}%, largest "
+      "{:.3f}%).</p>\n",
       r.selection.ms_per_frame, r.selection.ms_p95, r.selection.policy_ms_per_frame,
       r.selection.policy_ms_p95, r.selection.view_ms_per_frame, r.selection.view_ms_p95,
       r.selection.objective_optimal, r.selection.objective_greedy, 100 * r.selection.gain_mean,

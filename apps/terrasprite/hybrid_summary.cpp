@@ -71,13 +71,22 @@ HybridScenarioResult summarise(const RendererRun& run, double target_ms,
 
 SelectionFigures selection_figures(const RendererRun& run) {
   SelectionFigures f;
-  std::vector<double> ms, policy, view;
+  // Median and p95 of a per-frame counter over the frames that have it
+  // (0 and 0 when none does).
+  auto median_p95 = [&](const char* counter, double& median, double& p95) {
+    std::vector<double> v;
+    for (const FrameResult& r : run.frames)
+      if (const auto it = r.counters.find(counter); it != r.counters.end()) v.push_back(it->second);
+    if (v.empty()) return;
+    const Summary s = summarize(v);
+    median = s.median;
+    p95 = s.p95;
+  };
+  median_p95("selection_ms", f.ms_per_frame, f.ms_p95);
+  median_p95("policy_ms", f.policy_ms_per_frame, f.policy_ms_p95);
+  median_p95("view_ms", f.view_ms_per_frame, f.view_ms_p95);
   double g = 0, o = 0;
   for (const FrameResult& r : run.frames) {
-    ms.push_back(r.counters.at("selection_ms"));
-    if (const auto p = r.counters.find("policy_ms"); p != r.counters.end())
-      policy.push_back(p->second);
-    if (const auto v = r.counters.find("view_ms"); v != r.counters.end()) view.push_back(v->second);
     const auto gi = r.counters.find("objective_greedy");
     if (gi == r.counters.end()) continue;
     const double og = gi->second, oo = r.counters.at("objective_optimal");
@@ -87,19 +96,6 @@ SelectionFigures selection_figures(const RendererRun& run) {
     f.gain_mean += gain;
     f.gain_max = std::max(f.gain_max, gain);
     ++f.frames;
-  }
-  const Summary s = summarize(ms);
-  f.ms_per_frame = s.median;
-  f.ms_p95 = s.p95;
-  if (!policy.empty()) {
-    const Summary p = summarize(policy);
-    f.policy_ms_per_frame = p.median;
-    f.policy_ms_p95 = p.p95;
-  }
-  if (!view.empty()) {
-    const Summary v = summarize(view);
-    f.view_ms_per_frame = v.median;
-    f.view_ms_p95 = v.p95;
   }
   if (f.frames) {
     f.objective_greedy = g / f.frames;

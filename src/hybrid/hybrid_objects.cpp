@@ -202,14 +202,15 @@ long long HybridObjects::draw(const Camera& camera) {
   // rasterise it beside the viewing, only moved the wait into the
   // selection's time, p95 2.4 ms against 1.0, when llvmpipe had threads.)
   std::vector<Viewed> viewed;
+  auto view = [&] {
+    const auto v0 = std::chrono::steady_clock::now();
+    viewed = s.view_and_price(camera, scenario_);
+    st.view_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - v0).count();
+  };
   tbb::task_group views;
   if (cull) {
-    views.run([&] {
-      const auto v0 = std::chrono::steady_clock::now();
-      viewed = s.view_and_price(camera, scenario_);
-      st.view_ms =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - v0).count();
-    });
+    views.run(view);
     const auto r0 = std::chrono::steady_clock::now();
     GLint fbo = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
@@ -218,10 +219,7 @@ long long HybridObjects::draw(const Camera& camera) {
     st.occlusion_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count();
   } else {
-    const auto v0 = std::chrono::steady_clock::now();
-    viewed = s.view_and_price(camera, scenario_);
-    st.view_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - v0).count();
+    view();
   }
   views.wait();
   std::vector<InstanceOptions> frame;

@@ -49,7 +49,10 @@ struct LodOptions {
 /// run on each colour region on its own (UV islands, merged per material where
 /// their uv bounds share a centre: one swatch of a palette atlas) with the
 /// target shared in proportion, so a triangle never takes a uv of another
-/// swatch; a small region may vanish on a coarse level.
+/// swatch; a small region may vanish on a coarse level. Before a quadric
+/// step, disconnected parts no larger than the level's error and under 5% of
+/// the model's radius are left out (at most as many triangles as the step
+/// removes), so their triangles go to the parts that shape the model.
 std::vector<LodLevel> build_lod_chain(const Model& model, const LodOptions& options = {});
 
 }  // namespace terrasprite

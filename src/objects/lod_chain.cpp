@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "sloppy_groups.h"
+#include "small_components.h"
 
 namespace terrasprite {
 namespace {
@@ -200,6 +201,9 @@ glm::dvec3 closest_on_triangle(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dv
 // along each axis (so a lost protrusion is seen).
 constexpr std::size_t kProbes = 1024;
 constexpr std::size_t kMeasureMaxTriangles = 4096;
+// Small parts: at most this fraction of the model's radius (half its bounding
+// box's diagonal). The forest patch's stones are 3-4% of it.
+constexpr double kSmallPart = 0.05;
 
 std::vector<glm::dvec3> probes(const Model& m) {
   std::vector<glm::dvec3> out;
@@ -244,10 +248,20 @@ std::vector<LodLevel> build_lod_chain(const Model& model, const LodOptions& o) {
   const std::size_t floor_tris =
       std::max<std::size_t>(o.min_triangles, std::size_t(std::ceil(full * o.min_fraction)));
   std::vector<std::uint32_t> current = w.indices;
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (const glm::vec3& p : w.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const double model_radius = 0.5 * glm::length(glm::dvec3(hi - lo));
   double error_m = 0.0;
   bool sloppy = false;
   std::vector<glm::dvec3> probe;
   std::vector<std::uint32_t> region;  // colour region per welded vertex, for sloppy steps
+  // meshoptimizer's quadric error misses dropped protrusions (sloppy levels
+  // most of all): coarse levels also measure their deviation.
+  auto level_error = [&](const LodLevel& lv, double accumulated) {
+    if (lv.triangles() > kMeasureMaxTriangles) return accumulated;
+    if (probe.empty()) probe = probes(model);
+    return std::max(accumulated, measured_deviation(probe, lv));
+  };
   while (current.size() / 3 > floor_tris) {
     const std::size_t target_tris = std::max(floor_tris, std::size_t(current.size() / 3 * o.ratio));
     std::vector<std::uint32_t> next(current.size());
@@ -269,14 +283,35 @@ std::vector<LodLevel> build_lod_chain(const Model& model, const LodOptions& o) {
     }
     if (count == 0 || count >= current.size()) break;  // cannot shrink further
     next.resize(count);
-    error_m += step_m;
     LodLevel lv = make_level(w, next, model.normals_from_file, o.crease_deg);
-    // meshoptimizer's quadric error misses dropped protrusions (sloppy levels
-    // most of all): coarse levels also measure their deviation.
-    if (lv.triangles() <= kMeasureMaxTriangles) {
-      if (probe.empty()) probe = probes(model);
-      error_m = std::max(error_m, measured_deviation(probe, lv));
+    double level_m = level_error(lv, error_m + step_m);
+    if (!sloppy) {
+      // Parts no larger than the error this level has anyway, and under
+      // kSmallPart of the model's radius, are left out and their triangles
+      // go to the rest (small_components.h). The second bound keeps parts
+      // that shape the model: at the forest's fourth level (error 1 m) the
+      // error bound alone took its tree tops (radius 0.8 m of 7.5).
+      double part_m = 0.0;
+      const std::vector<std::uint32_t> kept = detail::without_small_parts(
+          w.positions, current, std::min(level_m, kSmallPart * model_radius),
+          current.size() / 3 - next.size() / 3, part_m);
+      if (kept.size() < current.size()) {
+        std::vector<std::uint32_t> again(kept.size());
+        float kept_err = 0.f;
+        const std::size_t n = meshopt_simplify(
+            again.data(), kept.data(), kept.size(), &w.positions[0].x, w.positions.size(),
+            sizeof(glm::vec3), target_tris * 3, 1.f, meshopt_SimplifyLockBorder, &kept_err);
+        if (n > 0 && n <= count) {
+          again.resize(n);
+          LodLevel pruned = make_level(w, again, model.normals_from_file, o.crease_deg);
+          step_m = std::max(double(kept_err) * scale, part_m);
+          level_m = level_error(pruned, error_m + step_m);
+          lv = std::move(pruned);
+          next = std::move(again);
+        }
+      }
     }
+    error_m = level_m;
     lv.error_m = error_m;
     lv.sloppy = sloppy;
     chain.push_back(std::move(lv));

@@ -244,8 +244,9 @@ std::optional<std::vector<LodLevel>> deserialize_lod_chain(std::string_view byte
 
 std::string lod_chain_key(const LodOptions& o) {
   // kLodAlgorithm: bumped whenever build_lod_chain makes other levels from the
-  // same options (2: sloppy steps per colour region), so older chains miss.
-  constexpr int kLodAlgorithm = 2;
+  // same options (2: sloppy steps per colour region; 3: small parts left
+  // out, small_components.h), so older chains miss.
+  constexpr int kLodAlgorithm = 3;
   return fmt::format("lod-a{}-r{}-f{}-t{}-c{}", kLodAlgorithm, o.ratio, o.min_fraction,
                      o.min_triangles, o.crease_deg);
 }

@@ -221,14 +221,16 @@ std::vector<glm::dvec3> probes(const Model& m) {
 }
 
 // Largest distance from the probes to the level's surface (one-sided Hausdorff).
-double measured_deviation(const std::vector<glm::dvec3>& pts, const LodLevel& lv) {
+double measured_deviation(const std::vector<glm::dvec3>& pts,
+                          const std::vector<glm::vec3>& positions,
+                          const std::vector<std::uint32_t>& indices) {
   double worst = 0.0;
   for (const glm::dvec3& p : pts) {
     double best = INFINITY;
-    for (std::size_t t = 0; t + 2 < lv.indices.size(); t += 3) {
-      const glm::dvec3 q = closest_on_triangle(p, glm::dvec3(lv.positions[lv.indices[t]]),
-                                               glm::dvec3(lv.positions[lv.indices[t + 1]]),
-                                               glm::dvec3(lv.positions[lv.indices[t + 2]]));
+    for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+      const glm::dvec3 q = closest_on_triangle(p, glm::dvec3(positions[indices[t]]),
+                                               glm::dvec3(positions[indices[t + 1]]),
+                                               glm::dvec3(positions[indices[t + 2]]));
       best = std::min(best, glm::dot(p - q, p - q));
     }
     worst = std::max(worst, best);
@@ -256,11 +258,12 @@ std::vector<LodLevel> build_lod_chain(const Model& model, const LodOptions& o) {
   std::vector<glm::dvec3> probe;
   std::vector<std::uint32_t> region;  // colour region per welded vertex, for sloppy steps
   // meshoptimizer's quadric error misses dropped protrusions (sloppy levels
-  // most of all): coarse levels also measure their deviation.
-  auto level_error = [&](const LodLevel& lv, double accumulated) {
-    if (lv.triangles() > kMeasureMaxTriangles) return accumulated;
+  // most of all): coarse levels also measure their deviation (on the welded
+  // vertices: the level's own are the same points).
+  auto level_error = [&](const std::vector<std::uint32_t>& indices, double accumulated) {
+    if (indices.size() / 3 > kMeasureMaxTriangles) return accumulated;
     if (probe.empty()) probe = probes(model);
-    return std::max(accumulated, measured_deviation(probe, lv));
+    return std::max(accumulated, measured_deviation(probe, w.positions, indices));
   };
   while (current.size() / 3 > floor_tris) {
     const std::size_t target_tris = std::max(floor_tris, std::size_t(current.size() / 3 * o.ratio));
@@ -283,8 +286,7 @@ std::vector<LodLevel> build_lod_chain(const Model& model, const LodOptions& o) {
     }
     if (count == 0 || count >= current.size()) break;  // cannot shrink further
     next.resize(count);
-    LodLevel lv = make_level(w, next, model.normals_from_file, o.crease_deg);
-    double level_m = level_error(lv, error_m + step_m);
+    double level_m = level_error(next, error_m + step_m);
     if (!sloppy) {
       // Parts no larger than the error this level has anyway, and under
       // kSmallPart of the model's radius, are left out and their triangles
@@ -303,15 +305,14 @@ std::vector<LodLevel> build_lod_chain(const Model& model, const LodOptions& o) {
             sizeof(glm::vec3), target_tris * 3, 1.f, meshopt_SimplifyLockBorder, &kept_err);
         if (n > 0 && n <= count) {
           again.resize(n);
-          LodLevel pruned = make_level(w, again, model.normals_from_file, o.crease_deg);
           step_m = std::max(double(kept_err) * scale, part_m);
-          level_m = level_error(pruned, error_m + step_m);
-          lv = std::move(pruned);
+          level_m = level_error(again, error_m + step_m);
           next = std::move(again);
         }
       }
     }
     error_m = level_m;
+    LodLevel lv = make_level(w, next, model.normals_from_file, o.crease_deg);
     lv.error_m = error_m;
     lv.sloppy = sloppy;
     chain.push_back(std::move(lv));

@@ -8,25 +8,13 @@
 #include <numeric>
 #include <tuple>
 
+#include "union_find.h"
+
 namespace terrasprite::detail {
 namespace {
 
 // Regions of at most this many triangles are kept whole rather than erased.
 constexpr std::size_t kKeepTriangles = 8;
-
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 struct Island {
   std::uint32_t root = 0;

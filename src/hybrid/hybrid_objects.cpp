@@ -222,29 +222,28 @@ long long HybridObjects::draw(const Camera& camera) {
     view();
   }
   views.wait();
+  // The instances not behind the terrain; frame[k] holds viewed[k]'s options.
+  std::erase_if(viewed, [&](const Viewed& c) {
+    const bool hidden = cull && occluder.hidden(sphere_on_screen(camera, o.width, o.height,
+                                                                 c.view.centre_m, c.view.radius_m));
+    st.occluded += hidden;
+    return hidden;
+  });
   std::vector<InstanceOptions> frame;
-  std::vector<std::pair<std::size_t, std::size_t>> where;  // (model, instance index)
-  std::vector<double> pixels_of;                           // covered pixels, per entry
+  frame.reserve(viewed.size());
   for (Viewed& c : viewed) {
-    if (cull && occluder.hidden(sphere_on_screen(camera, o.width, o.height, c.view.centre_m,
-                                                 c.view.radius_m))) {
-      ++st.occluded;
-      continue;
-    }
     long long lo = c.options.options.front().triangles;
     for (const auto& opt : c.options.options) lo = std::min(lo, opt.triangles);
     st.triangles_min += lo;
     st.triangles_max += s.set.model(c.model).model().triangles();
     frame.push_back(std::move(c.options));
-    where.push_back({c.model, c.index});
-    pixels_of.push_back(c.view.pixels);
   }
   // A draw call per (model, representation) the knapsack cannot see as a
   // fixed cost: each visible instance of the model carries its share of it
   // (at most one call per representation for all of them).
   for (std::size_t first = 0; first < frame.size();) {
     std::size_t end = first;
-    while (end < frame.size() && where[end].first == where[first].first) ++end;
+    while (end < frame.size() && viewed[end].model == viewed[first].model) ++end;
     const double visible = double(end - first);
     for (std::size_t k = first; k < end; ++k) {
       double cheapest = INFINITY;
@@ -331,7 +330,7 @@ long long HybridObjects::draw(const Camera& camera) {
   s.load = load;
   for (std::size_t k = 0; k < frame.size(); ++k) {
     const RepresentationOption& opt = frame[k].options[std::size_t(sel.option[k])];
-    const auto [m, i] = where[k];
+    const std::size_t m = viewed[k].model, i = viewed[k].index;
     const Representation& r = opt.rep;
     if (!is_drawn(r)) {
       ++st.not_drawn;
@@ -340,7 +339,7 @@ long long HybridObjects::draw(const Camera& camera) {
     auto& g = groups[{m, int(r.kind), r.level, r.resolution}];
     g.first = r;
     g.second.push_back(s.set.instances(m)[i]);
-    s.cost.add(s.load, r, double(opt.triangles), pixels_of[k], int(m),
+    s.cost.add(s.load, r, double(opt.triangles), viewed[k].view.pixels, int(m),
                s.set.model(m).culls_back_faces(r, g.second.back(), camera));
     st.triangles += opt.triangles;
     st.instances_by_kind[std::size_t(r.kind)] += 1;

@@ -374,6 +374,7 @@ void run_bench_hybrid(const HybridArgs& a) {
   ho.height = h;
   ho.cull_px = a.cull_px;
   ho.controller.quantile_margin = a.p95_margin;
+  ho.controller.tolerance = a.p95_aim;
   ho.pace.max_slope = a.pace_max_slope;
   for (const TableOptions& o : table_sampling)
     for (int px : o.sizes_px) ho.max_impostor_size_px = std::max(ho.max_impostor_size_px, 2.0 * px);

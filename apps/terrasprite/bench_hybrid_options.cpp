@@ -41,6 +41,11 @@ void add_bench_hybrid(CLI::App& bench) {
                   "the p95 then lands nearer +10-15%)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 10.0));
+  cmd->add_option("--p95-aim", a->p95_aim,
+                  "budgeted scenarios: where the controller aims the frames' p95, x the target "
+                  "(before --p95-margin)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.5, 2.0));
   cmd->add_option("--pace-max-slope", a->pace_max_slope,
                   "with occlusion culling: the most the frame's prediction may follow the "
                   "read-back's pace (its log slope, fitted online; 0: not at all)")

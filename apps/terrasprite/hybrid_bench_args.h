@@ -20,6 +20,7 @@ struct HybridArgs {
   double cull_px = 4;
   bool occlusion_cull = true;
   double p95_margin = BudgetControllerOptions{}.quantile_margin;
+  double p95_aim = BudgetControllerOptions{}.tolerance;
   double pace_max_slope = FramePaceOptions{}.max_slope;
   std::string table_sizes = "200,50,16,8,4", relief_resolutions = "32,64,128,256",
               octahedral_resolutions = "32,64,128";

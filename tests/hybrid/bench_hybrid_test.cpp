@@ -183,7 +183,7 @@ TEST(BenchHybrid, BadInputExitsTwoWithoutOutput) {
   const std::vector<std::string> bad_args{
       "--target-ms 0", "--path " + (dir / "path.json"), "--size 0x0",
       "--budget-fractions 0.1,x", "--diagnosis-conditions scene,moon", "--cull-px -1",
-      "--p95-margin -1", "--cost-split 3", "--cost-split -1", "--llvmpipe-threads x",
+      "--p95-margin -1", "--p95-aim 0.4", "--cost-split 3", "--cost-split -1", "--llvmpipe-threads x",
       "--llvmpipe-threads -1", "--llvmpipe-threads 33", "--llvmpipe-threads 2x", "--msaa 0",
       "--msaa 65", "--msaa 64",  // 64: over what any GL offers
       "--table-sizes 3", "--table-sizes 2049", "--table-sizes 16,x", "--calibration-sizes 2",

@@ -250,9 +250,6 @@ std::vector<LodLevel> build_lod_chain(const Model& model, const LodOptions& o) {
   const std::size_t floor_tris =
       std::max<std::size_t>(o.min_triangles, std::size_t(std::ceil(full * o.min_fraction)));
   std::vector<std::uint32_t> current = w.indices;
-  glm::vec3 lo(INFINITY), hi(-INFINITY);
-  for (const glm::vec3& p : w.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  const double model_radius = 0.5 * glm::length(glm::dvec3(hi - lo));
   double error_m = 0.0;
   bool sloppy = false;
   std::vector<glm::dvec3> probe;
@@ -265,15 +262,21 @@ std::vector<LodLevel> build_lod_chain(const Model& model, const LodOptions& o) {
     if (probe.empty()) probe = probes(model);
     return std::max(accumulated, measured_deviation(probe, w.positions, indices));
   };
+  // One locked-border quadric step of `indices` towards `target_tris` into
+  // `out` (sized for the input); returns the indices written.
+  auto quadric = [&](const std::vector<std::uint32_t>& indices, std::size_t target_tris,
+                     std::vector<std::uint32_t>& out, float& err) {
+    return meshopt_simplify(out.data(), indices.data(), indices.size(), &w.positions[0].x,
+                            w.positions.size(), sizeof(glm::vec3), target_tris * 3, 1.f,
+                            meshopt_SimplifyLockBorder, &err);
+  };
   while (current.size() / 3 > floor_tris) {
     const std::size_t target_tris = std::max(floor_tris, std::size_t(current.size() / 3 * o.ratio));
     std::vector<std::uint32_t> next(current.size());
     float err = 0.f;
     std::size_t count = 0;
     if (!sloppy) {
-      count = meshopt_simplify(next.data(), current.data(), current.size(), &w.positions[0].x,
-                               w.positions.size(), sizeof(glm::vec3), target_tris * 3, 1.f,
-                               meshopt_SimplifyLockBorder, &err);
+      count = quadric(current, target_tris, next, err);
       sloppy = count > target_tris * 3 * 3 / 2;
     }
     double step_m = double(err) * scale;
@@ -295,14 +298,12 @@ std::vector<LodLevel> build_lod_chain(const Model& model, const LodOptions& o) {
       // error bound alone took its tree tops (radius 0.8 m of 7.5).
       double part_m = 0.0;
       const std::vector<std::uint32_t> kept = detail::without_small_parts(
-          w.positions, current, std::min(level_m, kSmallPart * model_radius),
+          w.positions, current, std::min(level_m, kSmallPart * model.bounding_radius()),
           current.size() / 3 - next.size() / 3, part_m);
       if (kept.size() < current.size()) {
         std::vector<std::uint32_t> again(kept.size());
         float kept_err = 0.f;
-        const std::size_t n = meshopt_simplify(
-            again.data(), kept.data(), kept.size(), &w.positions[0].x, w.positions.size(),
-            sizeof(glm::vec3), target_tris * 3, 1.f, meshopt_SimplifyLockBorder, &kept_err);
+        const std::size_t n = quadric(kept, target_tris, again, kept_err);
         if (n > 0 && n <= count) {
           again.resize(n);
           step_m = std::max(double(kept_err) * scale, part_m);

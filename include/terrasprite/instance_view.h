@@ -22,6 +22,12 @@ struct InstanceView {
   /// sphere's on-screen box (exact per axis, near spheres included),
   /// clipped to the image; a far sphere's is its disc, pi/4 size_px^2.
   double pixels = 0;
+  /// The part of the bounding ball inside the view frustum (its volume,
+  /// sampled on 512 fixed points: 1/512 steps), [0, 1]: how much of a mesh
+  /// reaches the rasteriser (DrawCostModel::instance_ms). For a model's
+  /// triangles spread through its ball this is the part on screen, the
+  /// camera within the ball included (a forest walked through).
+  double on_screen = 1;
   double phi_deg = 0;    ///< azimuth of the camera around the model, its own frame
   double theta_deg = 0;  ///< 0: camera straight above the model, 90: level with it
 };

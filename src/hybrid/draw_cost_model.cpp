@@ -151,19 +151,30 @@ double DrawCostModel::impostor_extra_ms(ObjectKind kind) const {
   return m(extra_term(kind)) * options_.impostor_extra_prior_ms;
 }
 
+namespace {
+
+/// The share of a mesh's triangles that reach setup (DrawCostModel::instance_ms).
+double triangle_share(ObjectKind kind, double on_screen) {
+  return kind == ObjectKind::kMesh ? std::clamp(on_screen, 0.0, 1.0) : 1.0;
+}
+
+}  // namespace
+
 double DrawCostModel::instance_ms(const Representation& rep, double triangles, double pixels,
-                                  int model, bool culled) const {
+                                  int model, bool culled, double on_screen) const {
+  const double share = triangle_share(rep.kind, on_screen);
   const RepresentationCost* c = find(rep, model);
-  if (!c) return instance_ms(rep.kind, triangles, pixels);
+  if (!c) return instance_ms(rep.kind, share * triangles, pixels);
   const int k = int(rep.kind);
   const double f = culled ? c->culled_fraction : 1.0;
-  return f * (m(2 + 3 * k) * c->fixed_ms + m(3 + 3 * k) * c->per_pixel_ms * pixels) +
+  return f * (m(2 + 3 * k) * share * c->fixed_ms + m(3 + 3 * k) * c->per_pixel_ms * pixels) +
          impostor_extra_ms(rep.kind);
 }
 
 void DrawCostModel::add(FrameLoad& load, const Representation& rep, double triangles, double pixels,
-                        int model, bool culled) const {
+                        int model, bool culled, double on_screen) const {
   const std::size_t k = std::size_t(rep.kind);
+  const double share = triangle_share(rep.kind, on_screen);
   DrawSample& s = load.kinds[k];
   s.instances += 1;
   s.triangles += triangles;
@@ -171,7 +182,8 @@ void DrawCostModel::add(FrameLoad& load, const Representation& rep, double trian
   const RepresentationCost* c = find(rep, model);
   const DrawCostTerms& t = terms_[k];
   const double f = c && culled ? c->culled_fraction : 1.0;
-  load.fixed_ms[k] += c ? f * c->fixed_ms : t.per_instance_ms + t.per_triangle_ms * triangles;
+  load.fixed_ms[k] +=
+      c ? f * share * c->fixed_ms : t.per_instance_ms + t.per_triangle_ms * share * triangles;
   load.pixel_ms[k] += c ? f * c->per_pixel_ms * pixels : t.per_pixel_ms * pixels;
 }
 

@@ -161,8 +161,9 @@ std::vector<Viewed> HybridObjects::Impl::view_and_price(const Camera& camera,
             f.error_m * instances[i].scale * px_per_m / std::max(v.distance_m, 1e-6);
         const bool culled = gl_model.culls_back_faces(f.rep, instances[i], camera);
         inst.options.push_back(
-            {f.rep, cost.instance_ms(f.rep, double(f.triangles), v.pixels, int(m), culled), q.ssim,
-             q.psnr, f.triangles, err_px});
+            {f.rep,
+             cost.instance_ms(f.rep, double(f.triangles), v.pixels, int(m), culled, v.on_screen),
+             q.ssim, q.psnr, f.triangles, err_px});
       }
       if (o.cull_px > 0 && v.size_px < o.cull_px && !scenario.full &&
           scenario.policy != SelectionPolicy::kImpostorOnly)
@@ -340,7 +341,8 @@ long long HybridObjects::draw(const Camera& camera) {
     g.first = r;
     g.second.push_back(s.set.instances(m)[i]);
     s.cost.add(s.load, r, double(opt.triangles), viewed[k].view.pixels, int(m),
-               s.set.model(m).culls_back_faces(r, g.second.back(), camera));
+               s.set.model(m).culls_back_faces(r, g.second.back(), camera),
+               viewed[k].view.on_screen);
     st.triangles += opt.triangles;
     st.instances_by_kind[std::size_t(r.kind)] += 1;
   }

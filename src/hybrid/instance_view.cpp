@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "hybrid/sphere_tangents.h"
 
@@ -14,6 +15,48 @@ namespace {
 glm::dvec3 heading_rotate(glm::dvec3 v, double heading_rad) {
   const double c = std::cos(heading_rad), s = std::sin(heading_rad);
   return {c * v.x + s * v.y, -s * v.x + c * v.y, v.z};
+}
+
+/// Radical inverse of i in base b (a Halton sequence's coordinate).
+double radical_inverse(int i, int b) {
+  double f = 1, x = 0;
+  for (; i > 0; i /= b) {
+    f /= b;
+    x += f * (i % b);
+  }
+  return x;
+}
+
+/// 512 points spread evenly through the unit ball: Halton (2, 3, 5) over its
+/// cube, those inside kept. A plane cuts them within a percent or two of the
+/// ball's volume; a regular 8 x 8 x 8 grid missed a cap by 4 points in 100.
+const std::vector<glm::dvec3>& ball_points() {
+  static const std::vector<glm::dvec3> points = [] {
+    std::vector<glm::dvec3> p;
+    for (int i = 1; p.size() < 512; ++i) {
+      const glm::dvec3 q{radical_inverse(i, 2) * 2 - 1, radical_inverse(i, 3) * 2 - 1,
+                         radical_inverse(i, 5) * 2 - 1};
+      if (glm::dot(q, q) <= 1) p.push_back(q);
+    }
+    return p;
+  }();
+  return points;
+}
+
+/// The part of the ball at (x, y, z) (camera frame: right, up, forward;
+/// metres) of radius r inside the frustum x/z in [-tx, tx], y/z in [-ty, ty],
+/// z >= near: the share of ball_points() in it.
+double ball_fraction_in_frustum(double x, double y, double z, double r, double tx, double ty,
+                                double near_m) {
+  const double nx = 1 / std::sqrt(1 + tx * tx), ny = 1 / std::sqrt(1 + ty * ty);
+  if (z - r >= near_m && (std::abs(x) - tx * z) * nx <= -r && (std::abs(y) - ty * z) * ny <= -r)
+    return 1;
+  int in = 0;
+  for (const glm::dvec3& q : ball_points()) {
+    const double px = x + r * q.x, py = y + r * q.y, pz = z + r * q.z;
+    in += pz >= near_m && std::abs(px) <= tx * pz && std::abs(py) <= ty * pz;
+  }
+  return double(in) / double(ball_points().size());
 }
 
 }  // namespace
@@ -72,6 +115,7 @@ InstanceView view_instance(const Camera& camera, int height_px, const ObjectInst
     return std::max(0.0, std::min(hi, extent_px / 2) - std::max(lo, -extent_px / 2));
   };
   v.pixels = M_PI / 4 * extent(x, tx, width_px) * extent(y, ty, double(height_px));
+  v.on_screen = ball_fraction_in_frustum(x, y, z, r, tx, ty, camera.near_m);
   // The camera's direction from the centre, in the model's frame.
   const glm::dvec3 d = heading_rotate(-to / std::max(v.distance_m, 1e-12), -heading);
   v.theta_deg = glm::degrees(std::acos(std::clamp(d.z, -1.0, 1.0)));

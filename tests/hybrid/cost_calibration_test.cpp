@@ -114,5 +114,34 @@ TEST(CostCalibration, APairFromAboveSetsALevelsCulledFraction) {
   }
 }
 
+TEST(CostCalibration, AMeshHalfOutsideTheImageCostsItsTrianglesInside) {
+  // Its pixels are clipped by the caller; its per-instance (triangle) time
+  // scales by the part on screen. An impostor's does not (not measured).
+  DrawCostModel model;
+  fit_draw_costs(model, singles_and_batches(2));
+  const double tris = triangles(0);
+  const Representation rep{ObjectKind::kMesh, 0};
+  const double whole = model.instance_ms(rep, tris, 0, 0);
+  ASSERT_GT(whole, 0);
+  EXPECT_NEAR(model.instance_ms(rep, tris, large, 0, false, 0.5),
+              0.5 * whole + model.instance_ms(rep, tris, large, 0) - whole, 1e-12);
+  EXPECT_NEAR(model.instance_ms(rep, tris, 0, 0, false, -1), 0.0, 1e-12);  // clamped to [0, 1]
+  EXPECT_NEAR(model.instance_ms(rep, tris, 0, 0, false, 2), whole, 1e-12);
+  FrameLoad load;
+  model.add(load, rep, tris, large, 0, false, 0.5);
+  EXPECT_NEAR(model.predict(load), model.instance_ms(rep, tris, large, 0, false, 0.5), 1e-12);
+  // Uncalibrated (another model's level 5, no "any model" cost): the kind's
+  // per-triangle term scales, its per-instance term does not.
+  const Representation other{ObjectKind::kMesh, 5};
+  ASSERT_FALSE(model.calibrated(other, 3));
+  const DrawCostTerms& t = model.terms(ObjectKind::kMesh);
+  EXPECT_NEAR(
+      model.instance_ms(other, 1000, 0, 3) - model.instance_ms(other, 1000, 0, 3, false, 0.25),
+      0.75 * 1000 * t.per_triangle_ms, 1e-12);
+  const Representation relief{ObjectKind::kRelief, 0, 64};
+  EXPECT_DOUBLE_EQ(model.instance_ms(relief, 12, large, 0, false, 0.25),
+                   model.instance_ms(relief, 12, large, 0));
+}
+
 }  // namespace
 }  // namespace terrasprite

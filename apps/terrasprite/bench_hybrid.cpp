@@ -217,7 +217,7 @@ void print_summary(const HybridBenchResult& result, bool occlusion_cull) {
   fmt::print("{}\n", table2_markdown(result));
   for (const HybridScenarioResult& s : result.scenarios)
     fmt::print(
-        "{:14} median {:7.1f} ms  p95 {:7.1f} ms  p99 {:7.1f} ms  (target {:.0f} ms, {:.0f}% "
+        "{:14} median {:7.1f} ms  p95 {:7.1f} ms  p99 {:7.1f} ms  (target {:g} ms, {:.0f}% "
         "within +10%)  "
         "mean SSIM {:.4f}, objects {:.4f}, {:.2f} switches/frame\n",
         s.name, s.ms.median, s.ms.p95, s.ms.p99, target_ms, 100 * s.within_10pct, s.mean_ssim,
@@ -432,10 +432,10 @@ void run_bench_hybrid(const HybridArgs& a) {
   }
   result.target_auto = target_ms == 0;
   if (result.target_auto)
-    target_ms = std::max(1.0, std::floor(result.full_ms_at_start / a.full_over_target));
+    target_ms = std::max(0.1, std::floor(10 * result.full_ms_at_start / a.full_over_target) / 10);
   fmt::print(stderr,
              "terrain alone {:.1f} ms (median of 6 path frames), full geometry {:.1f} ms (the "
-             "lower of two medians of the scored frames); target {:.0f} ms{}\n",
+             "lower of two medians of the scored frames); target {:g} ms{}\n",
              result.terrain_ms, result.full_ms_at_start, target_ms,
              result.target_auto ? fmt::format(" (auto: full / {:g})", a.full_over_target) : "");
   result.target_ms = target_ms;

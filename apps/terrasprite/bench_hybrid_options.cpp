@@ -21,7 +21,7 @@ void add_bench_hybrid(CLI::App& bench) {
       ->check(CLI::Range(0, 1000000));
   cmd->add_option("--target-ms", a->target,
                   "target frame time, ms, or auto: full geometry's median time on the frames "
-                  "it is scored on (timed first) / --full-over-target, rounded down to whole ms")
+                  "it is scored on (timed first) / --full-over-target, rounded down to 0.1 ms")
       ->capture_default_str();
   cmd->add_option("--full-over-target", a->full_over_target,
                   "auto target: full geometry's time over the target")

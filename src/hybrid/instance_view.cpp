@@ -45,12 +45,10 @@ const std::vector<glm::dvec3>& ball_points() {
 
 /// The part of the ball at (x, y, z) (camera frame: right, up, forward;
 /// metres) of radius r inside the frustum x/z in [-tx, tx], y/z in [-ty, ty],
-/// z >= near: the share of ball_points() in it.
+/// z >= near: the share of ball_points() in it. For a ball the frustum's
+/// planes cut (view_instance returns 1 for one wholly inside).
 double ball_fraction_in_frustum(double x, double y, double z, double r, double tx, double ty,
                                 double near_m) {
-  const double nx = 1 / std::sqrt(1 + tx * tx), ny = 1 / std::sqrt(1 + ty * ty);
-  if (z - r >= near_m && (std::abs(x) - tx * z) * nx <= -r && (std::abs(y) - ty * z) * ny <= -r)
-    return 1;
   int in = 0;
   for (const glm::dvec3& q : ball_points()) {
     const double px = x + r * q.x, py = y + r * q.y, pz = z + r * q.z;
@@ -78,8 +76,9 @@ InstanceView view_instance(const Camera& camera, int height_px, const ObjectInst
   const double ty = std::tan(glm::radians(camera.fov_y_deg) / 2), tx = ty * camera.aspect;
   const double x = glm::dot(to, rt), y = glm::dot(to, up);
   const double ny = 1.0 / std::sqrt(1 + ty * ty), nx = 1.0 / std::sqrt(1 + tx * tx);
-  v.visible = z + r > camera.near_m && z - r < camera.far_m && (std::abs(x) - tx * z) * nx < r &&
-              (std::abs(y) - ty * z) * ny < r;
+  // Signed distances from the centre to the nearer side planes (outwards).
+  const double side_x = (std::abs(x) - tx * z) * nx, side_y = (std::abs(y) - ty * z) * ny;
+  v.visible = z + r > camera.near_m && z - r < camera.far_m && side_x < r && side_y < r;
   if (!v.visible) return v;
   v.size_px = v.distance_m > r
                   ? height_px * (r / std::sqrt(v.distance_m * v.distance_m - r * r)) / ty
@@ -115,7 +114,8 @@ InstanceView view_instance(const Camera& camera, int height_px, const ObjectInst
     return std::max(0.0, std::min(hi, extent_px / 2) - std::max(lo, -extent_px / 2));
   };
   v.pixels = M_PI / 4 * extent(x, tx, width_px) * extent(y, ty, double(height_px));
-  v.on_screen = ball_fraction_in_frustum(x, y, z, r, tx, ty, camera.near_m);
+  const bool inside = z - r >= camera.near_m && side_x <= -r && side_y <= -r;
+  v.on_screen = inside ? 1.0 : ball_fraction_in_frustum(x, y, z, r, tx, ty, camera.near_m);
   // The camera's direction from the centre, in the model's frame.
   const glm::dvec3 d = heading_rotate(-to / std::max(v.distance_m, 1e-12), -heading);
   v.theta_deg = glm::degrees(std::acos(std::clamp(d.z, -1.0, 1.0)));

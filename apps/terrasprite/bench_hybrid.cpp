@@ -63,6 +63,8 @@ std::vector<TableOptions> table_options(const HybridArgs& a) {
     o.resolutions = int_list(res, option);
     o.sizes_px = int_list(a.table_sizes, "--table-sizes");
     o.angle_step_deg = a.table_angle_step;
+    o.headings_deg = parse_list(a.table_headings, "--table-headings");
+    check_headings(o.headings_deg, "--table-headings");
     o.full_sphere = a.table_full_sphere;
     o.samples = a.msaa;
     for (int r : o.resolutions)

@@ -81,6 +81,11 @@ void add_bench_hybrid(CLI::App& bench) {
                   "quality tables: degrees between views")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 180.0));
+  cmd->add_option("--table-headings", a->table_headings,
+                  "quality tables: model headings, degrees in [0, 360): the sun is fixed in the "
+                  "world, so a heading says which side of the model it lights, and an instance "
+                  "reads the tables between the two headings around its own")
+      ->capture_default_str();
   cmd->add_option("--table-full-sphere", a->table_full_sphere,
                   "quality tables: views from below too (theta to 180): the walkthrough sees "
                   "most instances from 18-28 degrees below their centre, and hemisphere tables "

@@ -174,9 +174,11 @@ double predicted_ssim(const std::vector<Item>& items,
   double sum = 0, wsum = 0;
   for (const Item& it : items) {
     const auto f = interp[it.model].find(key_of(rep_of(it.model)));
-    const double q = f == interp[it.model].end()
-                         ? 1.0
-                         : f->second.at(it.view.phi_deg, it.view.theta_deg, it.view.size_px).ssim;
+    const double q =
+        f == interp[it.model].end()
+            ? 1.0
+            : f->second.at(it.view.phi_deg, it.view.theta_deg, it.view.size_px, it.view.heading_deg)
+                  .ssim;
     sum += it.view.pixels * q;
     wsum += it.view.pixels;
   }

@@ -58,7 +58,8 @@ nlohmann::json table_json(const QualityTable& t, const TableOptions& o) {
                          {"theta_deg", s.theta_deg},
                          {"size_px", s.size_px},
                          {"psnr", number(s.psnr)},
-                         {"ssim", number(s.ssim)}});
+                         {"ssim", number(s.ssim)},
+                         {"heading_deg", s.heading_deg}});
     r["cost"] = cost;
     r["samples"] = samples;
     reps.push_back(r);
@@ -85,6 +86,7 @@ nlohmann::json table_json(const QualityTable& t, const TableOptions& o) {
             {"sizes_px", o.sizes_px},
             {"angle_step_deg", o.angle_step_deg},
             {"full_sphere", o.full_sphere},
+            {"headings_deg", o.headings_deg},
             {"views", o.views}}},
           {"representations", reps},
           {"table", table}};
@@ -112,7 +114,8 @@ QualityTable table_from_json(const nlohmann::json& j) {
         q.cost.push_back({c.at("size_px"), c.at("ms_per_instance")});
       for (const auto& s : r.at("samples"))
         q.samples.push_back({s.at("phi_deg"), s.at("theta_deg"), s.at("size_px"),
-                             number(s.at("psnr")), number(s.at("ssim"))});
+                             number(s.at("psnr")), number(s.at("ssim")),
+                             s.value("heading_deg", 0.0)});
       t.representations.push_back(std::move(q));
     }
     for (const auto& e : j.at("table")) {
@@ -139,6 +142,8 @@ std::string table_cache_key(const std::string& model_file, const ModelOptions& m
                         o.timing_instances, fmt::join(o.ssim_targets, ","),
                         fmt::join(o.psnr_targets, ","));
   if (o.samples > 1) params += fmt::format("|ms{}", o.samples);  // single-sampled keys as before
+  if (o.headings_deg != std::vector<double>{0.0})                // one heading: keys as before
+    params += fmt::format("|h{}", fmt::join(o.headings_deg, ","));
   return model_source_key(model_file, m) + fmt::format("{:016x}", fnv1a(params));
 }
 

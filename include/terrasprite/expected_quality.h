@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Expected image quality of a representation seen from a given direction at
 // a given on-screen size, interpolated from its measured quality table
-// (QualityTable samples over phi x theta x size_px).
+// (QualityTable samples over phi x theta x size_px x heading).
 #pragma once
 #include <array>
 #include <utility>
@@ -18,10 +18,11 @@ struct ExpectedQuality {
 
 /// Interpolates one representation's samples: over the view direction by
 /// inverse angular distance to the (up to) four nearest samples of each
-/// measured size, then linearly in log2(size) between the two sizes around
-/// the asked one (sizes outside the measured range clamp to the nearest).
-/// theta beyond the sampled range (a hemisphere table seen from below)
-/// clamps to the largest sampled theta.
+/// measured size and heading, then linearly in heading between the two
+/// measured headings around the asked one (around the circle), then linearly
+/// in log2(size) between the two sizes around the asked one (sizes outside
+/// the measured range clamp to the nearest). theta beyond the sampled range
+/// (a hemisphere table seen from below) clamps to the largest sampled theta.
 class QualityInterpolator {
  public:
   /// Copies the samples, less those whose SSIM is not finite (the nearest
@@ -29,8 +30,10 @@ class QualityInterpolator {
   /// a full-detail mesh) reads as perfect quality.
   explicit QualityInterpolator(const RepresentationQuality& rep);
   /// phi in degrees (any range), theta in degrees from straight above, size
-  /// in pixels (> 0).
-  ExpectedQuality at(double phi_deg, double theta_deg, double size_px) const;
+  /// in pixels (> 0), the instance's compass heading in degrees (any range;
+  /// the sun's side of the model).
+  ExpectedQuality at(double phi_deg, double theta_deg, double size_px,
+                     double heading_deg = 0) const;
 
   /// Where a view falls in the table: which samples, with which weights.
   /// Computed once per instance and view, applied to every representation
@@ -39,12 +42,16 @@ class QualityInterpolator {
     int slices = 0;  ///< 0: no samples (perfect quality)
     std::array<int, 2> slice{0, 0};
     double t = 0;  ///< blend of slice[1] over slice[0]
-    std::array<std::array<std::pair<int, double>, 4>, 2>
-        nearest{};  ///< (sample, weight), weights sum to 1
+    /// Per size slice: its two headings around the asked one, and the blend
+    /// of the second over the first.
+    std::array<std::array<int, 2>, 2> heading{};
+    std::array<double, 2> u{0, 0};
+    /// [slice][heading]: (sample, weight), weights sum to 1
+    std::array<std::array<std::array<std::pair<int, double>, 4>, 2>, 2> nearest{};
   };
-  Weights weights(double phi_deg, double theta_deg, double size_px) const;
+  Weights weights(double phi_deg, double theta_deg, double size_px, double heading_deg = 0) const;
   ExpectedQuality at(const Weights& w) const;
-  /// Whether `other` has the same sizes and views in the same order.
+  /// Whether `other` has the same sizes, headings and views in the same order.
   bool same_layout(const QualityInterpolator& other) const;
 
  private:
@@ -52,12 +59,16 @@ class QualityInterpolator {
     double x, y, z;  ///< unit view direction of the sample
     ExpectedQuality q;
   };
-  struct SizeSlice {
-    double size_px = 0;
+  struct HeadingSlice {
+    double heading_deg = 0;  ///< in [0, 360)
     std::vector<Direction> samples;
   };
-  std::array<std::pair<int, double>, 4> nearest(const SizeSlice& slice, double x, double y,
-                                                double z) const;
+  struct SizeSlice {
+    double size_px = 0;
+    std::vector<HeadingSlice> headings;  ///< rising heading
+  };
+  static std::array<std::pair<int, double>, 4> nearest(const std::vector<Direction>& samples,
+                                                       double x, double y, double z);
   std::vector<SizeSlice> slices_;  ///< rising size
   double theta_max_ = 180.0;
 };

@@ -30,6 +30,9 @@ struct InstanceView {
   double on_screen = 1;
   double phi_deg = 0;    ///< azimuth of the camera around the model, its own frame
   double theta_deg = 0;  ///< 0: camera straight above the model, 90: level with it
+  /// The instance's compass heading, degrees: with the sun fixed in the
+  /// world, the side of the model it lights (the tables' heading_deg).
+  double heading_deg = 0;
 };
 
 /// `center_m` and `radius_m` are the model's bounding sphere in its own

@@ -3,6 +3,7 @@
 // image-based impostors (relief texture, octahedral), instanced, lit by the
 // sun (Lambert + ambient, the terrain's own light).
 #pragma once
+#include <cmath>
 #include <memory>
 #include <span>
 #include <string>
@@ -23,6 +24,13 @@ struct ObjectInstance {
   double heading_deg = 0.0;
   double scale = 1.0;
 };
+
+/// A model vector turned by a compass heading (radians, clockwise seen from
+/// above), as the object shaders turn an instance's positions and normals.
+inline glm::dvec3 heading_rotate(glm::dvec3 v, double heading_rad) {
+  const double c = std::cos(heading_rad), s = std::sin(heading_rad);
+  return {c * v.x + s * v.y, -s * v.x + c * v.y, v.z};
+}
 
 enum class ObjectKind { kMesh, kRelief, kOctahedral };
 

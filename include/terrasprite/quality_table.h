@@ -26,6 +26,11 @@ struct TableOptions {
   /// and below (180) are sampled once, at phi 0.
   double angle_step_deg = 30.0;
   bool full_sphere = false;  ///< theta up to 180 (from below too)
+  /// Compass headings, degrees in [0, 360), the model is drawn at. The sun
+  /// is fixed in the world and an instance's heading turns its normals, so
+  /// the heading says from which side the model is lit; phi and theta stay
+  /// in the model's frame. {0}: one light, as before.
+  std::vector<double> headings_deg{0.0};
   int views = 12;            ///< octahedral views per side
   int timing_instances = 1;  ///< instances drawn (3 times, median) to time a representation
   /// Samples a pixel (MSAA) of every image drawn, the reference's included:
@@ -39,8 +44,9 @@ struct QualitySample {
   double phi_deg = 0;    ///< azimuth of the camera around the object
   double theta_deg = 0;  ///< 0 = from straight above, 90 = horizontal
   int size_px = 0;
-  double psnr = 0;  ///< RGB PSNR in dB, masked; +inf when identical
-  double ssim = 0;  ///< Wang SSIM on luma, masked
+  double psnr = 0;         ///< RGB PSNR in dB, masked; +inf when identical
+  double ssim = 0;         ///< Wang SSIM on luma, masked
+  double heading_deg = 0;  ///< the model's compass heading (its side to the sun)
 };
 
 struct SizeCost {
@@ -79,13 +85,24 @@ struct QualityTable {
   double build_ms = 0;  ///< wall time of measure_quality_table
 };
 
+/// The camera of a table's sample: on a sphere around the model's centre at
+/// (phi, theta) in the model's frame, far enough that the bounding sphere
+/// spans `size_px` of an image `side` px square, for the model at the origin
+/// turned to `heading_deg` (ObjectInstance{{}, heading_deg, 1}).
+Camera table_camera(const Model& m, double phi_deg, double theta_deg, int size_px, int side,
+                    double heading_deg);
+
 /// Renders and scores every representation of `model` (levels of its chain
 /// for kMesh, each resolution for the impostors) at every view and size.
 /// Needs a current GlContext. `progress(done, total)` is called per view.
-/// Throws InputError for an empty list, a size under 16 or over 2048 px,
-/// or an angle step outside (0, 180].
+/// Throws InputError for an empty list, a size under 4 or over 2048 px,
+/// an angle step outside (0, 180], or a heading outside [0, 360) or repeated.
 QualityTable measure_quality_table(GlModel& model, const TableOptions& options,
                                    const std::function<void(int, int)>& progress = {});
+
+/// Throws InputError naming `option` for an empty list, a heading outside
+/// [0, 360) or one given twice.
+void check_headings(const std::vector<double>& headings_deg, const char* option);
 
 /// Table 1 from measured representations.
 std::vector<TableEntry> derive_table(const std::vector<RepresentationQuality>& reps,

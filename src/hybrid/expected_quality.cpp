@@ -20,6 +20,17 @@ double capped_psnr(double psnr) {
   return std::isfinite(psnr) ? std::min(psnr, 100.0) : 100.0;
 }
 
+/// Degrees into [0, 360).
+double wrap_degrees(double deg) {
+  double w = std::fmod(deg, 360.0);
+  if (w < 0) w += 360.0;
+  return w >= 360.0 ? 0.0 : w;  // -1e-20 + 360 rounds to 360
+}
+
+ExpectedQuality lerp(const ExpectedQuality& a, const ExpectedQuality& b, double t) {
+  return {a.ssim + t * (b.ssim - a.ssim), a.psnr + t * (b.psnr - a.psnr)};
+}
+
 }  // namespace
 
 QualityInterpolator::QualityInterpolator(const RepresentationQuality& rep) {
@@ -34,21 +45,32 @@ QualityInterpolator::QualityInterpolator(const RepresentationQuality& rep) {
       slices_.push_back({double(s.size_px), {}});
       it = slices_.end() - 1;
     }
+    const double heading = wrap_degrees(s.heading_deg);
+    auto h = std::find_if(it->headings.begin(), it->headings.end(),
+                          [&](const HeadingSlice& hs) { return hs.heading_deg == heading; });
+    if (h == it->headings.end()) {
+      it->headings.push_back({heading, {}});
+      h = it->headings.end() - 1;
+    }
     const glm::dvec3 d = direction(s.phi_deg, s.theta_deg);
-    it->samples.push_back({d.x, d.y, d.z, {s.ssim, capped_psnr(s.psnr)}});
+    h->samples.push_back({d.x, d.y, d.z, {s.ssim, capped_psnr(s.psnr)}});
     theta_max_ = std::max(theta_max_, s.theta_deg);
   }
   std::sort(slices_.begin(), slices_.end(),
             [](const SizeSlice& a, const SizeSlice& b) { return a.size_px < b.size_px; });
+  for (SizeSlice& sl : slices_)
+    std::sort(
+        sl.headings.begin(), sl.headings.end(),
+        [](const HeadingSlice& a, const HeadingSlice& b) { return a.heading_deg < b.heading_deg; });
 }
 
-std::array<std::pair<int, double>, 4> QualityInterpolator::nearest(const SizeSlice& slice, double x,
-                                                                   double y, double z) const {
+std::array<std::pair<int, double>, 4> QualityInterpolator::nearest(
+    const std::vector<Direction>& samples, double x, double y, double z) {
   // The four nearest samples by angle (largest cosine), weighted by inverse angle.
   std::array<std::pair<double, int>, 4> best;
   best.fill({-2.0, -1});
-  for (std::size_t k = 0; k < slice.samples.size(); ++k) {
-    const Direction& d = slice.samples[k];
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const Direction& d = samples[k];
     const double cosine = d.x * x + d.y * y + d.z * z;
     if (cosine <= best[3].first) continue;
     int j = 3;
@@ -76,7 +98,8 @@ std::array<std::pair<int, double>, 4> QualityInterpolator::nearest(const SizeSli
 }
 
 QualityInterpolator::Weights QualityInterpolator::weights(double phi_deg, double theta_deg,
-                                                          double size_px) const {
+                                                          double size_px,
+                                                          double heading_deg) const {
   Weights w;
   if (slices_.empty()) return w;
   const glm::dvec3 d = direction(phi_deg, std::clamp(theta_deg, 0.0, theta_max_));
@@ -92,41 +115,65 @@ QualityInterpolator::Weights QualityInterpolator::weights(double phi_deg, double
   }
   w.slices = a == b ? 1 : 2;
   w.slice = {int(a), int(b)};
-  w.nearest[0] = nearest(slices_[a], d.x, d.y, d.z);
-  if (a != b) w.nearest[1] = nearest(slices_[b], d.x, d.y, d.z);
+  const double heading = wrap_degrees(heading_deg);
+  for (int s = 0; s < w.slices; ++s) {
+    const auto& hs = slices_[std::size_t(w.slice[std::size_t(s)])].headings;
+    // The measured headings around the asked one, across 360 where it lies
+    // past the last (or before the first) of them.
+    std::size_t hi = 0;
+    while (hi < hs.size() && hs[hi].heading_deg <= heading) ++hi;
+    const std::size_t h0 = (hi + hs.size() - 1) % hs.size(), h1 = hi % hs.size();
+    double gap = hs[h1].heading_deg - hs[h0].heading_deg, past = heading - hs[h0].heading_deg;
+    if (gap <= 0) gap += 360;
+    if (past < 0) past += 360;
+    w.heading[std::size_t(s)] = {int(h0), int(h1)};
+    w.u[std::size_t(s)] = h0 == h1 ? 0.0 : past / gap;
+    auto& n = w.nearest[std::size_t(s)];
+    n[0] = nearest(hs[h0].samples, d.x, d.y, d.z);
+    n[1] = h0 == h1 ? n[0] : nearest(hs[h1].samples, d.x, d.y, d.z);
+  }
   return w;
 }
 
 ExpectedQuality QualityInterpolator::at(const Weights& w) const {
   if (w.slices == 0 || slices_.empty()) return {};
   ExpectedQuality q[2];
-  for (int s = 0; s < w.slices; ++s) {
-    const SizeSlice& slice = slices_[std::size_t(w.slice[std::size_t(s)])];
-    q[s] = {0, 0};
-    for (const auto& [k, weight] : w.nearest[std::size_t(s)]) {
-      if (k < 0) continue;
-      q[s].ssim += weight * slice.samples[std::size_t(k)].q.ssim;
-      q[s].psnr += weight * slice.samples[std::size_t(k)].q.psnr;
+  for (std::size_t s = 0; s < std::size_t(w.slices); ++s) {
+    const SizeSlice& slice = slices_[std::size_t(w.slice[s])];
+    ExpectedQuality by_heading[2];
+    for (std::size_t h = 0; h < 2; ++h) {
+      const auto& samples = slice.headings[std::size_t(w.heading[s][h])].samples;
+      by_heading[h] = {0, 0};
+      for (const auto& [k, weight] : w.nearest[s][h]) {
+        if (k < 0) continue;
+        by_heading[h].ssim += weight * samples[std::size_t(k)].q.ssim;
+        by_heading[h].psnr += weight * samples[std::size_t(k)].q.psnr;
+      }
     }
+    q[s] = lerp(by_heading[0], by_heading[1], w.u[s]);
   }
-  if (w.slices == 1) return q[0];
-  return {q[0].ssim + w.t * (q[1].ssim - q[0].ssim), q[0].psnr + w.t * (q[1].psnr - q[0].psnr)};
+  return w.slices == 1 ? q[0] : lerp(q[0], q[1], w.t);
 }
 
-ExpectedQuality QualityInterpolator::at(double phi_deg, double theta_deg, double size_px) const {
-  return at(weights(phi_deg, theta_deg, size_px));
+ExpectedQuality QualityInterpolator::at(double phi_deg, double theta_deg, double size_px,
+                                        double heading_deg) const {
+  return at(weights(phi_deg, theta_deg, size_px, heading_deg));
 }
 
 bool QualityInterpolator::same_layout(const QualityInterpolator& other) const {
   if (slices_.size() != other.slices_.size()) return false;
   for (std::size_t s = 0; s < slices_.size(); ++s) {
     const SizeSlice &a = slices_[s], &b = other.slices_[s];
-    if (a.size_px != b.size_px || a.samples.size() != b.samples.size()) return false;
-    for (std::size_t k = 0; k < a.samples.size(); ++k)
-      if (std::abs(a.samples[k].x - b.samples[k].x) > 1e-9 ||
-          std::abs(a.samples[k].y - b.samples[k].y) > 1e-9 ||
-          std::abs(a.samples[k].z - b.samples[k].z) > 1e-9)
-        return false;
+    if (a.size_px != b.size_px || a.headings.size() != b.headings.size()) return false;
+    for (std::size_t h = 0; h < a.headings.size(); ++h) {
+      const HeadingSlice &ha = a.headings[h], &hb = b.headings[h];
+      if (ha.heading_deg != hb.heading_deg || ha.samples.size() != hb.samples.size()) return false;
+      for (std::size_t k = 0; k < ha.samples.size(); ++k)
+        if (std::abs(ha.samples[k].x - hb.samples[k].x) > 1e-9 ||
+            std::abs(ha.samples[k].y - hb.samples[k].y) > 1e-9 ||
+            std::abs(ha.samples[k].z - hb.samples[k].z) > 1e-9)
+          return false;
+    }
   }
   return true;
 }

@@ -145,7 +145,7 @@ std::vector<Viewed> HybridObjects::Impl::view_and_price(const Camera& camera,
       // One table lookup per instance; every representation on the same views reuses it.
       const double radius = model.bounding_radius() * instances[i].scale;
       const QualityInterpolator::Weights w =
-          offers[m].front().quality.weights(v.phi_deg, v.theta_deg, v.size_px);
+          offers[m].front().quality.weights(v.phi_deg, v.theta_deg, v.size_px, v.heading_deg);
       for (const Offer& f : offers[m]) {
         if (scenario.full && !(f.rep.kind == ObjectKind::kMesh && f.rep.level == 0)) continue;
         // Beyond the tables' sizes an impostor's quality is unknown, and
@@ -156,7 +156,8 @@ std::vector<Viewed> HybridObjects::Impl::view_and_price(const Camera& camera,
             scenario.policy != SelectionPolicy::kImpostorOnly)
           continue;
         const ExpectedQuality q =
-            f.shared_layout ? f.quality.at(w) : f.quality.at(v.phi_deg, v.theta_deg, v.size_px);
+            f.shared_layout ? f.quality.at(w)
+                            : f.quality.at(v.phi_deg, v.theta_deg, v.size_px, v.heading_deg);
         const double err_px =
             f.error_m * instances[i].scale * px_per_m / std::max(v.distance_m, 1e-6);
         const bool culled = gl_model.culls_back_faces(f.rep, instances[i], camera);

@@ -10,13 +10,6 @@
 namespace terrasprite {
 namespace {
 
-/// A model vector turned by a compass heading (clockwise seen from above),
-/// as the object shaders do.
-glm::dvec3 heading_rotate(glm::dvec3 v, double heading_rad) {
-  const double c = std::cos(heading_rad), s = std::sin(heading_rad);
-  return {c * v.x + s * v.y, -s * v.x + c * v.y, v.z};
-}
-
 /// Radical inverse of i in base b (a Halton sequence's coordinate).
 double radical_inverse(int i, int b) {
   double f = 1, x = 0;
@@ -121,6 +114,7 @@ InstanceView view_instance(const Camera& camera, int height_px, const ObjectInst
   v.theta_deg = glm::degrees(std::acos(std::clamp(d.z, -1.0, 1.0)));
   v.phi_deg = glm::degrees(std::atan2(-d.x, -d.y));
   if (v.phi_deg < 0) v.phi_deg += 360.0;
+  v.heading_deg = instance.heading_deg;
   return v;
 }
 

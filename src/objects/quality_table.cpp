@@ -14,6 +14,7 @@
 #include <deque>
 #include <memory>
 #include <span>
+#include <tuple>
 
 #include "gl/render_target.h"
 #include "terrasprite/error.h"
@@ -39,6 +40,7 @@ void check(const TableOptions& o) {
           fmt::format("--sizes-px: {} is outside {}..{}", s, kMinTableSizePx, kMaxTableSizePx));
   if (!(o.angle_step_deg > 0 && o.angle_step_deg <= 180))
     throw InputError(fmt::format("--angle-step: {} is outside (0, 180]", o.angle_step_deg));
+  check_headings(o.headings_deg, "table headings");
 }
 
 // Image side for an on-screen size: the sphere plus a margin for SSIM's windows.
@@ -46,21 +48,27 @@ int image_side(int size_px) {
   return size_px + std::max(16, size_px / 4);
 }
 
-/// Camera on a sphere around the model's centre at (phi, theta), far enough
-/// that the bounding sphere spans `size_px` of an image `side` pixels tall.
-Camera view_camera(const Model& m, double phi_deg, double theta_deg, int size_px, int side) {
+}  // namespace
+
+Camera table_camera(const Model& m, double phi_deg, double theta_deg, int size_px, int side,
+                    double heading_deg) {
   const double r = m.bounding_radius();
   const double k = double(size_px) / side * std::tan(glm::radians(kFovDeg) / 2);
   const double dist = r * std::sqrt(1.0 + 1.0 / (k * k));
   const double phi = glm::radians(phi_deg), elev = glm::radians(90.0 - theta_deg);
-  const glm::dvec3 c(m.center());
-  const glm::dvec3 eye = c + dist * glm::dvec3(-std::sin(phi) * std::cos(elev),
-                                               -std::cos(phi) * std::cos(elev), std::sin(elev));
-  Camera cam = Camera::look_at(eye, c, kFovDeg, 1.0, phi_deg);
+  const double h = glm::radians(heading_deg);
+  const glm::dvec3 c = heading_rotate(glm::dvec3(m.center()), h);
+  const glm::dvec3 eye =
+      c + dist * heading_rotate(glm::dvec3(-std::sin(phi) * std::cos(elev),
+                                           -std::cos(phi) * std::cos(elev), std::sin(elev)),
+                                h);
+  Camera cam = Camera::look_at(eye, c, kFovDeg, 1.0, phi_deg + heading_deg);
   cam.near_m = std::max(dist - 2 * r, dist * 0.05);
   cam.far_m = dist + 2 * r;
   return cam;
 }
+
+namespace {
 
 struct Shot {
   Image color;
@@ -82,10 +90,11 @@ class ShotSet {
     for (std::size_t k = 0; k < count; ++k) targets_.emplace_back(side, side, samples);
   }
 
-  /// Appends the shots of `reps` (in order, at most `count`) seen by `cam` to `out`.
-  void render(GlModel& model, std::span<const Representation> reps, const Camera& cam,
-              std::vector<Shot>& out) {
-    const ObjectInstance origin;
+  /// Appends the shots of `reps` (in order, at most `count`) of the model at
+  /// the origin turned to `heading_deg`, seen by `cam`, to `out`.
+  void render(GlModel& model, std::span<const Representation> reps, double heading_deg,
+              const Camera& cam, std::vector<Shot>& out) {
+    const ObjectInstance origin{glm::dvec3(0.0), heading_deg, 1.0};
     for (std::size_t k = 0; k < reps.size(); ++k) {
       targets_[k].bind_and_clear();
       model.draw(reps[k], std::span(&origin, 1), cam);
@@ -179,12 +188,14 @@ QualityTable measure_quality_table(GlModel& model, const TableOptions& o,
     q.error_m = rep.kind == ObjectKind::kMesh ? model.chain()[rep.level].error_m : 0.0;
     t.representations.push_back(q);
   }
-  const auto angles = view_angles(o);
+  // Every heading with every view direction, heading by heading.
+  std::vector<std::tuple<double, double, double>> views;
+  for (double heading : o.headings_deg)
+    for (auto [phi, theta] : view_angles(o)) views.emplace_back(heading, phi, theta);
   const Representation full{ObjectKind::kMesh, 0};
   int done = 0;
-  const int total = int(angles.size() * o.sizes_px.size());
-  for (RepresentationQuality& q : t.representations)
-    q.samples.resize(angles.size() * o.sizes_px.size());
+  const int total = int(views.size() * o.sizes_px.size());
+  for (RepresentationQuality& q : t.representations) q.samples.resize(std::size_t(total));
   // The GL thread renders view after view; each view's scores are computed
   // on TBB's threads while the next view renders (read-backs wait for the
   // rasteriser threads anyway). Level 0 is the reference itself: scored
@@ -202,12 +213,12 @@ QualityTable measure_quality_table(GlModel& model, const TableOptions& o,
   for (int size : o.sizes_px) {
     const int side = image_side(size);
     ShotSet shot_set(side, drawn.size(), o.samples);
-    for (auto [phi, theta] : angles) {
-      const Camera cam = view_camera(m, phi, theta, size, side);
+    for (auto [heading, phi, theta] : views) {
+      const Camera cam = table_camera(m, phi, theta, size, side, heading);
       auto shots = std::make_shared<std::vector<Shot>>();
-      shot_set.render(model, drawn, cam, *shots);
+      shot_set.render(model, drawn, heading, cam, *shots);
       scoring.wait();
-      scoring.run([&t, shots, slot, phi, theta, size] {
+      scoring.run([&t, shots, slot, phi, theta, size, heading] {
         const Shot& ref = shots->front();
         std::size_t next = 1;
         for (RepresentationQuality& q : t.representations) {
@@ -229,7 +240,7 @@ QualityTable measure_quality_table(GlModel& model, const TableOptions& o,
           const double ssim = quality::ssim(ref.color.view(), s.color.view(),
                                             {quality::SsimMode::kWang, false, false}, mask)
                                   .ssim;
-          q.samples[slot] = {phi, theta, size, psnr, ssim};
+          q.samples[slot] = {phi, theta, size, psnr, ssim, heading};
         }
       });
       ++slot;
@@ -237,7 +248,7 @@ QualityTable measure_quality_table(GlModel& model, const TableOptions& o,
     }
     scoring.wait();
     gl::RenderTarget target(side, side, o.samples);
-    const Camera timing_cam = view_camera(m, 30.0, 60.0, size, side);
+    const Camera timing_cam = table_camera(m, 30.0, 60.0, size, side, 0.0);
     for (RepresentationQuality& q : t.representations)
       q.cost.push_back(
           {size, time_per_instance(target, model, q.rep, timing_cam, o.timing_instances)});
@@ -249,6 +260,17 @@ QualityTable measure_quality_table(GlModel& model, const TableOptions& o,
   t.table = derive_table(t.representations, o);
   t.build_ms = ms_since(start);
   return t;
+}
+
+void check_headings(const std::vector<double>& headings, const char* option) {
+  if (headings.empty()) throw InputError(fmt::format("{}: no headings", option));
+  for (std::size_t i = 0; i < headings.size(); ++i) {
+    const double h = headings[i];
+    if (!(h >= 0 && h < 360))
+      throw InputError(fmt::format("{}: {} is outside [0, 360)", option, h));
+    if (std::count(headings.begin(), headings.begin() + long(i), h))
+      throw InputError(fmt::format("{}: {} is given twice", option, h));
+  }
 }
 
 std::vector<TableEntry> derive_table(const std::vector<RepresentationQuality>& reps,

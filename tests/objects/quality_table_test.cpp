@@ -8,7 +8,9 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <span>
 
+#include "gl/render_target.h"
 #include "object_test_util.h"
 #include "terrasprite/error.h"
 #include "terrasprite/gl_context.h"
@@ -76,6 +78,86 @@ TEST(QualityTable, IdenticalScoresOneAndQualityHoldsAsSizeShrinks) {
     if (e.kind == ts::ObjectKind::kMesh) {
       EXPECT_TRUE(e.choice.has_value());
     }
+}
+
+// A table's heading turns the model and its camera together (the scene's
+// sun is fixed in the world): from a view in the model's own frame the
+// silhouette is the same at every heading, while the side the sun lights
+// changes. A table at two headings holds both, level 0 scoring 1 at each.
+// CI cost: under 1 s.
+TEST(QualityTable, AHeadingTurnsTheLightNotTheView) {
+  const std::string data = tstest::shared_data();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
+  ts::GlContext ctx;
+  const ts::Model m = teapot(data);
+  ts::GlModel gl(m, ts::build_lod_chain(m));
+  constexpr int kSide = 96;
+  ts::gl::RenderTarget target(kSide, kSide, 1);
+  struct Shot {
+    ts::Image color;
+    std::vector<float> depth;
+  };
+  auto shot = [&](double heading, double phi) {
+    const ts::Camera cam = ts::table_camera(m, phi, 60, 64, kSide, heading);
+    const ts::ObjectInstance inst{glm::dvec3(0.0), heading, 1.0};
+    target.bind_and_clear();
+    gl.draw({ts::ObjectKind::kMesh, 0}, std::span(&inst, 1), cam);
+    return Shot{target.read_color(), target.read_depth(cam.near_m, cam.far_m)};
+  };
+  // Pixels covered in one shot only, covered in both, and the mean luma
+  // difference (0-255) where both are covered.
+  auto compare = [](const Shot& a, const Shot& b) {
+    int one = 0, both = 0;
+    double luma = 0;
+    for (std::size_t i = 0; i < a.depth.size(); ++i) {
+      const bool ca = std::isfinite(a.depth[i]), cb = std::isfinite(b.depth[i]);
+      if (ca != cb) ++one;
+      if (!(ca && cb)) continue;
+      ++both;
+      const std::uint8_t *pa = &a.color.rgba[4 * i], *pb = &b.color.rgba[4 * i];
+      luma += std::abs((0.299 * pa[0] + 0.587 * pa[1] + 0.114 * pa[2]) -
+                       (0.299 * pb[0] + 0.587 * pb[1] + 0.114 * pb[2]));
+    }
+    return std::tuple(one, both, both ? luma / both : 0.0);
+  };
+  const Shot base = shot(0, 90);
+  for (double heading : {90.0, 200.0}) {
+    const auto [one, both, luma] = compare(base, shot(heading, 90));
+    EXPECT_GT(both, 400) << heading;
+    EXPECT_LT(one, both / 50) << heading;  // the same view: edge pixels at most
+    EXPECT_GT(luma, 10.0) << heading;      // lit from another side (54-62 here)
+  }
+  // The view from the other side is another silhouette: the check can fail.
+  const auto [mirror_one, mirror_both, mirror_luma] = compare(base, shot(0, 270));
+  EXPECT_GT(mirror_one, mirror_both / 20);
+
+  ts::TableOptions o;
+  o.kinds = {ts::ObjectKind::kMesh};
+  o.sizes_px = {50};
+  o.angle_step_deg = 90;
+  o.full_sphere = false;
+  o.headings_deg = {0, 90};
+  const ts::QualityTable t = ts::measure_quality_table(gl, o);
+  ASSERT_GE(t.representations.size(), 2u);
+  ASSERT_EQ(t.representations[0].samples.size(), 10u);  // 5 views x 2 headings
+  int at90 = 0;
+  for (const ts::QualitySample& s : t.representations[0].samples) {
+    EXPECT_DOUBLE_EQ(s.ssim, 1.0);
+    at90 += s.heading_deg == 90;
+  }
+  EXPECT_EQ(at90, 5);
+  // A coarse level scores differently at the two headings somewhere.
+  const auto& coarse = t.representations.back().samples;
+  double most = 0;
+  for (std::size_t k = 0; k < 5; ++k)
+    most = std::max(most, std::abs(coarse[k].ssim - coarse[k + 5].ssim));
+  EXPECT_GT(most, 1e-4);
+  for (double bad : {-1.0, 360.0}) {
+    o.headings_deg = {0, bad};
+    EXPECT_THROW(ts::measure_quality_table(gl, o), ts::InputError) << bad;
+  }
+  o.headings_deg = {90, 90};
+  EXPECT_THROW(ts::measure_quality_table(gl, o), ts::InputError);
 }
 
 // The walkthrough's far instances are 4-16 px: a table may sample them

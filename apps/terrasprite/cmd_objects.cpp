@@ -93,6 +93,7 @@ struct TableArgs {
   std::string resolutions = "16,32,64,128,256,512";
   std::string sizes = "400,200,100,50,25";
   double angle_step = 30.0;
+  std::string headings = "0";
   bool full_sphere = false;
   int views = 12;
   std::string json, out, cache;
@@ -108,6 +109,8 @@ TableOptions table_options(const TableArgs& a) {
   o.sizes_px = int_list(a.sizes, "--sizes-px");
   o.angle_step_deg = a.angle_step;
   o.full_sphere = a.full_sphere;
+  o.headings_deg = parse_list(a.headings, "--headings");
+  check_headings(o.headings_deg, "--headings");
   o.views = a.views;
   for (int r : o.resolutions)
     if (r < 16 || r > 512) throw InputError(fmt::format("--resolutions: {} is outside 16..512", r));
@@ -138,6 +141,9 @@ void add_objects_table(CLI::App& objects) {
   cmd->add_option("--angle-step", a->angle_step, "degrees between sampled views")
       ->capture_default_str();
   cmd->add_flag("--full-sphere", a->full_sphere, "theta 0..180 (views from below too)");
+  cmd->add_option("--headings", a->headings,
+                  "model headings, degrees in [0, 360): the sun's side of the model")
+      ->capture_default_str();
   cmd->add_option("--views", a->views, "octahedral views per side")->capture_default_str();
   cmd->add_option("--json", a->json, "write the table as JSON");
   cmd->add_option("--out", a->out, "report directory (plots, Table 1)")->capture_default_str();

@@ -32,7 +32,8 @@ const RepresentationQuality* middle_of(const QualityTable& t, ObjectKind kind) {
   return v.empty() ? nullptr : v[v.size() / 2];
 }
 
-// Figure 1: SSIM over (phi, theta) at the largest, middle and smallest size.
+// Figure 1: SSIM over (phi, theta) at the largest, middle and smallest size,
+// at the first measured heading (the model lit from one side).
 std::string figure1(const QualityTable& t, const TableOptions& o, OutputDir& out) {
   std::vector<int> sizes = o.sizes_px;
   std::sort(sizes.begin(), sizes.end());
@@ -47,7 +48,8 @@ std::string figure1(const QualityTable& t, const TableOptions& o, OutputDir& out
       dat << "# size_px " << size << "\n# phi_deg theta_deg ssim\n";
       std::map<double, std::vector<const QualitySample*>> by_phi;
       for (const QualitySample& s : q->samples)
-        if (s.size_px == size) by_phi[s.phi_deg].push_back(&s);
+        if (s.size_px == size && s.heading_deg == o.headings_deg.front())
+          by_phi[s.phi_deg].push_back(&s);
       for (auto& [phi, row] : by_phi) {
         for (const QualitySample* s : row)
           dat << fmt::format("{} {} {:.5f}\n", s->phi_deg, s->theta_deg, s->ssim);

@@ -257,8 +257,21 @@ TEST(QualityTable, CliJsonContractAndCache) {
       tstest::run_cli(args + " --views 6 --json " + (dir / "c.json") + " --out " + (dir / "c"));
   ASSERT_EQ(third.status, 0) << third.output;
   EXPECT_FALSE(nlohmann::json::parse(std::ifstream(dir / "c.json"))["cached"].get<bool>());
+  // Two headings: another table, with its samples at both.
+  const tstest::CliResult turned = tstest::run_cli(args + " --headings 0,180 --json " +
+                                                   (dir / "h.json") + " --out " + (dir / "h"));
+  ASSERT_EQ(turned.status, 0) << turned.output;
+  j = nlohmann::json::parse(std::ifstream(dir / "h.json"));
+  EXPECT_FALSE(j["cached"].get<bool>());
+  EXPECT_EQ(j["options"]["headings_deg"], nlohmann::json::array({0.0, 180.0}));
+  int at180 = 0;
+  const auto& samples = j["representations"][0]["samples"];
+  for (const auto& s : samples) at180 += s["heading_deg"] == 180.0;
+  EXPECT_EQ(2 * at180, int(samples.size()));
   // Bad option values: exit 2 with one line.
-  const tstest::CliResult bad = tstest::run_cli(args + " --resolutions 8 --out " + (dir / "d"));
-  EXPECT_EQ(bad.status, 2) << bad.output;
-  EXPECT_FALSE(std::filesystem::exists(dir / "d"));
+  for (const char* bad_arg : {" --resolutions 8", " --headings 360", " --headings 0,0"}) {
+    const tstest::CliResult bad = tstest::run_cli(args + bad_arg + " --out " + (dir / "d"));
+    EXPECT_EQ(bad.status, 2) << bad_arg << ": " << bad.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "d"));
+  }
 }

@@ -29,7 +29,7 @@ struct HybridArgs {
   std::string table_sizes = "200,50,16,8,4", relief_resolutions = "32,64,128,256",
               octahedral_resolutions = "32,64,128";
   double table_angle_step = 45;
-  std::string table_headings = "0,90,180,270";
+  std::string table_headings = "0,45,90,135,180,225,270,315";
   bool table_full_sphere = true;
   std::string figure6 = "C";
   std::string calibration_sizes = "auto";

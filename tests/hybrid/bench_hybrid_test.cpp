@@ -35,7 +35,8 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
   const std::string args =
       "bench hybrid --scene " + (dir / "scene.json") +
       " --size 160x90 --frames 10 --score-every 2 --target-ms 40 --table-sizes 64"
-      " --table-angle-step 120 --relief-resolutions 16,32 --octahedral-resolutions 16"
+      " --table-angle-step 120 --table-headings 0,180 --relief-resolutions 16,32"
+      " --octahedral-resolutions 16"
       " --terrain-quads 64 --quality-context-frames 2 --cache " +
       (dir / "cache");
   const tstest::CliResult r =
@@ -187,7 +188,8 @@ TEST(BenchHybrid, BadInputExitsTwoWithoutOutput) {
       "--llvmpipe-threads -1", "--llvmpipe-threads 33", "--llvmpipe-threads 2x", "--msaa 0",
       "--msaa 65", "--msaa 64",  // 64: over what any GL offers
       "--table-sizes 3", "--table-sizes 2049", "--table-sizes 16,x", "--calibration-sizes 2",
-      "--calibration-sizes 9000"};
+      "--calibration-sizes 9000", "--table-headings 360", "--table-headings -5",
+      "--table-headings 0,90,0", "--table-headings 0,x"};
   // clang-format on
   for (const std::string& bad : bad_args) {
     const tstest::CliResult r =

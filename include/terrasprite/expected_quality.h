@@ -66,9 +66,14 @@ class QualityInterpolator {
   struct SizeSlice {
     double size_px = 0;
     std::vector<HeadingSlice> headings;  ///< rising heading
+    /// Every heading measured on the same views in the same order (as
+    /// measure_quality_table does): one nearest-view search serves them all.
+    bool shared_views = true;
   };
   static std::array<std::pair<int, double>, 4> nearest(const std::vector<Direction>& samples,
                                                        double x, double y, double z);
+  /// Whether two sample lists are on the same views in the same order.
+  static bool same_views(const std::vector<Direction>& a, const std::vector<Direction>& b);
   std::vector<SizeSlice> slices_;  ///< rising size
   double theta_max_ = 180.0;
 };

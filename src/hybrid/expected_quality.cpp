@@ -58,10 +58,13 @@ QualityInterpolator::QualityInterpolator(const RepresentationQuality& rep) {
   }
   std::sort(slices_.begin(), slices_.end(),
             [](const SizeSlice& a, const SizeSlice& b) { return a.size_px < b.size_px; });
-  for (SizeSlice& sl : slices_)
+  for (SizeSlice& sl : slices_) {
     std::sort(
         sl.headings.begin(), sl.headings.end(),
         [](const HeadingSlice& a, const HeadingSlice& b) { return a.heading_deg < b.heading_deg; });
+    for (const HeadingSlice& h : sl.headings)
+      sl.shared_views = sl.shared_views && same_views(h.samples, sl.headings.front().samples);
+  }
 }
 
 std::array<std::pair<int, double>, 4> QualityInterpolator::nearest(
@@ -130,7 +133,8 @@ QualityInterpolator::Weights QualityInterpolator::weights(double phi_deg, double
     w.u[std::size_t(s)] = h0 == h1 ? 0.0 : past / gap;
     auto& n = w.nearest[std::size_t(s)];
     n[0] = nearest(hs[h0].samples, d.x, d.y, d.z);
-    n[1] = h0 == h1 ? n[0] : nearest(hs[h1].samples, d.x, d.y, d.z);
+    const bool same = h0 == h1 || slices_[std::size_t(w.slice[std::size_t(s)])].shared_views;
+    n[1] = same ? n[0] : nearest(hs[h1].samples, d.x, d.y, d.z);
   }
   return w;
 }
@@ -160,6 +164,16 @@ ExpectedQuality QualityInterpolator::at(double phi_deg, double theta_deg, double
   return at(weights(phi_deg, theta_deg, size_px, heading_deg));
 }
 
+bool QualityInterpolator::same_views(const std::vector<Direction>& a,
+                                     const std::vector<Direction>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (std::abs(a[k].x - b[k].x) > 1e-9 || std::abs(a[k].y - b[k].y) > 1e-9 ||
+        std::abs(a[k].z - b[k].z) > 1e-9)
+      return false;
+  return true;
+}
+
 bool QualityInterpolator::same_layout(const QualityInterpolator& other) const {
   if (slices_.size() != other.slices_.size()) return false;
   for (std::size_t s = 0; s < slices_.size(); ++s) {
@@ -167,12 +181,7 @@ bool QualityInterpolator::same_layout(const QualityInterpolator& other) const {
     if (a.size_px != b.size_px || a.headings.size() != b.headings.size()) return false;
     for (std::size_t h = 0; h < a.headings.size(); ++h) {
       const HeadingSlice &ha = a.headings[h], &hb = b.headings[h];
-      if (ha.heading_deg != hb.heading_deg || ha.samples.size() != hb.samples.size()) return false;
-      for (std::size_t k = 0; k < ha.samples.size(); ++k)
-        if (std::abs(ha.samples[k].x - hb.samples[k].x) > 1e-9 ||
-            std::abs(ha.samples[k].y - hb.samples[k].y) > 1e-9 ||
-            std::abs(ha.samples[k].z - hb.samples[k].z) > 1e-9)
-          return false;
+      if (ha.heading_deg != hb.heading_deg || !same_views(ha.samples, hb.samples)) return false;
     }
   }
   return true;

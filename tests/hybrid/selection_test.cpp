@@ -283,6 +283,16 @@ TEST(ExpectedQuality, InterpolatesBetweenHeadingsAroundTheCircle) {
   const QualityInterpolator single(one);
   EXPECT_NEAR(single.at(0, 90, 100, 137).ssim, 0.8, 1e-12);
   EXPECT_FALSE(single.same_layout(q));
+  // A heading missing a view (a sample without a score) has views of its
+  // own: its nearest views are searched apart (phi 180 stands on its
+  // neighbours at heading 90, all 0.9).
+  RepresentationQuality gap = rep;
+  for (QualitySample& s : gap.samples)
+    if (s.heading_deg == 90 && s.phi_deg == 180) s.ssim = std::nan("");
+  const QualityInterpolator g(gap);
+  EXPECT_NEAR(g.at(180, 90, 100, 90).ssim, 0.9, 1e-12);
+  EXPECT_NEAR(g.at(180, 90, 100, 45).ssim, 0.85, 1e-12);
+  EXPECT_NEAR(g.at(0, 90, 100, 0).ssim, 0.8, 1e-12);
 }
 
 }  // namespace

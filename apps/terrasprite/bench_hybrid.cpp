@@ -375,6 +375,7 @@ void run_bench_hybrid(const HybridArgs& a) {
   ho.width = w;
   ho.height = h;
   ho.cull_px = a.cull_px;
+  ho.quality_spread_penalty = a.quality_spread_penalty;
   ho.controller.quantile_margin = a.p95_margin;
   ho.controller.tolerance = a.p95_aim;
   ho.pace.max_slope = a.pace_max_slope;

@@ -32,6 +32,11 @@ void add_bench_hybrid(CLI::App& bench) {
                   "undrawn when the budget cannot draw every one at its cheapest (0: never)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1e6));
+  cmd->add_option("--quality-spread-penalty", a->quality_spread_penalty,
+                  "budgeted scenarios weigh an option at its expected SSIM less this many times "
+                  "its table's spread near the view (0: as the tables say)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10.0));
   cmd->add_flag("!--no-occlusion-cull", a->occlusion_cull,
                 "draw instances hidden behind the terrain too (no depth read-back; no "
                 "full-culled scenario)");

@@ -22,6 +22,7 @@ struct HybridArgs {
   double full_over_target = 5.15;
   int frames = 160, score_every = 2, instances = 0, terrain_quads = 64;
   double cull_px = 4;
+  double quality_spread_penalty = 0;
   bool occlusion_cull = true;
   double p95_margin = BudgetControllerOptions{}.quantile_margin;
   double p95_aim = BudgetControllerOptions{}.tolerance;

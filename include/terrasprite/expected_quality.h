@@ -14,6 +14,11 @@ namespace terrasprite {
 struct ExpectedQuality {
   double ssim = 1.0;
   double psnr = 100.0;  ///< dB, capped at 100 (identical images)
+  /// Weighted standard deviation of the measured SSIM of the samples this
+  /// value is interpolated from (the nearest views, the two headings and
+  /// the two sizes around the asked one, with their weights): how much the
+  /// quality moves near this view, where the table says only its mean.
+  double ssim_spread = 0.0;
 };
 
 /// Interpolates one representation's samples: over the view direction by

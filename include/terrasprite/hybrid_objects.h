@@ -54,6 +54,15 @@ struct HybridOptions {
   /// tables' largest size, past which their quality is extrapolated. At
   /// 1.7 m an impostor of an object beside the camera scored 9 dB PSNR.
   double max_impostor_size_px = 0;
+  /// The policies weigh an option at its expected SSIM less this many times
+  /// its table's spread near the view (ExpectedQuality::ssim_spread), so
+  /// that a choice among many options does not go to the ones whose table
+  /// happens to be most optimistic (the optimiser's curse: at checkpoint B,
+  /// short of budget, mixed-optimal's expected SSIM ran 0.012-0.014 over
+  /// the measured and it fell under mixed). 0: the tables' value as it is.
+  /// 0.5 against 0 in 10 interleaved walkthrough pairs: B +0.008 in 6,
+  /// -0.003 in 4, on a noisy host; not shown to help, so 0 by default.
+  double quality_spread_penalty = 0;
   /// Budgeted policies (not `full`, not `ibr`) may leave instances whose
   /// on-screen diameter is under this many pixels undrawn: such an instance
   /// also gets not_drawn_option() (cost 0, expected SSIM 0), weighed by the

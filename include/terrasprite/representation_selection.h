@@ -4,6 +4,7 @@
 // thresholds, greedy (Funkhouser & Sequin 1993), the paper's (Jehaes,
 // Lamotte & Tack, GRAPP 2008) and the optimal multiple-choice knapsack.
 #pragma once
+#include <cmath>
 #include <span>
 #include <string>
 #include <vector>
@@ -21,6 +22,10 @@ struct RepresentationOption {
   double psnr = 100;        ///< dB
   long long triangles = 0;  ///< per instance
   double error_px = 0;      ///< LOD level's geometric error on screen (meshes; 0 otherwise)
+  /// The tables' expected SSIM before any penalty (HybridOptions::
+  /// quality_spread_penalty): what the frame is expected to score. NaN:
+  /// the same as `ssim`.
+  double ssim_table = NAN;
 };
 
 /// The mesh level that marks an option as "not drawn": the instance is left

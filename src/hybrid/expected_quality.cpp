@@ -27,8 +27,14 @@ double wrap_degrees(double deg) {
   return w >= 360.0 ? 0.0 : w;  // -1e-20 + 360 rounds to 360
 }
 
-ExpectedQuality lerp(const ExpectedQuality& a, const ExpectedQuality& b, double t) {
-  return {a.ssim + t * (b.ssim - a.ssim), a.psnr + t * (b.psnr - a.psnr)};
+/// Weighted sums of SSIM, SSIM squared and PSNR over samples.
+struct Moments {
+  double ssim = 0, ssim_sq = 0, psnr = 0;
+};
+
+Moments lerp(const Moments& a, const Moments& b, double t) {
+  return {a.ssim + t * (b.ssim - a.ssim), a.ssim_sq + t * (b.ssim_sq - a.ssim_sq),
+          a.psnr + t * (b.psnr - a.psnr)};
 }
 
 }  // namespace
@@ -141,22 +147,24 @@ QualityInterpolator::Weights QualityInterpolator::weights(double phi_deg, double
 
 ExpectedQuality QualityInterpolator::at(const Weights& w) const {
   if (w.slices == 0 || slices_.empty()) return {};
-  ExpectedQuality q[2];
+  Moments q[2];
   for (std::size_t s = 0; s < std::size_t(w.slices); ++s) {
     const SizeSlice& slice = slices_[std::size_t(w.slice[s])];
-    ExpectedQuality by_heading[2];
+    Moments by_heading[2];
     for (std::size_t h = 0; h < 2; ++h) {
       const auto& samples = slice.headings[std::size_t(w.heading[s][h])].samples;
-      by_heading[h] = {0, 0};
       for (const auto& [k, weight] : w.nearest[s][h]) {
         if (k < 0) continue;
-        by_heading[h].ssim += weight * samples[std::size_t(k)].q.ssim;
-        by_heading[h].psnr += weight * samples[std::size_t(k)].q.psnr;
+        const ExpectedQuality& v = samples[std::size_t(k)].q;
+        by_heading[h].ssim += weight * v.ssim;
+        by_heading[h].ssim_sq += weight * v.ssim * v.ssim;
+        by_heading[h].psnr += weight * v.psnr;
       }
     }
     q[s] = lerp(by_heading[0], by_heading[1], w.u[s]);
   }
-  return w.slices == 1 ? q[0] : lerp(q[0], q[1], w.t);
+  const Moments m = w.slices == 1 ? q[0] : lerp(q[0], q[1], w.t);
+  return {m.ssim, m.psnr, std::sqrt(std::max(0.0, m.ssim_sq - m.ssim * m.ssim))};
 }
 
 ExpectedQuality QualityInterpolator::at(double phi_deg, double theta_deg, double size_px,

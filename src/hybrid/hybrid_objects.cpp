@@ -164,7 +164,8 @@ std::vector<Viewed> HybridObjects::Impl::view_and_price(const Camera& camera,
         inst.options.push_back(
             {f.rep,
              cost.instance_ms(f.rep, double(f.triangles), v.pixels, int(m), culled, v.on_screen),
-             q.ssim, q.psnr, f.triangles, err_px});
+             q.ssim - o.quality_spread_penalty * q.ssim_spread, q.psnr, f.triangles, err_px,
+             q.ssim});
       }
       if (o.cull_px > 0 && v.size_px < o.cull_px && !scenario.full &&
           scenario.policy != SelectionPolicy::kImpostorOnly)
@@ -320,9 +321,14 @@ long long HybridObjects::draw(const Camera& camera) {
   st.objective_greedy = sel.objective_greedy;
   st.objective_optimal = sel.objective_optimal;
   st.benefit = sel.benefit;
-  double wsum = 0;
-  for (const InstanceOptions& inst : frame) wsum += inst.weight;
-  st.expected_ssim = wsum > 0 ? sel.benefit / wsum : 1.0;
+  // The frame's expected SSIM from the tables' values, before any penalty.
+  double wsum = 0, expected = 0;
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    const RepresentationOption& chosen = frame[i].options[std::size_t(sel.option[i])];
+    wsum += frame[i].weight;
+    expected += frame[i].weight * (std::isnan(chosen.ssim_table) ? chosen.ssim : chosen.ssim_table);
+  }
+  st.expected_ssim = wsum > 0 ? expected / wsum : 1.0;
   const auto t2 = std::chrono::steady_clock::now();
   st.selection_ms = std::chrono::duration<double, std::milli>(t2 - t0).count() - st.occlusion_ms;
   st.policy_ms = std::chrono::duration<double, std::milli>(t2 - t1).count();

@@ -189,7 +189,7 @@ TEST(BenchHybrid, BadInputExitsTwoWithoutOutput) {
       "--msaa 65", "--msaa 64",  // 64: over what any GL offers
       "--table-sizes 3", "--table-sizes 2049", "--table-sizes 16,x", "--calibration-sizes 2",
       "--calibration-sizes 9000", "--table-headings 360", "--table-headings -5",
-      "--table-headings 0,90,0", "--table-headings 0,x"};
+      "--table-headings 0,90,0", "--table-headings 0,x", "--quality-spread-penalty -1"};
   // clang-format on
   for (const std::string& bad : bad_args) {
     const tstest::CliResult r =

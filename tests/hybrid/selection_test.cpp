@@ -271,6 +271,11 @@ TEST(ExpectedQuality, InterpolatesBetweenHeadingsAroundTheCircle) {
   EXPECT_NEAR(q.at(0, 90, 100, 350).ssim, 0.9 - 0.1 * 260 / 270, 1e-12);
   EXPECT_NEAR(q.at(0, 90, 100, -10).ssim, q.at(0, 90, 100, 350).ssim, 1e-12);
   EXPECT_NEAR(q.at(0, 90, 100, 720 + 45).ssim, 0.85, 1e-12);
+  // The spread of the samples read: none on a sample, 0.05 halfway between
+  // 0.8 and 0.9, (0.9 - 0.8) sqrt(u (1 - u)) elsewhere.
+  EXPECT_NEAR(q.at(0, 90, 100, 90).ssim_spread, 0.0, 1e-6);
+  EXPECT_NEAR(q.at(0, 90, 100, 45).ssim_spread, 0.05, 1e-9);
+  EXPECT_NEAR(q.at(0, 90, 100, 22.5).ssim_spread, 0.1 * std::sqrt(0.25 * 0.75), 1e-9);
   // The weights computed once serve another representation on the same layout.
   RepresentationQuality other = rep;
   for (QualitySample& s : other.samples) s.ssim -= 0.1;

@@ -4,7 +4,6 @@
 // thresholds, greedy (Funkhouser & Sequin 1993), the paper's (Jehaes,
 // Lamotte & Tack, GRAPP 2008) and the optimal multiple-choice knapsack.
 #pragma once
-#include <cmath>
 #include <span>
 #include <string>
 #include <vector>
@@ -22,10 +21,10 @@ struct RepresentationOption {
   double psnr = 100;        ///< dB
   long long triangles = 0;  ///< per instance
   double error_px = 0;      ///< LOD level's geometric error on screen (meshes; 0 otherwise)
-  /// The tables' expected SSIM before any penalty (HybridOptions::
-  /// quality_spread_penalty): what the frame is expected to score. NaN:
-  /// the same as `ssim`.
-  double ssim_table = NAN;
+  /// What the caller took off the tables' expected SSIM to get `ssim`
+  /// (HybridOptions::quality_spread_penalty): the frame is expected to
+  /// score ssim + penalty.
+  double penalty = 0;
 };
 
 /// The mesh level that marks an option as "not drawn": the instance is left

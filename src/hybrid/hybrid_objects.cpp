@@ -161,11 +161,11 @@ std::vector<Viewed> HybridObjects::Impl::view_and_price(const Camera& camera,
         const double err_px =
             f.error_m * instances[i].scale * px_per_m / std::max(v.distance_m, 1e-6);
         const bool culled = gl_model.culls_back_faces(f.rep, instances[i], camera);
+        const double penalty = o.quality_spread_penalty * q.ssim_spread;
         inst.options.push_back(
             {f.rep,
              cost.instance_ms(f.rep, double(f.triangles), v.pixels, int(m), culled, v.on_screen),
-             q.ssim - o.quality_spread_penalty * q.ssim_spread, q.psnr, f.triangles, err_px,
-             q.ssim});
+             q.ssim - penalty, q.psnr, f.triangles, err_px, penalty});
       }
       if (o.cull_px > 0 && v.size_px < o.cull_px && !scenario.full &&
           scenario.policy != SelectionPolicy::kImpostorOnly)
@@ -326,7 +326,7 @@ long long HybridObjects::draw(const Camera& camera) {
   for (std::size_t i = 0; i < frame.size(); ++i) {
     const RepresentationOption& chosen = frame[i].options[std::size_t(sel.option[i])];
     wsum += frame[i].weight;
-    expected += frame[i].weight * (std::isnan(chosen.ssim_table) ? chosen.ssim : chosen.ssim_table);
+    expected += frame[i].weight * (chosen.ssim + chosen.penalty);
   }
   st.expected_ssim = wsum > 0 ? expected / wsum : 1.0;
   const auto t2 = std::chrono::steady_clock::now();

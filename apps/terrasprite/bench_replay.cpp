@@ -95,8 +95,11 @@ void run_replay(const ReplayArgs& a) {
     for (const std::string& s : scenarios) {
       const std::string file = (std::filesystem::path(run) / ("frames_" + s + ".dat")).string();
       const std::vector<RecordedFrame> frames = read_frames(file);
-      std::vector<double> ms;
-      for (const RecordedFrame& f : frames) ms.push_back(f.ms);
+      std::vector<double> ms, recorded_budget;
+      for (const RecordedFrame& f : frames) {
+        ms.push_back(f.ms);
+        recorded_budget.push_back(f.budget_ms);
+      }
       BudgetControllerOptions o = a.controller;
       o.target_ms = target;
       const ReplayResult r = replay_controller(frames, o);
@@ -115,7 +118,10 @@ void run_replay(const ReplayArgs& a) {
                         {"recorded_p95_over_target", rec},
                         {"replayed_p95_over_target", rep},
                         {"replayed_median_over_target", r.median_ms / target},
-                        {"replayed_budget_over_target", r.mean_budget_ms / target}});
+                        {"replayed_budget_over_target", r.mean_budget_ms / target},
+                        // Per frame, to show where a dip falls (a mean hides it).
+                        {"recorded_budget_ms", recorded_budget},
+                        {"replayed_budget_ms", r.budget_ms}});
     }
   }
   auto within = [](const std::vector<double>& v) {
@@ -135,7 +141,8 @@ void run_replay(const ReplayArgs& a) {
                   {"prior_noise", a.controller.prior_noise},
                   {"drift", a.controller.drift},
                   {"centre_half_width", a.controller.centre_half_width},
-                  {"quantile_window", a.controller.quantile_window}}},
+                  {"quantile_window", a.controller.quantile_window},
+                  {"quantile_min_frames", a.controller.quantile_min_frames}}},
                 {"series", series},
                 {"recorded_within_10pct", within(recorded_p95)},
                 {"replayed_within_10pct", within(replayed_p95)},
@@ -173,6 +180,10 @@ void add_bench_replay_controller(CLI::App& bench) {
   cmd->add_option("--quantile-window", a->controller.quantile_window, "frames in the p95's window")
       ->capture_default_str()
       ->check(CLI::Range(4, 10000));
+  cmd->add_option("--quantile-min-frames", a->controller.quantile_min_frames,
+                  "frames of spread in before the p95 window sets the aim (at most the window)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000));
   cmd->add_option("--drift", a->controller.drift,
                   "how far the measured / predicted ratio is taken to move per frame (sigma, "
                   "log): sets how fast the ratio follows the frames")

@@ -55,7 +55,7 @@ struct BudgetControllerOptions {
   /// `prior_noise` (this machine's walkthroughs: 0.17-0.30).
   double prior_noise = 0.25;
   int prior_changes = 3;
-  /// Once `quantile_window / 4` frames are in, the setpoint comes from the
+  /// Once `quantile_min_frames` spreads are in, the setpoint comes from the
   /// frames themselves instead of sigma: setpoint = target x min(1,
   /// tolerance x exp(-(q + quantile_margin x se))), q the `quantile` of the
   /// frames' spread over the last `quantile_window` frames (surprises
@@ -67,9 +67,9 @@ struct BudgetControllerOptions {
   /// The spread is each frame's log(measured / predicted) less the median of
   /// the `2 centre_half_width + 1` frames around it (known that many frames
   /// late), so a step in the machine's pace is followed by the ratio and not
-  /// taken as spread for the next 40 frames. The margin is there because a
-  /// 40-frame quantile is a noisy estimate and a low one costs more than a
-  /// high one earns. `bench replay-controller` on 136 recorded walkthrough
+  /// taken as spread for a window. The margin is there because a sample
+  /// quantile is a noisy estimate and a low one costs more than a high one
+  /// earns. `bench replay-controller` on 136 recorded walkthrough
   /// series: aimed at exactly +10% (tolerance 1.1, no margin), 4% of them
   /// held +10% (p95 median +17%; the loop before this spread: 3% of 94);
   /// with margin 2 and tolerance 1.05, 76% (median +5%) for 14% less
@@ -94,6 +94,11 @@ struct BudgetControllerOptions {
   /// against 10 of 12 (worst +16.8%), budget 0.82 T against 0.81 T.
   double quantile = 0.95;
   int quantile_window = 40;
+  /// The tail takes over from sigma once this many spread values are in
+  /// (at most `quantile_window`).
+  int quantile_min_frames = 10;
+  /// Frames whose residuals give the ratio's noise (see `drift`).
+  int residual_window = 40;
   int centre_half_width = 3;     ///< at least 1 (0 is taken as 1)
   double quantile_margin = 2.0;  ///< standard errors of the sample quantile
   /// Neither setpoint goes under this fraction of the target: on a machine
@@ -122,13 +127,13 @@ class BudgetController {
   /// `prior_noise` while too few frames are in.
   double noise() const;
   /// The `quantile` of the frames' spread (see `centre_half_width`) over
-  /// the window, or NaN while fewer than `quantile_window / 4` frames are in.
+  /// the window, or NaN while fewer than `quantile_min_frames` frames are in.
   double tail() const;
   /// The standard error of `tail()` (log domain; 0 while it is NaN).
   double tail_error() const;
 
  private:
-  /// Whether enough spread is in for the tail (`quantile_window / 4`).
+  /// Whether enough spread is in for the tail (`quantile_min_frames`).
   bool tail_ready() const;
 
   BudgetControllerOptions o_;

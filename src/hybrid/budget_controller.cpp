@@ -54,7 +54,7 @@ void BudgetController::update(double predicted_ms, double measured_ms) {
   surprise_ = !first_ && far && !surprise_;
   if (!first_) {
     residuals_.push_back(std::log(r / ratio_));
-    while (int(residuals_.size()) > std::max(1, o_.quantile_window)) residuals_.pop_front();
+    while (int(residuals_.size()) > std::max(1, o_.residual_window)) residuals_.pop_front();
   }
   // The spread: the frame h back, less the median of the 2h + 1 around it.
   const std::size_t h = std::size_t(std::max(1, o_.centre_half_width));
@@ -108,7 +108,8 @@ double BudgetController::noise() const {
 }
 
 bool BudgetController::tail_ready() const {
-  return !spread_.empty() && int(spread_.size()) >= std::max(1, o_.quantile_window / 4);
+  const int need = std::max(1, std::min(o_.quantile_min_frames, o_.quantile_window));
+  return !spread_.empty() && int(spread_.size()) >= need;
 }
 
 double BudgetController::tail() const {
@@ -131,7 +132,7 @@ double BudgetController::tail_error() const {
 
 double BudgetController::setpoint_ms() const {
   // The frames' own tail about their local pace is the spread to cover,
-  // with a margin for how little 40 frames say about a 95th percentile.
+  // with a margin for how little a window's frames say about a 95th percentile.
   const double q = tail();
   auto clamped = [&](double f) { return o_.target_ms * std::clamp(f, o_.min_setpoint, 1.0); };
   if (std::isfinite(q))

@@ -137,9 +137,9 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
   }
 
   // The controller replayed on this run's frames (well under a second).
-  const tstest::CliResult rp =
-      tstest::run_cli("bench replay-controller " + (dir / "h") +
-                      " --margin 0 --drift 0.02 --json " + (dir / "r.json"));
+  const tstest::CliResult rp = tstest::run_cli(
+      "bench replay-controller " + (dir / "h") +
+      " --margin 0 --drift 0.02 --quantile-min-frames 5 --json " + (dir / "r.json"));
   ASSERT_EQ(rp.status, 0) << rp.output;
   const nlohmann::json rj = nlohmann::json::parse(std::ifstream(dir / "r.json"));
   ASSERT_EQ(rj["series"].size(), 2u);  // pm, mixed-optimal
@@ -147,9 +147,13 @@ TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
     EXPECT_EQ(s["frames"].get<int>(), 10);
     EXPECT_GT(s["replayed_p95_over_target"].get<double>(), 0.0);
     EXPECT_GT(s["replayed_budget_over_target"].get<double>(), 0.0);
+    EXPECT_EQ(s["recorded_budget_ms"].size(), 10u);
+    EXPECT_EQ(s["replayed_budget_ms"].size(), 10u);
+    EXPECT_GT(s["replayed_budget_ms"][9].get<double>(), 0.0);
   }
   EXPECT_EQ(rj["controller"]["quantile_margin"].get<double>(), 0.0);
   EXPECT_EQ(rj["controller"]["drift"].get<double>(), 0.02);
+  EXPECT_EQ(rj["controller"]["quantile_min_frames"].get<int>(), 5);
 }
 
 TEST(BenchReplayController, BadRunsExitTwoNamingTheFile) {

@@ -41,7 +41,7 @@ void add_bench_hybrid(CLI::App& bench) {
                 "draw instances hidden behind the terrain too (no depth read-back; no "
                 "full-culled scenario)");
   cmd->add_option("--p95-margin", a->p95_margin,
-                  "budgeted scenarios: standard errors of the controller's 40-frame p95 estimate "
+                  "budgeted scenarios: standard errors of the controller's 160-frame p95 estimate "
                   "it keeps under the target (frame time first; 1 or 0: object quality first, "
                   "the p95 then lands nearer +10-15%)")
       ->capture_default_str()

@@ -168,6 +168,51 @@ TEST(BudgetController, ABuildBesideItDoesNotStarveTheFrames) {
   EXPECT_NEAR(c.setpoint_ms(), 5.0, 1e-9);
 }
 
+TEST(BudgetController, TheTailWaitsForFramesEnoughForAQuantile) {
+  // A 95th percentile of 10 frames is their largest, and its margin is wide:
+  // the loop aims by sigma until `quantile_min_frames` spreads are in (each
+  // known `centre_half_width` frames late, after the first 2h + 1).
+  BudgetControllerOptions o{.target_ms = 10};
+  BudgetController c(o);
+  std::mt19937 rng{3};
+  const int h = o.centre_half_width, first = 2 * h + 1;
+  for (int f = 1; f <= first - 1 + o.quantile_min_frames; ++f) {
+    const double predicted = std::clamp(c.budget_ms(), 1.0, 100.0);
+    c.update(predicted, predicted * std::exp(std::normal_distribution<double>(0, 0.1)(rng)));
+    const int spreads = f - first + 1;
+    if (spreads < o.quantile_min_frames)
+      EXPECT_TRUE(std::isnan(c.tail())) << f;
+    else
+      EXPECT_TRUE(std::isfinite(c.tail())) << f;
+  }
+}
+
+TEST(BudgetController, OneBurstDoesNotHoldTheBudgetDownForAWindow) {
+  // This machine: a burst of three frames 1.4x their prediction (not one-off
+  // surprises), some 25 frames before a checkpoint. Three of 40 frames made
+  // a 40-frame window's 95th percentile, and the budget stayed at 0.7 of
+  // the target to the checkpoint; three of 160 are under 5%.
+  auto budget_after_burst = [](int window) {
+    BudgetController c({.target_ms = 20, .quantile_window = window});
+    std::mt19937 rng{9};
+    double before = 0;
+    for (int f = 0; f < 230; ++f) {
+      const double predicted = std::clamp(c.budget_ms(), 1.0, 100.0);
+      const double burst = f >= 200 && f < 203 ? 1.4 : 1.0;
+      c.update(predicted,
+               burst * predicted * std::exp(std::normal_distribution<double>(0, 0.05)(rng)));
+      if (f == 199) before = c.budget_ms();
+    }
+    return c.budget_ms() / before;  // 27 frames after the burst
+  };
+  const double long_window = budget_after_burst(BudgetControllerOptions{}.quantile_window);
+  const double short_window = budget_after_burst(40);
+  std::printf("budget 27 frames after a burst / before it: window 40 %.3f, default %.3f\n",
+              short_window, long_window);
+  EXPECT_LT(short_window, 0.9);  // the case the default is for (0.85 here)
+  EXPECT_GT(long_window, 0.95);  // (1.0 here)
+}
+
 TEST(BudgetController, NoisyFramesDoNotSwingTheBudget) {
   // 25% noise (log-normal), nothing to follow: the ratio's weight falls to
   // about 0.2 and the budget moves half as much frame to frame as with a

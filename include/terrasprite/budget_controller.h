@@ -98,7 +98,7 @@ struct BudgetControllerOptions {
   /// it cut the budget under the sigma setpoint's in the walk's first 40
   /// frames (checkpoint B). And three slow frames in a row (this host, a
   /// few times a walk) made a 40-frame window's 95th percentile for the next
-  /// 40 frames, the budget held at 0.65-0.75 of the target to checkpoint E;
+  /// 40 frames, the objects' budget held at 0.65-0.75 of the target to E;
   /// three in 160 are under 5%. Replayed on 168 recorded series (stop 46's),
   /// checkpoint budgets under 0.9 of the target fell from 24 series to 4,
   /// frames under 0.85 from 8.1% to 6.2%, the p95 held in 167 as before. Live,

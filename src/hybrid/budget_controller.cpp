@@ -108,8 +108,8 @@ double BudgetController::noise() const {
 }
 
 bool BudgetController::tail_ready() const {
-  const int need = std::max(1, std::min(o_.quantile_min_frames, o_.quantile_window));
-  return !spread_.empty() && int(spread_.size()) >= need;
+  // At least one, so an empty spread is never ready.
+  return int(spread_.size()) >= std::max(1, std::min(o_.quantile_min_frames, o_.quantile_window));
 }
 
 double BudgetController::tail() const {

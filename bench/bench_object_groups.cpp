@@ -14,13 +14,13 @@
 #include <vector>
 
 #include "gl/render_target.h"
-#include "terrasprite/camera_path.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/object_scene.h"
-#include "terrasprite/object_set.h"
-#include "terrasprite/representation_cache.h"
-#include "terrasprite/terrain.h"
-#include "terrasprite/walkthrough_path.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/objects/object_scene.h"
+#include "terrasprite/objects/object_set.h"
+#include "terrasprite/objects/representation_cache.h"
+#include "terrasprite/terrain/terrain.h"
+#include "terrasprite/hybrid/walkthrough_path.h"
 
 namespace {
 using namespace terrasprite;

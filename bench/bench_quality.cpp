@@ -11,7 +11,7 @@
 #include <cmath>
 #include <random>
 
-#include "terrasprite/quality.h"
+#include "terrasprite/quality/quality.h"
 
 namespace {
 

@@ -5,8 +5,8 @@
 
 #include <vector>
 
-#include "terrasprite/camera_path.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 #include "voxel/column_march.h"
 
 namespace {

@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <string>
 
-#include "terrasprite/error.h"
-#include "terrasprite/terrain.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/terrain/terrain.h"
+#include "terrasprite/terrain/terrain_gen.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string name = "/vsimem/fuzz_dem";

@@ -9,8 +9,8 @@
 #include <fstream>
 #include <string>
 
-#include "terrasprite/error.h"
-#include "terrasprite/model.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/objects/model.h"
 
 inline int fuzz_model_file(const std::uint8_t* data, std::size_t size, const char* extension) {
   static const std::string path = (std::filesystem::temp_directory_path() /

@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <string_view>
 
-#include "terrasprite/camera_path.h"
-#include "terrasprite/error.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/terrain/terrain_gen.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const terrasprite::Heightfield terrain = [] {

@@ -7,10 +7,11 @@
 #include <cstdint>
 #include <string>
 
-#include "terrasprite/error.h"
-#include "terrasprite/image.h"
-#include "terrasprite/terrain.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/common/image.h"
+#include "terrasprite/terrain/terrain.h"
+#include "terrasprite/terrain/terrain_gen.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;

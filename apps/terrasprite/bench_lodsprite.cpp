@@ -10,7 +10,7 @@
 #include "lodsprite_report.h"
 #include "lodsprite_run.h"
 #include "render_modes.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite::cli {
 namespace {

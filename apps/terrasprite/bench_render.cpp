@@ -6,10 +6,10 @@
 #include "bench_commands.h"
 #include "cli_common.h"
 #include "scene_objects.h"
-#include "terrasprite/camera_path.h"
-#include "terrasprite/experiment.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/mesh_renderer.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/experiment/experiment.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/raster/mesh_renderer.h"
 
 namespace terrasprite::cli {
 

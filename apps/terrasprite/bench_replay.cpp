@@ -13,9 +13,9 @@
 
 #include "bench_commands.h"
 #include "cli_common.h"
-#include "terrasprite/controller_replay.h"
-#include "terrasprite/error.h"
-#include "terrasprite/stats.h"
+#include "terrasprite/hybrid/controller_replay.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/common/stats.h"
 
 namespace terrasprite::cli {
 namespace {

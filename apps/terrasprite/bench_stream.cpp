@@ -20,13 +20,13 @@
 #include "process_memory.h"
 #include "stream/cog_source.h"
 #include "stream/tile_file.h"
-#include "terrasprite/camera_path.h"
-#include "terrasprite/error.h"
-#include "terrasprite/experiment.h"
-#include "terrasprite/output_dir.h"
-#include "terrasprite/stats.h"
-#include "terrasprite/streaming_tiles.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/experiment/experiment.h"
+#include "terrasprite/output/output_dir.h"
+#include "terrasprite/common/stats.h"
+#include "terrasprite/stream/streaming_tiles.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 
 namespace terrasprite::cli {
 namespace {

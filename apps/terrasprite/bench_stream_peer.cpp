@@ -15,9 +15,9 @@
 #include <optional>
 
 #include "process_memory.h"
-#include "terrasprite/experiment.h"
-#include "terrasprite/streaming_tiles.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/experiment/experiment.h"
+#include "terrasprite/stream/streaming_tiles.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 
 extern char** environ;
 

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "terrasprite/camera.h"
-#include "terrasprite/image.h"
-#include "terrasprite/tiled_terrain.h"
+#include "terrasprite/camera/camera.h"
+#include "terrasprite/common/image.h"
+#include "terrasprite/stream/tiled_terrain.h"
 
 namespace terrasprite::cli {
 

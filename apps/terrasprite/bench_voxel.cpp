@@ -16,14 +16,15 @@
 #include "bench_commands.h"
 #include "cli_common.h"
 #include "plot.h"
-#include "terrasprite/camera_path.h"
-#include "terrasprite/error.h"
-#include "terrasprite/experiment.h"
-#include "terrasprite/output_dir.h"
-#include "terrasprite/quality.h"
-#include "terrasprite/stats.h"
-#include "terrasprite/terrain_gen.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/experiment/experiment.h"
+#include "terrasprite/output/output_dir.h"
+#include "terrasprite/quality/quality.h"
+#include "terrasprite/common/stats.h"
+#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 
 namespace terrasprite::cli {
 namespace {

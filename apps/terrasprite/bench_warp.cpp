@@ -15,13 +15,13 @@
 #include "cli_common.h"
 #include "plot.h"
 #include "render_modes.h"
-#include "terrasprite/camera_path.h"
-#include "terrasprite/error.h"
-#include "terrasprite/flythrough.h"
-#include "terrasprite/output_dir.h"
-#include "terrasprite/quality.h"
-#include "terrasprite/stats.h"
-#include "terrasprite/warp.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/experiment/flythrough.h"
+#include "terrasprite/output/output_dir.h"
+#include "terrasprite/quality/quality.h"
+#include "terrasprite/common/stats.h"
+#include "terrasprite/warp/warp.h"
 
 namespace terrasprite::cli {
 namespace {

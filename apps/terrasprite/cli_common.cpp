@@ -13,8 +13,8 @@
 #include <sstream>
 #include <string_view>
 
-#include "terrasprite/error.h"
-#include "terrasprite/output_dir.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/output/output_dir.h"
 
 namespace terrasprite::cli {
 

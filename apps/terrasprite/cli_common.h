@@ -6,8 +6,8 @@
 #include <string>
 #include <utility>
 
-#include "terrasprite/output_file.h"
-#include "terrasprite/terrain.h"
+#include "terrasprite/output/output_file.h"
+#include "terrasprite/terrain/terrain.h"
 
 namespace terrasprite::cli {
 

@@ -9,8 +9,9 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "terrasprite/error.h"
-#include "terrasprite/quality.h"
+#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/quality/quality.h"
 
 namespace terrasprite::cli {
 

@@ -7,8 +7,9 @@
 #include "commands.h"
 #include "lodsprite_report.h"
 #include "lodsprite_run.h"
-#include "terrasprite/output_dir.h"
-#include "terrasprite/video_writer.h"
+#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/output/output_dir.h"
+#include "terrasprite/output/video_writer.h"
 
 namespace terrasprite::cli {
 

@@ -13,11 +13,11 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "objects_table.h"
-#include "terrasprite/error.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/lod_chain.h"
-#include "terrasprite/model.h"
-#include "terrasprite/object_renderer.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/objects/lod_chain.h"
+#include "terrasprite/objects/model.h"
+#include "terrasprite/objects/object_renderer.h"
 
 namespace terrasprite::cli {
 namespace {

@@ -15,13 +15,14 @@
 #include "process_memory.h"
 #include "render_modes.h"
 #include "scene_objects.h"
-#include "terrasprite/camera_path.h"
-#include "terrasprite/error.h"
-#include "terrasprite/flythrough.h"
-#include "terrasprite/output_dir.h"
-#include "terrasprite/output_file.h"
-#include "terrasprite/video_writer.h"
-#include "terrasprite/warp_renderer.h"
+#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/experiment/flythrough.h"
+#include "terrasprite/output/output_dir.h"
+#include "terrasprite/output/output_file.h"
+#include "terrasprite/output/video_writer.h"
+#include "terrasprite/warp/warp_renderer.h"
 
 namespace terrasprite::cli {
 namespace {

@@ -10,18 +10,18 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "terrasprite/error.h"
-#include "terrasprite/fine_insets.h"
-#include "terrasprite/insets.h"
-#include "terrasprite/output_dir.h"
-#include "terrasprite/tiled_terrain.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/stream/fine_insets.h"
+#include "terrasprite/stream/insets.h"
+#include "terrasprite/output/output_dir.h"
+#include "terrasprite/stream/tiled_terrain.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 
 namespace terrasprite::cli {
 
 namespace {
 
-// Composites the --inset rasters into `hf` (see terrasprite/insets.h) and
+// Composites the --inset rasters into `hf` (see terrasprite/stream/insets.h) and
 // returns the grid's georeferencing (kept through --resample: the grid's
 // corner samples are the source's corner pixel centres).
 std::optional<GeoTransform> add_insets(Heightfield& hf, const std::string& dem,

@@ -11,12 +11,12 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "render_modes.h"
-#include "terrasprite/camera_path.h"
-#include "terrasprite/error.h"
-#include "terrasprite/sprite_renderer.h"
-#include "terrasprite/voxel_renderer.h"
-#include "terrasprite/warp.h"
-#include "terrasprite/warp_renderer.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/sprite/sprite_renderer.h"
+#include "terrasprite/voxel/voxel_renderer.h"
+#include "terrasprite/warp/warp.h"
+#include "terrasprite/warp/warp_renderer.h"
 #include "viewer/viewer.h"
 
 namespace terrasprite::cli {

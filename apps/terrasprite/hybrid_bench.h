@@ -10,14 +10,14 @@
 #include <string>
 #include <vector>
 
-#include "terrasprite/experiment.h"
-#include "terrasprite/hybrid_objects.h"
-#include "terrasprite/image.h"
-#include "terrasprite/object_set.h"
-#include "terrasprite/output_dir.h"
-#include "terrasprite/quality_table.h"
-#include "terrasprite/stats.h"
-#include "terrasprite/walkthrough_path.h"
+#include "terrasprite/experiment/experiment.h"
+#include "terrasprite/hybrid/hybrid_objects.h"
+#include "terrasprite/common/image.h"
+#include "terrasprite/objects/object_set.h"
+#include "terrasprite/output/output_dir.h"
+#include "terrasprite/objects/quality_table.h"
+#include "terrasprite/common/stats.h"
+#include "terrasprite/hybrid/walkthrough_path.h"
 
 namespace terrasprite::cli {
 

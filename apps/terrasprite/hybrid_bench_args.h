@@ -5,8 +5,8 @@
 #include <string>
 
 #include "cli_common.h"
-#include "terrasprite/budget_controller.h"
-#include "terrasprite/frame_pace.h"
+#include "terrasprite/hybrid/budget_controller.h"
+#include "terrasprite/hybrid/frame_pace.h"
 
 namespace terrasprite::cli {
 

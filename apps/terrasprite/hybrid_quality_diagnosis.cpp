@@ -23,12 +23,13 @@
 
 #include "gl/render_target.h"
 #include "hybrid_bench.h"
-#include "terrasprite/expected_quality.h"
-#include "terrasprite/hybrid_renderer.h"
-#include "terrasprite/instance_view.h"
-#include "terrasprite/mesh_renderer.h"
-#include "terrasprite/quality.h"
-#include "terrasprite/quality_calibration.h"
+#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/hybrid/expected_quality.h"
+#include "terrasprite/hybrid/hybrid_renderer.h"
+#include "terrasprite/hybrid/instance_view.h"
+#include "terrasprite/raster/mesh_renderer.h"
+#include "terrasprite/quality/quality.h"
+#include "terrasprite/hybrid/quality_calibration.h"
 
 namespace terrasprite::cli {
 namespace {

@@ -13,8 +13,9 @@
 
 #include "hybrid_bench.h"
 #include "plot.h"
-#include "terrasprite/error.h"
-#include "terrasprite/quality.h"
+#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/quality/quality.h"
 
 namespace terrasprite::cli {
 namespace {

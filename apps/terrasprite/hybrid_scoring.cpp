@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "hybrid_bench.h"
-#include "terrasprite/quality.h"
+#include "terrasprite/quality/quality.h"
 
 namespace terrasprite::cli {
 

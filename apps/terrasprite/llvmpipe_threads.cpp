@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <thread>
 
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite::cli {
 

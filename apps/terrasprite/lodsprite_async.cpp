@@ -8,9 +8,9 @@
 #include <cmath>
 #include <thread>
 
-#include "terrasprite/experiment.h"
-#include "terrasprite/quality.h"
-#include "terrasprite/stats.h"
+#include "terrasprite/experiment/experiment.h"
+#include "terrasprite/quality/quality.h"
+#include "terrasprite/common/stats.h"
 
 namespace terrasprite::cli {
 namespace {

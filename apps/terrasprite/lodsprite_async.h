@@ -9,11 +9,11 @@
 #include <span>
 #include <vector>
 
-#include "terrasprite/camera.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/image.h"
-#include "terrasprite/scene.h"
-#include "terrasprite/sprite_renderer.h"
+#include "terrasprite/camera/camera.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/common/image.h"
+#include "terrasprite/raster/scene.h"
+#include "terrasprite/sprite/sprite_renderer.h"
 
 namespace terrasprite::cli {
 

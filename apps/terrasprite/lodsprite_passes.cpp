@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <string>
 
-#include "terrasprite/experiment.h"
-#include "terrasprite/quality.h"
-#include "terrasprite/stats.h"
+#include "terrasprite/experiment/experiment.h"
+#include "terrasprite/quality/quality.h"
+#include "terrasprite/common/stats.h"
 
 namespace terrasprite::cli {
 namespace {

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "plot.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite::cli {
 namespace {

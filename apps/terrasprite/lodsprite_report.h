@@ -3,7 +3,7 @@
 // data, and an index.html with the numbers and the Figs. 13-14 images.
 #pragma once
 #include "lodsprite_result.h"
-#include "terrasprite/output_dir.h"
+#include "terrasprite/output/output_dir.h"
 
 namespace terrasprite::cli {
 

@@ -14,7 +14,7 @@
 
 #include "cli_common.h"
 #include "lodsprite_async.h"
-#include "terrasprite/experiment.h"
+#include "terrasprite/experiment/experiment.h"
 
 namespace terrasprite::cli {
 

@@ -17,14 +17,15 @@
 #include "cli_common.h"
 #include "lodsprite_passes.h"
 #include "lodsprite_trigger.h"
-#include "terrasprite/camera_path.h"
-#include "terrasprite/error.h"
-#include "terrasprite/experiment.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/mesh_renderer.h"
-#include "terrasprite/quality.h"
-#include "terrasprite/sprite_renderer.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/experiment/experiment.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/raster/mesh_renderer.h"
+#include "terrasprite/quality/quality.h"
+#include "terrasprite/sprite/sprite_renderer.h"
+#include "terrasprite/terrain/terrain_gen.h"
 
 namespace terrasprite::cli {
 namespace {

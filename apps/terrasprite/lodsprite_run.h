@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "lodsprite_result.h"
-#include "terrasprite/frame.h"
-#include "terrasprite/output_dir.h"
-#include "terrasprite/scene.h"
-#include "terrasprite/sprite_metric.h"
-#include "terrasprite/sprite_renderer.h"
-#include "terrasprite/terrain.h"
+#include "terrasprite/camera/frame.h"
+#include "terrasprite/output/output_dir.h"
+#include "terrasprite/raster/scene.h"
+#include "terrasprite/sprite/error_metric.h"
+#include "terrasprite/sprite/sprite_renderer.h"
+#include "terrasprite/terrain/terrain.h"
 
 namespace terrasprite::cli {
 

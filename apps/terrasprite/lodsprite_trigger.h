@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "lodsprite_result.h"
-#include "terrasprite/camera.h"
-#include "terrasprite/image.h"
-#include "terrasprite/scene.h"
-#include "terrasprite/sprite_renderer.h"
+#include "terrasprite/camera/camera.h"
+#include "terrasprite/common/image.h"
+#include "terrasprite/raster/scene.h"
+#include "terrasprite/sprite/sprite_renderer.h"
 
 namespace terrasprite::cli {
 

@@ -11,8 +11,8 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "terrasprite/error.h"
-#include "terrasprite/interrupt_cleanup.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/output/interrupt_cleanup.h"
 
 namespace {
 

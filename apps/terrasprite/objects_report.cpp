@@ -13,7 +13,7 @@
 
 #include "objects_table.h"
 #include "plot.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite::cli {
 namespace {

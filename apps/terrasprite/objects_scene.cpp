@@ -9,11 +9,12 @@
 #include "cli_common.h"
 #include "objects_table.h"
 #include "scene_objects.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/mesh_renderer.h"
-#include "terrasprite/object_set.h"
-#include "terrasprite/output_dir.h"
-#include "terrasprite/scene.h"
+#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/raster/mesh_renderer.h"
+#include "terrasprite/objects/object_set.h"
+#include "terrasprite/output/output_dir.h"
+#include "terrasprite/raster/scene.h"
 
 namespace terrasprite::cli {
 namespace {

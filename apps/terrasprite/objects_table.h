@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "terrasprite/model.h"
-#include "terrasprite/output_dir.h"
-#include "terrasprite/quality_table.h"
-#include "terrasprite/representation_cache.h"
+#include "terrasprite/objects/model.h"
+#include "terrasprite/output/output_dir.h"
+#include "terrasprite/objects/quality_table.h"
+#include "terrasprite/objects/representation_cache.h"
 
 namespace terrasprite::cli {
 

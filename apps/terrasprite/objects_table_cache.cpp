@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "objects_table.h"
-#include "terrasprite/representation_cache.h"
+#include "terrasprite/objects/representation_cache.h"
 
 namespace terrasprite::cli {
 

@@ -9,8 +9,8 @@
 #include <fstream>
 
 #include "objects_table.h"
-#include "terrasprite/error.h"
-#include "terrasprite/representation_cache.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/objects/representation_cache.h"
 
 namespace terrasprite::cli {
 namespace {

@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite::cli {
 

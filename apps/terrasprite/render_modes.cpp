@@ -7,9 +7,9 @@
 #include <thread>
 
 #include "cli_common.h"
-#include "terrasprite/error.h"
-#include "terrasprite/mesh_renderer.h"
-#include "terrasprite/sprite_renderer.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/raster/mesh_renderer.h"
+#include "terrasprite/sprite/sprite_renderer.h"
 
 namespace terrasprite::cli {
 

@@ -5,11 +5,11 @@
 #include <memory>
 #include <string>
 
-#include "terrasprite/gl_context.h"
-#include "terrasprite/renderer.h"
-#include "terrasprite/scene.h"
-#include "terrasprite/sprite_renderer.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/camera/renderer.h"
+#include "terrasprite/raster/scene.h"
+#include "terrasprite/sprite/sprite_renderer.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 
 namespace terrasprite::cli {
 

@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "terrasprite/error.h"
-#include "terrasprite/object_scene.h"
-#include "terrasprite/representation_cache.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/objects/object_scene.h"
+#include "terrasprite/objects/representation_cache.h"
 
 namespace terrasprite::cli {
 

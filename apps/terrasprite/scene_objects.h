@@ -7,9 +7,9 @@
 #include <memory>
 #include <string>
 
-#include "terrasprite/object_set.h"
-#include "terrasprite/scene.h"
-#include "terrasprite/terrain.h"
+#include "terrasprite/objects/object_set.h"
+#include "terrasprite/raster/scene.h"
+#include "terrasprite/terrain/terrain.h"
 
 namespace terrasprite::cli {
 

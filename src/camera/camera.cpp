@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/camera.h"
+#include "terrasprite/camera/camera.h"
 
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "terrasprite/heightfield.h"
+#include "terrasprite/terrain/heightfield.h"
 
 namespace terrasprite {
 namespace {

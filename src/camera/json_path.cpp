@@ -9,8 +9,8 @@
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
-#include "terrasprite/camera_path.h"
-#include "terrasprite/error.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 namespace {

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "terrasprite/camera_path.h"
-#include "terrasprite/error.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 namespace {

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/experiment.h"
+#include "terrasprite/experiment/experiment.h"
 
 #include <algorithm>
 #include <random>
 #include <stdexcept>
 
-#include "terrasprite/quality.h"
+#include "terrasprite/quality/quality.h"
 
 namespace terrasprite {
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // EGL headless context: surfaceless Mesa platform first (llvmpipe on CI and
 // any Mesa driver), then the EGL device platform (NVIDIA without a display).
-#include "terrasprite/gl_context.h"
+#include "terrasprite/gl/gl_context.h"
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 

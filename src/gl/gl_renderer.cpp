@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/gl_renderer.h"
+#include "terrasprite/gl/gl_renderer.h"
 
 #include "gl/frame_timer.h"
 #include "gl/render_target.h"

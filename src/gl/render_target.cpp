@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "terrasprite/frame.h"
+#include "terrasprite/camera/frame.h"
 
 namespace terrasprite::gl {
 

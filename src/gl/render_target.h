@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "gl/gl_objects.h"
-#include "terrasprite/camera.h"
-#include "terrasprite/image.h"
+#include "terrasprite/camera/camera.h"
+#include "terrasprite/common/image.h"
 
 namespace terrasprite::gl {
 

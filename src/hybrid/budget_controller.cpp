@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Feed-forward from the cost model (budget = target / the smoothed
 // measured-to-predicted ratio) plus a PI term on the measured error.
-#include "terrasprite/budget_controller.h"
+#include "terrasprite/hybrid/budget_controller.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/controller_replay.h"
+#include "terrasprite/hybrid/controller_replay.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "terrasprite/stats.h"
+#include "terrasprite/common/stats.h"
 
 namespace terrasprite {
 

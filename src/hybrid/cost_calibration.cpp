@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/cost_calibration.h"
+#include "terrasprite/hybrid/cost_calibration.h"
 
 #include <fmt/format.h>
 
@@ -11,7 +11,7 @@
 #include <tuple>
 
 #include "gl/render_target.h"
-#include "terrasprite/stats.h"
+#include "terrasprite/common/stats.h"
 
 namespace terrasprite {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/depth_occlusion.h"
+#include "terrasprite/hybrid/depth_occlusion.h"
 
 #include <algorithm>
 #include <cmath>

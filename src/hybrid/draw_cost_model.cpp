@@ -3,7 +3,7 @@
 // 4.1 (time = max of per-primitive and per-pixel work, here their sum with a
 // per-instance term), fitted by least squares and refit online by recursive
 // least squares with exponential forgetting.
-#include "terrasprite/draw_cost_model.h"
+#include "terrasprite/hybrid/draw_cost_model.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Table lookup of Jehaes, Lamotte & Tack (GRAPP 2008), section 3.3, with
 // interpolation between the measured views and sizes instead of the nearest.
-#include "terrasprite/expected_quality.h"
+#include "terrasprite/hybrid/expected_quality.h"
 
 #include <algorithm>
 #include <array>

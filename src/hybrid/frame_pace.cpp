@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/frame_pace.h"
+#include "terrasprite/hybrid/frame_pace.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // Per frame: view each instance, list its options (expected quality from the
 // tables, expected cost from the cost model), choose, steady the choice,
 // draw each (model, representation) group with one instanced draw.
-#include "terrasprite/hybrid_objects.h"
+#include "terrasprite/hybrid/hybrid_objects.h"
 
 #include <tbb/task_group.h>
 
@@ -14,12 +14,12 @@
 #include <tuple>
 
 #include "gl/render_target.h"
-#include "terrasprite/depth_occlusion.h"
-#include "terrasprite/expected_quality.h"
-#include "terrasprite/frame_pace.h"
-#include "terrasprite/instance_view.h"
-#include "terrasprite/measured_fixed_time.h"
-#include "terrasprite/stats.h"
+#include "terrasprite/hybrid/depth_occlusion.h"
+#include "terrasprite/hybrid/expected_quality.h"
+#include "terrasprite/hybrid/frame_pace.h"
+#include "terrasprite/hybrid/instance_view.h"
+#include "terrasprite/hybrid/measured_fixed_time.h"
+#include "terrasprite/common/stats.h"
 
 namespace terrasprite {
 namespace {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/hybrid_renderer.h"
+#include "terrasprite/hybrid/hybrid_renderer.h"
 
-#include "terrasprite/mesh_renderer.h"
+#include "terrasprite/raster/mesh_renderer.h"
 
 namespace terrasprite {
 

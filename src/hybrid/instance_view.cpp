@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/instance_view.h"
+#include "terrasprite/hybrid/instance_view.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "hybrid/knapsack_hull.h"
-#include "terrasprite/mckp.h"
+#include "terrasprite/hybrid/knapsack.h"
 
 namespace terrasprite {
 

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "terrasprite/mckp.h"
+#include "terrasprite/hybrid/knapsack.h"
 
 namespace terrasprite::knapsack {
 

@@ -9,7 +9,7 @@
 #include <numeric>
 
 #include "hybrid/knapsack_hull.h"
-#include "terrasprite/mckp.h"
+#include "terrasprite/hybrid/knapsack.h"
 
 namespace terrasprite {
 namespace {

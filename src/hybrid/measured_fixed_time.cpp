@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/measured_fixed_time.h"
+#include "terrasprite/hybrid/measured_fixed_time.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "terrasprite/stats.h"
+#include "terrasprite/common/stats.h"
 
 namespace terrasprite {
 

@@ -5,14 +5,14 @@
 // resolution limit, the budget left after the impostors spent on the meshes
 // by Pareto optimisation of quality against cost; past it, the target
 // quality lowered within the frame when the impostors would not fit.
-#include "terrasprite/representation_selection.h"
+#include "terrasprite/hybrid/representation_selection.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/selection_hysteresis.h"
+#include "terrasprite/hybrid/selection_hysteresis.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/walkthrough_path.h"
+#include "terrasprite/hybrid/walkthrough_path.h"
 
 #include <fmt/format.h>
 
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 

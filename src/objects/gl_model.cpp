@@ -10,7 +10,7 @@
 
 #include "gl/render_target.h"
 #include "objects/gl_model_impl.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 namespace objects {

@@ -5,7 +5,7 @@
 #include <optional>
 
 #include "gl/gl_objects.h"
-#include "terrasprite/object_renderer.h"
+#include "terrasprite/objects/object_renderer.h"
 
 namespace terrasprite {
 

@@ -16,7 +16,7 @@
 #include <map>
 
 #include "objects/model_builder.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite::objects {
 namespace {

@@ -7,7 +7,7 @@
 #include <initializer_list>
 #include <string>
 
-#include "terrasprite/representation_cache.h"
+#include "terrasprite/objects/representation_cache.h"
 
 namespace terrasprite::objects {
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // LOD chain by successive simplification (Garland-Heckbert quadrics as
 // implemented by meshoptimizer 0.18: meshopt_simplify, meshopt_simplifySloppy).
-#include "terrasprite/lod_chain.h"
+#include "terrasprite/objects/lod_chain.h"
 
 #include <meshoptimizer.h>
 

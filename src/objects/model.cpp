@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Loader dispatch and the shared last step of every loader: validation,
 // normals, material grouping, up axis, metres.
-#include "terrasprite/model.h"
+#include "terrasprite/objects/model.h"
 
 #include <fmt/format.h>
 
@@ -13,7 +13,7 @@
 #include <unordered_map>
 
 #include "objects/model_builder.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 namespace {

@@ -5,7 +5,7 @@
 #pragma once
 #include <vector>
 
-#include "terrasprite/model.h"
+#include "terrasprite/objects/model.h"
 
 namespace terrasprite::objects {
 

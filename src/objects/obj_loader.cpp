@@ -14,7 +14,8 @@
 #include <tuple>
 
 #include "objects/model_builder.h"
-#include "terrasprite/error.h"
+#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite::objects {
 namespace {

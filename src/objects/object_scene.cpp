@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Scene files: models, listed instances, scattered instances on the terrain.
-#include "terrasprite/object_scene.h"
+#include "terrasprite/objects/object_scene.h"
 
 #include <fmt/format.h>
 
@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "terrasprite/error.h"
-#include "terrasprite/terrain_mesh.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/terrain/terrain_mesh.h"
 
 namespace terrasprite {
 namespace {

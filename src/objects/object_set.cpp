@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/object_set.h"
+#include "terrasprite/objects/object_set.h"
 
 #include <cassert>
 #include <filesystem>
 
-#include "terrasprite/lod_chain.h"
-#include "terrasprite/representation_cache.h"
+#include "terrasprite/objects/lod_chain.h"
+#include "terrasprite/objects/representation_cache.h"
 
 namespace terrasprite {
 

@@ -6,7 +6,7 @@
 #include <unordered_set>
 #include <vector>
 
-#include "terrasprite/model.h"
+#include "terrasprite/objects/model.h"
 
 namespace terrasprite {
 namespace {

@@ -3,7 +3,7 @@
 // hybrid LOD models" (GRAPP 2008), section 3.2 -- every representation
 // against the full model over a sphere of views and a range of on-screen
 // sizes, PSNR and SSIM masked to the pixels either image covers.
-#include "terrasprite/quality_table.h"
+#include "terrasprite/objects/quality_table.h"
 
 #include <fmt/format.h>
 #include <tbb/task_group.h>
@@ -17,8 +17,8 @@
 #include <tuple>
 
 #include "gl/render_target.h"
-#include "terrasprite/error.h"
-#include "terrasprite/quality.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/quality/quality.h"
 
 namespace terrasprite {
 namespace {

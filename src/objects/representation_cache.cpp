@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/representation_cache.h"
+#include "terrasprite/objects/representation_cache.h"
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -10,8 +10,8 @@
 #include <cstring>
 #include <fstream>
 
-#include "terrasprite/cache_dir.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/cache_dir.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "quality/magma.h"
 #include "quality/planes.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite::quality {
 

@@ -28,7 +28,7 @@
 #include "quality/median.h"
 #include "quality/planes.h"
 #include "quality/row_sum.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite::quality {
 

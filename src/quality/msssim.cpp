@@ -10,7 +10,7 @@
 #include <cmath>
 
 #include "quality/ssim_core.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite::quality {
 

@@ -6,7 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include "common/simd.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 // Built for AVX2 and the baseline (as filter.cpp): the 8-bit -> float luma
 // loop only vectorises well with AVX2's wider shuffles.

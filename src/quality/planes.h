@@ -5,8 +5,8 @@
 #include <span>
 #include <vector>
 
-#include "terrasprite/image.h"
-#include "terrasprite/quality.h"
+#include "terrasprite/common/image.h"
+#include "terrasprite/quality/quality.h"
 
 namespace terrasprite::quality::detail {
 

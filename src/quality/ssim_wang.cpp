@@ -18,7 +18,7 @@
 #include "common/simd.h"
 #include "quality/filter.h"
 #include "quality/ssim_core.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite::quality::detail {
 

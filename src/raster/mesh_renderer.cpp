@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: MIT
 // Full-resolution and LOD rasterisation: one indexed draw from resident
 // buffers, timed to glFinish (an honest baseline, DESIGN.md timing rules).
-#include "terrasprite/mesh_renderer.h"
+#include "terrasprite/raster/mesh_renderer.h"
 
 #include <fmt/format.h>
 
 #include "gl/frame_timer.h"
 #include "gl/render_target.h"
-#include "scene/terrain_gpu.h"
-#include "terrasprite/error.h"
+#include "raster/terrain_gpu.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 namespace {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The view-dependent coarse mesh: a restricted quadtree refined by
 // screen-space error under a triangle budget (see adaptive_mesh.h).
-#include "terrasprite/adaptive_mesh.h"
+#include "terrasprite/sprite/adaptive_mesh.h"
 
 #include <tbb/parallel_for.h>
 
@@ -14,7 +14,7 @@
 #include <unordered_set>
 #include <utility>
 
-#include "terrasprite/terrain_mesh.h"
+#include "terrasprite/terrain/terrain_mesh.h"
 
 namespace terrasprite {
 namespace {

@@ -8,7 +8,7 @@
 #include <chrono>
 #include <utility>
 
-#include "terrasprite/scene.h"
+#include "terrasprite/raster/scene.h"
 
 namespace terrasprite {
 

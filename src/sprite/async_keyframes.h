@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "sprite/keyframe.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/terrain.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/terrain/terrain.h"
 
 namespace terrasprite {
 

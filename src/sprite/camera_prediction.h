@@ -5,8 +5,8 @@
 #pragma once
 #include <deque>
 
-#include "terrasprite/camera.h"
-#include "terrasprite/heightfield.h"
+#include "terrasprite/camera/camera.h"
+#include "terrasprite/terrain/heightfield.h"
 
 namespace terrasprite {
 

@@ -10,8 +10,8 @@
 #include <cmath>
 #include <limits>
 
-#include "terrasprite/sprite_metric.h"
-#include "terrasprite/terrain_mesh.h"
+#include "terrasprite/sprite/error_metric.h"
+#include "terrasprite/terrain/terrain_mesh.h"
 
 namespace terrasprite {
 namespace {

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "gl/render_target.h"
-#include "scene/terrain_gpu.h"
-#include "terrasprite/sprite_metric.h"
+#include "raster/terrain_gpu.h"
+#include "terrasprite/sprite/error_metric.h"
 
 namespace terrasprite {
 

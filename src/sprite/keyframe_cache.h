@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "sprite/keyframe.h"
-#include "terrasprite/sprite_renderer.h"
+#include "terrasprite/sprite/sprite_renderer.h"
 
 namespace terrasprite {
 

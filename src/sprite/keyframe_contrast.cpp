@@ -5,7 +5,7 @@
 #include <cassert>
 #include <cmath>
 
-#include "terrasprite/frame.h"
+#include "terrasprite/camera/frame.h"
 
 namespace terrasprite {
 namespace {

@@ -11,8 +11,8 @@
 #include <span>
 #include <vector>
 
-#include "terrasprite/camera.h"
-#include "terrasprite/sprite_metric.h"
+#include "terrasprite/camera/camera.h"
+#include "terrasprite/sprite/error_metric.h"
 
 namespace terrasprite {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <utility>
 
-#include "terrasprite/frame.h"
+#include "terrasprite/camera/frame.h"
 
 namespace terrasprite {
 namespace {

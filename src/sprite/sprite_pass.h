@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "scene/terrain_gpu.h"
+#include "raster/terrain_gpu.h"
 #include "sprite/keyframe.h"
 
 namespace terrasprite {

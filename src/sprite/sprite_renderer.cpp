@@ -2,7 +2,7 @@
 // The LOD-sprite policy (Chen, Swan, Kuo, Kaufman 1999): measure the error of
 // the new view against the keyframe (Eq. 1-2); past the threshold render a new
 // keyframe, otherwise a sprite frame from the coarse mesh.
-#include "terrasprite/sprite_renderer.h"
+#include "terrasprite/sprite/sprite_renderer.h"
 
 #include <fmt/format.h>
 
@@ -17,8 +17,8 @@
 #include "sprite/keyframe.h"
 #include "sprite/keyframe_cache.h"
 #include "sprite/sprite_pass.h"
-#include "terrasprite/adaptive_mesh.h"
-#include "terrasprite/error.h"
+#include "terrasprite/sprite/adaptive_mesh.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "terrasprite/sprite_metric.h"
+#include "terrasprite/sprite/error_metric.h"
 
 namespace terrasprite {
 

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "terrasprite/cache_dir.h"
+#include "terrasprite/common/cache_dir.h"
 
 namespace terrasprite {
 namespace {

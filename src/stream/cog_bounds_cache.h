@@ -11,7 +11,7 @@
 
 namespace terrasprite {
 
-/// The cache directory: cache_root() (terrasprite/cache_dir.h) / cog-bounds.
+/// The cache directory: cache_root() (terrasprite/common/cache_dir.h) / cog-bounds.
 /// `explicit_dir` says whether TERRASPRITE_CACHE chose the root.
 std::string bounds_cache_dir(bool& explicit_dir);
 

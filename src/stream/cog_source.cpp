@@ -22,7 +22,7 @@
 
 #include "stream/cog_bounds_cache.h"
 #include "terrain/gdal_util.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 namespace {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // An existing COG read in place as a tiled terrain (see open_cog in
-// terrasprite/tiled_terrain.h): overview selection, the area-aligned to
+// terrasprite/stream/tiled_terrain.h): overview selection, the area-aligned to
 // vertex-aligned resampling of a tile, and the max-height bounds computed
 // once at open.
 #pragma once
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "stream/tile_file.h"
-#include "terrasprite/tiled_terrain.h"
+#include "terrasprite/stream/tiled_terrain.h"
 
 namespace terrasprite {
 

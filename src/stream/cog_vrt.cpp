@@ -6,7 +6,7 @@
 #include <gdal_priv.h>
 
 #include "terrain/gdal_util.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 namespace {

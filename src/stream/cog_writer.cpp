@@ -15,8 +15,8 @@
 #include "stream/cog_vrt.h"
 #include "stream/tile_set_json.h"
 #include "terrain/gdal_util.h"
-#include "terrasprite/error.h"
-#include "terrasprite/tiled_terrain.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/stream/tiled_terrain.h"
 #include "voxel/voxel_terrain_data.h"
 
 namespace terrasprite {

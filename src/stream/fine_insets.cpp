@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/fine_insets.h"
+#include "terrasprite/stream/fine_insets.h"
 
 #include <fmt/format.h>
 
@@ -9,8 +9,8 @@
 #include <limits>
 
 #include "stream/inset_warp.h"
-#include "terrasprite/error.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 
 namespace terrasprite {
 namespace {

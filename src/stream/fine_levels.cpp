@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "stream/tile_file.h"
-#include "terrasprite/tiled_terrain.h"
+#include "terrasprite/stream/tiled_terrain.h"
 
 namespace terrasprite {
 

@@ -7,8 +7,8 @@
 #include <glm/vec3.hpp>
 #include <vector>
 
-#include "terrasprite/camera.h"
-#include "terrasprite/tiled_terrain.h"
+#include "terrasprite/camera/camera.h"
+#include "terrasprite/stream/tiled_terrain.h"
 
 namespace terrasprite {
 

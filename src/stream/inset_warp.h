@@ -5,7 +5,7 @@
 #pragma once
 #include <vector>
 
-#include "terrasprite/insets.h"
+#include "terrasprite/stream/insets.h"
 
 namespace terrasprite::detail {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/insets.h"
+#include "terrasprite/stream/insets.h"
 
 #include <fmt/format.h>
 #include <gdal.h>
@@ -11,7 +11,7 @@
 
 #include "stream/inset_warp.h"
 #include "terrain/gdal_util.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 namespace detail {

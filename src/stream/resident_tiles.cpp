@@ -4,8 +4,8 @@
 #include <fmt/format.h>
 
 #include "stream/tile_file.h"
-#include "terrasprite/error.h"
-#include "terrasprite/streaming_tiles.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/stream/streaming_tiles.h"
 
 namespace terrasprite {
 

@@ -3,7 +3,7 @@
 // resident tiles that only update() changes, loader threads that read queued
 // tiles through their own GDAL handles, and a byte budget held by evicting the
 // least recently wanted tiles, farthest first.
-#include "terrasprite/streaming_tiles.h"
+#include "terrasprite/stream/streaming_tiles.h"
 
 #include <fmt/format.h>
 #include <gdal.h>
@@ -22,7 +22,7 @@
 
 #include "stream/footprint.h"
 #include "stream/tile_file.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 namespace {

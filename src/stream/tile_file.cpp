@@ -9,7 +9,7 @@
 
 #include "stream/cog_source.h"
 #include "terrain/gdal_util.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "terrasprite/tiled_terrain.h"
+#include "terrasprite/stream/tiled_terrain.h"
 
 typedef void* GDALDatasetH;
 

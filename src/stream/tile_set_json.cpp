@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "terrain/gdal_util.h"
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 namespace {

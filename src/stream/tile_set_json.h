@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 // tiles.json: the grid, the levels and the per-tile max-height bounds of a
-// tiled terrain (see terrasprite/tiled_terrain.h).
+// tiled terrain (see terrasprite/stream/tiled_terrain.h).
 #pragma once
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "terrasprite/tiled_terrain.h"
+#include "terrasprite/stream/tiled_terrain.h"
 
 namespace terrasprite {
 

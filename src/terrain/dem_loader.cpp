@@ -10,8 +10,8 @@
 #include <filesystem>
 
 #include "terrain/gdal_util.h"
-#include "terrasprite/error.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/terrain/terrain_gen.h"
 
 namespace terrasprite {
 namespace {

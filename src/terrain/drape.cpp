@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "terrasprite/error.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/terrain/terrain_gen.h"
 
 namespace terrasprite::detail {
 namespace {

@@ -4,8 +4,8 @@
 #include <array>
 #include <optional>
 
-#include "terrasprite/heightfield.h"
-#include "terrasprite/image.h"
+#include "terrasprite/terrain/heightfield.h"
+#include "terrasprite/common/image.h"
 
 namespace terrasprite::detail {
 

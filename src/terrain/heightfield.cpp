@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/heightfield.h"
+#include "terrasprite/terrain/heightfield.h"
 
 #include <algorithm>
 #include <cmath>

@@ -10,8 +10,9 @@
 #include <filesystem>
 
 #include "terrain/gdal_util.h"
-#include "terrasprite/error.h"
-#include "terrasprite/image.h"
+#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/common/image.h"
 
 namespace terrasprite {
 namespace {

@@ -16,8 +16,8 @@
 #include <cmath>
 #include <vector>
 
-#include "terrasprite/error.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/terrain/terrain_gen.h"
 
 namespace terrasprite {
 namespace {

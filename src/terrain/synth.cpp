@@ -11,8 +11,8 @@
 #include <numeric>
 #include <random>
 
-#include "terrasprite/error.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/terrain/terrain_gen.h"
 
 namespace terrasprite {
 namespace {

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The terrain pipeline's first stage: heights from a file or the generator,
 // resampling, exaggeration, then the drape texture registered over them.
-#include "terrasprite/terrain.h"
+#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/terrain/terrain.h"
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
@@ -11,8 +12,8 @@
 
 #include "terrain/drape.h"
 #include "terrain/grid_sample.h"
-#include "terrasprite/error.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/terrain/terrain_gen.h"
 
 namespace terrasprite {
 namespace {

@@ -6,8 +6,8 @@
 #pragma once
 #include <set>
 
-#include "terrasprite/camera.h"
-#include "terrasprite/heightfield.h"
+#include "terrasprite/camera/camera.h"
+#include "terrasprite/terrain/heightfield.h"
 #include "viewer/input_event.h"
 
 namespace terrasprite::viewer {

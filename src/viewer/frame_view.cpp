@@ -4,7 +4,7 @@
 #include <epoxy/gl.h>
 
 #include "gl/gl_objects.h"
-#include "terrasprite/renderer.h"
+#include "terrasprite/camera/renderer.h"
 
 namespace terrasprite::viewer {
 

@@ -5,7 +5,7 @@
 #pragma once
 #include <memory>
 
-#include "terrasprite/image.h"
+#include "terrasprite/common/image.h"
 
 namespace terrasprite::viewer {
 

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 #include "viewer/input_event.h"
 
 namespace terrasprite::viewer {

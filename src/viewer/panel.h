@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "terrasprite/camera.h"
+#include "terrasprite/camera/camera.h"
 #include "viewer/render_worker.h"
 
 namespace terrasprite::viewer {

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <fstream>
 
-#include "terrasprite/camera_path.h"
-#include "terrasprite/error.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite::viewer {
 

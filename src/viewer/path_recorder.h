@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "terrasprite/camera.h"
-#include "terrasprite/heightfield.h"
+#include "terrasprite/camera/camera.h"
+#include "terrasprite/terrain/heightfield.h"
 
 namespace terrasprite::viewer {
 

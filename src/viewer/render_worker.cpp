@@ -7,8 +7,8 @@
 #include <utility>
 
 #include "gl/gl_objects.h"
-#include "terrasprite/gl_renderer.h"
-#include "terrasprite/quality.h"
+#include "terrasprite/gl/gl_renderer.h"
+#include "terrasprite/quality/quality.h"
 
 namespace terrasprite::viewer {
 

@@ -22,12 +22,12 @@
 #include <string>
 #include <thread>
 
-#include "terrasprite/camera.h"
-#include "terrasprite/frame.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/image.h"
-#include "terrasprite/renderer.h"
-#include "terrasprite/sprite_renderer.h"
+#include "terrasprite/camera/camera.h"
+#include "terrasprite/camera/frame.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/common/image.h"
+#include "terrasprite/camera/renderer.h"
+#include "terrasprite/sprite/sprite_renderer.h"
 
 namespace terrasprite::viewer {
 

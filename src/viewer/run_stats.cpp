@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "terrasprite/stats.h"
+#include "terrasprite/common/stats.h"
 
 namespace terrasprite::viewer {
 

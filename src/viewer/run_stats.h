@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "terrasprite/camera.h"
+#include "terrasprite/camera/camera.h"
 
 namespace terrasprite::viewer {
 

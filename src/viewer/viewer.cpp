@@ -14,7 +14,8 @@
 #include <future>
 #include <optional>
 
-#include "terrasprite/image.h"
+#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/common/image.h"
 #include "viewer/frame_view.h"
 #include "viewer/panel.h"
 #include "viewer/path_recorder.h"

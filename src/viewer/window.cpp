@@ -11,7 +11,7 @@
 
 #include <utility>
 
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite::viewer {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "terrasprite/gl_context.h"
+#include "terrasprite/gl/gl_context.h"
 #include "viewer/input_event.h"
 
 struct GLFWwindow;

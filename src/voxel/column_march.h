@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <span>
 
-#include "terrasprite/terrain_tiles.h"
+#include "terrasprite/voxel/terrain_tiles.h"
 
 namespace terrasprite {
 

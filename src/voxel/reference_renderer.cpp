@@ -15,7 +15,7 @@
 #include <limits>
 #include <thread>
 
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 #include "voxel/voxel_terrain_data.h"
 
 namespace terrasprite {

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "terrasprite/terrain_tiles.h"
+#include "terrasprite/voxel/terrain_tiles.h"
 #include "voxel/voxel_terrain_data.h"
 
 namespace terrasprite {

@@ -4,7 +4,7 @@
 #pragma once
 #include <cstdint>
 
-#include "terrasprite/camera.h"
+#include "terrasprite/camera/camera.h"
 
 namespace terrasprite {
 

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <limits>
 
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 #include "voxel/voxel_terrain_data.h"
 
 namespace terrasprite {

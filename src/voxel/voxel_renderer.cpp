@@ -4,7 +4,7 @@
 // (TBB work stealing over a range of columns, no barrier inside a column),
 // then the intermediate buffer is resampled to the image. The naive variant
 // marches every pixel's ray on its own.
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
@@ -19,7 +19,7 @@
 #include <thread>
 #include <vector>
 
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 #include "voxel/column_march.h"
 #include "voxel/column_rays.h"
 #include "voxel/locate_row.h"

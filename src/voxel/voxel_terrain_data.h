@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "common/packed_rgba.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 
 namespace terrasprite {
 

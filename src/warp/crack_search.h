@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "terrasprite/warp.h"
+#include "terrasprite/warp/warp.h"
 #include "warp/pinhole.h"
 #include "warp/splat.h"
 

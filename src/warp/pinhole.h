@@ -9,8 +9,8 @@
 #include <glm/glm.hpp>
 
 #include "common/packed_rgba.h"
-#include "terrasprite/camera.h"
-#include "terrasprite/frame.h"
+#include "terrasprite/camera/camera.h"
+#include "terrasprite/camera/frame.h"
 
 namespace terrasprite::warp {
 

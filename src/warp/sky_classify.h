@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 
-#include "terrasprite/frame.h"
+#include "terrasprite/camera/frame.h"
 #include "warp/pinhole.h"
 #include "warp/splat.h"
 

@@ -10,7 +10,7 @@
 #include <optional>
 #include <utility>
 
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 #include "warp/warp_internal.h"
 
 namespace terrasprite {

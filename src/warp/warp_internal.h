@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "terrasprite/warp.h"
+#include "terrasprite/warp/warp.h"
 #include "warp/pinhole.h"
 
 namespace terrasprite {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Every K-th frame real, the rest warped from the last real one.
-#include "terrasprite/warp_renderer.h"
+#include "terrasprite/warp/warp_renderer.h"
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
@@ -9,7 +9,7 @@
 #include <chrono>
 #include <cstring>
 
-#include "terrasprite/error.h"
+#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 

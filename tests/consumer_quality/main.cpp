@@ -1,7 +1,7 @@
 // Uses the installed quality module alone: PSNR and SSIM of two tiny images.
 #include <cstdio>
 
-#include "terrasprite/quality.h"
+#include "terrasprite/quality/quality.h"
 
 int main() {
   terrasprite::Image a(32, 32), b(32, 32);

@@ -15,12 +15,13 @@
 #include <filesystem>
 #include <memory>
 
-#include "terrasprite/gl_context.h"
-#include "terrasprite/mesh_renderer.h"
-#include "terrasprite/quality.h"
-#include "terrasprite/sprite_renderer.h"
-#include "terrasprite/terrain.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/raster/mesh_renderer.h"
+#include "terrasprite/quality/quality.h"
+#include "terrasprite/sprite/sprite_renderer.h"
+#include "terrasprite/terrain/terrain.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 
 namespace terrasprite {
 namespace {

@@ -2,7 +2,7 @@
 // The controller replay: a run recorded from the loop itself replays to the
 // same frames (its floors and its frames with budget left over included),
 // and a change of options changes them. No GL, under 10 ms.
-#include "terrasprite/controller_replay.h"
+#include "terrasprite/hybrid/controller_replay.h"
 
 #include <gtest/gtest.h>
 

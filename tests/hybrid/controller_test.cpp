@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <random>
 
-#include "terrasprite/budget_controller.h"
-#include "terrasprite/draw_cost_model.h"
-#include "terrasprite/frame_pace.h"
-#include "terrasprite/measured_fixed_time.h"
+#include "terrasprite/hybrid/budget_controller.h"
+#include "terrasprite/hybrid/draw_cost_model.h"
+#include "terrasprite/hybrid/frame_pace.h"
+#include "terrasprite/hybrid/measured_fixed_time.h"
 
 namespace terrasprite {
 namespace {

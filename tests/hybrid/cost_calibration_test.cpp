@@ -3,7 +3,7 @@
 // (the flush at glFinish, once a frame) stays out of every term, the draw
 // call is what one more costs inside a frame, an instance its own work.
 // No GL; well under 1 ms.
-#include "terrasprite/cost_calibration.h"
+#include "terrasprite/hybrid/cost_calibration.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // the rectangle holds every point of the sphere, the pyramid's answer equals
 // a pixel-by-pixel check, and nothing at the near plane or in front of the
 // depth is ever hidden. About 0.1 s.
-#include "terrasprite/depth_occlusion.h"
+#include "terrasprite/hybrid/depth_occlusion.h"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 // slow frames do not take the objects' budget below its floor; an instance
 // whose draw culls its hidden back faces is priced with its culled fraction.
 // GL (llvmpipe), about 0.25 s.
-#include "terrasprite/hybrid_objects.h"
+#include "terrasprite/hybrid/hybrid_objects.h"
 
 #include <gtest/gtest.h>
 
@@ -19,10 +19,10 @@
 
 #include "gl/render_target.h"
 #include "objects/object_test_util.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/instance_view.h"
-#include "terrasprite/object_scene.h"
-#include "terrasprite/object_set.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/hybrid/instance_view.h"
+#include "terrasprite/objects/object_scene.h"
+#include "terrasprite/objects/object_set.h"
 #include "test_util.h"
 
 namespace ts = terrasprite;

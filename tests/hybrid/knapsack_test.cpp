@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <random>
 
-#include "terrasprite/mckp.h"
+#include "terrasprite/hybrid/knapsack.h"
 
 namespace terrasprite {
 namespace {

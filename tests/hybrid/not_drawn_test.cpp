@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "terrasprite/representation_selection.h"
-#include "terrasprite/selection_hysteresis.h"
+#include "terrasprite/hybrid/representation_selection.h"
+#include "terrasprite/hybrid/selection_hysteresis.h"
 
 namespace terrasprite {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/quality_calibration.h"
+#include "terrasprite/hybrid/quality_calibration.h"
 
 #include <gtest/gtest.h>
 

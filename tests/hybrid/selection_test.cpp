@@ -3,10 +3,10 @@
 
 #include <cmath>
 
-#include "terrasprite/expected_quality.h"
-#include "terrasprite/instance_view.h"
-#include "terrasprite/representation_selection.h"
-#include "terrasprite/selection_hysteresis.h"
+#include "terrasprite/hybrid/expected_quality.h"
+#include "terrasprite/hybrid/instance_view.h"
+#include "terrasprite/hybrid/representation_selection.h"
+#include "terrasprite/hybrid/selection_hysteresis.h"
 
 namespace terrasprite {
 namespace {

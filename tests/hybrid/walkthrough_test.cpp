@@ -3,13 +3,13 @@
 
 #include <algorithm>
 
-#include "terrasprite/camera_path.h"
-#include "terrasprite/error.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/mesh_renderer.h"
-#include "terrasprite/terrain.h"
-#include "terrasprite/terrain_mesh.h"
-#include "terrasprite/walkthrough_path.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/raster/mesh_renderer.h"
+#include "terrasprite/terrain/terrain.h"
+#include "terrasprite/terrain/terrain_mesh.h"
+#include "terrasprite/hybrid/walkthrough_path.h"
 
 namespace terrasprite {
 namespace {

@@ -11,11 +11,11 @@
 
 #include "gl/render_target.h"
 #include "object_test_util.h"
-#include "terrasprite/error.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/lod_chain.h"
-#include "terrasprite/object_renderer.h"
-#include "terrasprite/quality.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/objects/lod_chain.h"
+#include "terrasprite/objects/object_renderer.h"
+#include "terrasprite/quality/quality.h"
 
 namespace ts = terrasprite;
 

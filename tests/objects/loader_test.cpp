@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "terrasprite/error.h"
-#include "terrasprite/model.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/objects/model.h"
 #include "test_util.h"
 
 namespace ts = terrasprite;

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 // LOD chain: triangle counts strictly fall, errors rise, the coarsest level
 // still spans the object within its error.
-#include "terrasprite/lod_chain.h"
+#include "terrasprite/objects/lod_chain.h"
 
 #include <gtest/gtest.h>
 
-#include "terrasprite/model.h"
+#include "terrasprite/objects/model.h"
 #include "test_util.h"
 
 namespace ts = terrasprite;

@@ -9,8 +9,8 @@
 #include <cstdio>
 
 #include "object_test_util.h"
-#include "terrasprite/lod_chain.h"
-#include "terrasprite/model.h"
+#include "terrasprite/objects/lod_chain.h"
+#include "terrasprite/objects/model.h"
 
 namespace ts = terrasprite;
 

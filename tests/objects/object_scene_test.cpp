@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: MIT
 // Scene files: listed and scattered instances on the terrain, bad scenes,
 // and the default 400-instance scene.
-#include "terrasprite/object_scene.h"
+#include "terrasprite/objects/object_scene.h"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 
-#include "terrasprite/error.h"
-#include "terrasprite/terrain.h"
-#include "terrasprite/terrain_mesh.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/terrain/terrain.h"
+#include "terrasprite/terrain/terrain_mesh.h"
 #include "test_util.h"
 
 namespace ts = terrasprite;

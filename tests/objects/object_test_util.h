@@ -5,10 +5,10 @@
 #include <fstream>
 #include <string>
 
-#include "terrasprite/camera.h"
-#include "terrasprite/model.h"
-#include "terrasprite/object_scene.h"
-#include "terrasprite/terrain.h"
+#include "terrasprite/camera/camera.h"
+#include "terrasprite/objects/model.h"
+#include "terrasprite/objects/object_scene.h"
+#include "terrasprite/terrain/terrain.h"
 #include "test_util.h"
 
 namespace tstest {

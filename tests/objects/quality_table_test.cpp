@@ -2,7 +2,7 @@
 // Quality tables on small sampling: identical renders score 1, quality does
 // not fall as the object shrinks on screen, Table 1 picks the cheapest, the
 // CLI writes the JSON contract and reuses its cache only for equal inputs.
-#include "terrasprite/quality_table.h"
+#include "terrasprite/objects/quality_table.h"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 
 #include "gl/render_target.h"
 #include "object_test_util.h"
-#include "terrasprite/error.h"
-#include "terrasprite/gl_context.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/gl/gl_context.h"
 #include "test_util.h"
 
 namespace ts = terrasprite;

@@ -6,7 +6,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "terrasprite/image.h"
+#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/common/image.h"
 #include "test_util.h"
 
 namespace {

@@ -10,12 +10,12 @@
 #include <glm/glm.hpp>
 
 #include "object_test_util.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/mesh_renderer.h"
-#include "terrasprite/object_set.h"
-#include "terrasprite/scene.h"
-#include "terrasprite/sprite_renderer.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/raster/mesh_renderer.h"
+#include "terrasprite/objects/object_set.h"
+#include "terrasprite/raster/scene.h"
+#include "terrasprite/sprite/sprite_renderer.h"
+#include "terrasprite/terrain/terrain_gen.h"
 #include "test_util.h"
 
 namespace ts = terrasprite;

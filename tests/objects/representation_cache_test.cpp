@@ -3,7 +3,7 @@
 // reads the LOD chain and both impostors instead of building them and draws
 // the very same pixels; another build parameter is another entry; a damaged
 // entry is reported, rebuilt and replaced; a disabled cache writes nothing.
-#include "terrasprite/representation_cache.h"
+#include "terrasprite/objects/representation_cache.h"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 
 #include "gl/render_target.h"
 #include "object_test_util.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/object_renderer.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/objects/object_renderer.h"
 
 namespace ts = terrasprite;
 namespace fs = std::filesystem;

@@ -10,8 +10,8 @@
 #include <set>
 
 #include "objects/small_components.h"
-#include "terrasprite/lod_chain.h"
-#include "terrasprite/model.h"
+#include "terrasprite/objects/lod_chain.h"
+#include "terrasprite/objects/model.h"
 #include "test_util.h"
 
 namespace ts = terrasprite;

@@ -10,7 +10,8 @@
 #include <sstream>
 
 #include "quality_test_util.h"
-#include "terrasprite/quality.h"
+#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/quality/quality.h"
 
 namespace terrasprite::quality {
 namespace {

@@ -11,7 +11,7 @@
 #include <numbers>
 #include <vector>
 
-#include "terrasprite/image.h"
+#include "terrasprite/common/image.h"
 
 namespace terrasprite::quality::testing {
 

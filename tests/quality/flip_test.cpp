@@ -6,7 +6,7 @@
 
 #include "flip_reference.h"
 #include "quality_test_util.h"
-#include "terrasprite/quality.h"
+#include "terrasprite/quality/quality.h"
 
 namespace terrasprite::quality {
 namespace {

@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "quality_test_util.h"
-#include "terrasprite/error.h"
-#include "terrasprite/quality.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/quality/quality.h"
 
 namespace terrasprite::quality {
 namespace {

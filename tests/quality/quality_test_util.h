@@ -12,7 +12,7 @@
 #include <random>
 #include <string>
 
-#include "terrasprite/image.h"
+#include "terrasprite/common/image.h"
 
 namespace terrasprite::quality::testing {
 

@@ -9,11 +9,11 @@
 
 #include "gl/gl_objects.h"
 #include "gl/render_target.h"
-#include "terrasprite/error.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/mesh_renderer.h"
-#include "terrasprite/scene.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/raster/mesh_renderer.h"
+#include "terrasprite/raster/scene.h"
+#include "terrasprite/terrain/terrain_gen.h"
 
 namespace ts = terrasprite;
 

@@ -2,7 +2,7 @@
 // The view-dependent coarse mesh: crack-free, within its triangle budget,
 // fine near the camera and coarse far away, exact with no budget; and the
 // sprite renderer drawing it.
-#include "terrasprite/adaptive_mesh.h"
+#include "terrasprite/sprite/adaptive_mesh.h"
 
 #include <gtest/gtest.h>
 
@@ -12,10 +12,10 @@
 #include <utility>
 
 #include "sprite_test_util.h"
-#include "terrasprite/camera_path.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/mesh_renderer.h"
-#include "terrasprite/sprite_renderer.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/raster/mesh_renderer.h"
+#include "terrasprite/sprite/sprite_renderer.h"
 
 namespace terrasprite {
 namespace {

@@ -8,8 +8,8 @@
 
 #include "sprite/keyframe_contrast.h"
 #include "sprite_test_util.h"
-#include "terrasprite/frame.h"
-#include "terrasprite/sprite_metric.h"
+#include "terrasprite/camera/frame.h"
+#include "terrasprite/sprite/error_metric.h"
 
 namespace terrasprite {
 namespace {

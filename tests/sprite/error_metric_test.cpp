@@ -6,9 +6,9 @@
 #include <cmath>
 
 #include "sprite_test_util.h"
-#include "terrasprite/camera_path.h"
-#include "terrasprite/sprite_metric.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/sprite/error_metric.h"
+#include "terrasprite/terrain/terrain_gen.h"
 
 namespace terrasprite {
 namespace {

@@ -5,11 +5,11 @@
 #include <gtest/gtest.h>
 
 #include "sprite_test_util.h"
-#include "terrasprite/camera_path.h"
-#include "terrasprite/error.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/sprite_renderer.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/sprite/sprite_renderer.h"
+#include "terrasprite/terrain/terrain_gen.h"
 
 namespace terrasprite {
 namespace {

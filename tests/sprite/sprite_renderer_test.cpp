@@ -1,18 +1,18 @@
 // SPDX-License-Identifier: MIT
 // The LOD-sprite renderer on GL: a sprite from the keyframe's own camera,
 // the visibility fallback (occlusion and the keyframe frustum), the trigger.
-#include "terrasprite/sprite_renderer.h"
+#include "terrasprite/sprite/sprite_renderer.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "sprite_test_util.h"
-#include "terrasprite/camera_path.h"
-#include "terrasprite/error.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/mesh_renderer.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/raster/mesh_renderer.h"
+#include "terrasprite/terrain/terrain_gen.h"
 
 namespace terrasprite {
 namespace {

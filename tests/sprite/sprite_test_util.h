@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 // Shared fixtures of the LOD-sprite tests.
 #pragma once
-#include "terrasprite/camera.h"
-#include "terrasprite/heightfield.h"
-#include "terrasprite/quality.h"
-#include "terrasprite/terrain.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/camera/camera.h"
+#include "terrasprite/terrain/heightfield.h"
+#include "terrasprite/quality/quality.h"
+#include "terrasprite/terrain/terrain.h"
+#include "terrasprite/terrain/terrain_gen.h"
 
 namespace terrasprite::sprite_test {
 

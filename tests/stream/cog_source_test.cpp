@@ -16,8 +16,8 @@
 #include <nlohmann/json.hpp>
 
 #include "stream/tile_file.h"
-#include "terrasprite/error.h"
-#include "terrasprite/tiled_terrain.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/stream/tiled_terrain.h"
 #include "test_util.h"
 
 namespace terrasprite {

@@ -16,10 +16,10 @@
 #include <nlohmann/json.hpp>
 
 #include "stream_test_util.h"
-#include "terrasprite/error.h"
-#include "terrasprite/streaming_tiles.h"
-#include "terrasprite/tiled_terrain.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/stream/streaming_tiles.h"
+#include "terrasprite/stream/tiled_terrain.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 #include "test_util.h"
 
 namespace terrasprite {

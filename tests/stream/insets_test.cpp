@@ -3,7 +3,7 @@
 // resampled to 1 m: inside it the inset's value, outside the base's, and a
 // border blend without a step; another CRS is reprojected by GDAL; `tile
 // --inset` records it in tiles.json.
-#include "terrasprite/insets.h"
+#include "terrasprite/stream/insets.h"
 
 #include <cpl_conv.h>
 #include <gdal.h>
@@ -16,8 +16,8 @@
 #include <nlohmann/json.hpp>
 
 #include "stream_test_util.h"
-#include "terrasprite/error.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/terrain/terrain_gen.h"
 #include "test_util.h"
 
 namespace terrasprite {

@@ -7,8 +7,8 @@
 
 #include <string>
 
-#include "terrasprite/streaming_tiles.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/stream/streaming_tiles.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 
 namespace terrasprite::stream_test {
 

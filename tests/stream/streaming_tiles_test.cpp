@@ -3,7 +3,7 @@
 // GDAL's own windowed reads and the in-memory pyramid, the cache holds its
 // budget, a stalled or failing loader never stops a frame, and a streamed
 // image equals the in-memory one once its tiles are resident.
-#include "terrasprite/streaming_tiles.h"
+#include "terrasprite/stream/streaming_tiles.h"
 
 #include <gdal.h>
 #include <gtest/gtest.h>
@@ -15,10 +15,10 @@
 
 #include "stream/tile_file.h"
 #include "stream_test_util.h"
-#include "terrasprite/camera_path.h"
-#include "terrasprite/error.h"
-#include "terrasprite/tiled_terrain.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/camera/camera_path.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/stream/tiled_terrain.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 #include "test_util.h"
 #include "voxel/voxel_terrain_data.h"
 

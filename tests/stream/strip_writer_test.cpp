@@ -8,9 +8,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "terrasprite/error.h"
-#include "terrasprite/tiled_terrain.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/stream/tiled_terrain.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 #include "test_util.h"
 
 namespace terrasprite {

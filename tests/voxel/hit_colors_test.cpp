@@ -8,8 +8,8 @@
 #include <random>
 #include <vector>
 
-#include "terrasprite/terrain.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/terrain/terrain.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 #include "voxel/tile_reader.h"
 
 namespace terrasprite {

@@ -2,7 +2,7 @@
 // The tile accessor the ray caster reads terrain through: the in-memory
 // pyramid's tiles agree with the height field and bound it, and the caster
 // falls back to coarser levels where tiles are not resident.
-#include "terrasprite/terrain_tiles.h"
+#include "terrasprite/voxel/terrain_tiles.h"
 
 #include <gtest/gtest.h>
 
@@ -12,9 +12,9 @@
 #include <set>
 #include <tuple>
 
-#include "terrasprite/quality.h"
-#include "terrasprite/terrain_gen.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/quality/quality.h"
+#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 
 namespace terrasprite {
 namespace {

@@ -11,9 +11,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "terrasprite/quality.h"
-#include "terrasprite/terrain.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/quality/quality.h"
+#include "terrasprite/terrain/terrain.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 #include "voxel/locate_row.h"
 #include "voxel/vertical_planes.h"
 #include "voxel/voxel_terrain_data.h"

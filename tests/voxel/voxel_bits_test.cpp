@@ -14,8 +14,8 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "terrasprite/terrain.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/terrain/terrain.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 
 namespace terrasprite {
 namespace {

@@ -2,7 +2,7 @@
 // Correctness of the voxel ray caster: analytic depth on a flat plane, the
 // horizon, occlusion by a spike, coherent traversal against per-pixel
 // marching under pitch and roll, agreement with the GL renderer, edge cases.
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 
 #include <gtest/gtest.h>
 
@@ -11,11 +11,11 @@
 #include <cstdio>
 #include <memory>
 
-#include "terrasprite/error.h"
-#include "terrasprite/gl_context.h"
-#include "terrasprite/mesh_renderer.h"
-#include "terrasprite/quality.h"
-#include "terrasprite/terrain_gen.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/gl/gl_context.h"
+#include "terrasprite/raster/mesh_renderer.h"
+#include "terrasprite/quality/quality.h"
+#include "terrasprite/terrain/terrain_gen.h"
 
 namespace terrasprite {
 namespace {

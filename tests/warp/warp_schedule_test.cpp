@@ -9,10 +9,10 @@
 #include <cstring>
 #include <vector>
 
-#include "terrasprite/terrain_gen.h"
-#include "terrasprite/voxel_renderer.h"
-#include "terrasprite/warp.h"
-#include "terrasprite/warp_renderer.h"
+#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/voxel/voxel_renderer.h"
+#include "terrasprite/warp/warp.h"
+#include "terrasprite/warp/warp_renderer.h"
 
 namespace terrasprite {
 namespace {

@@ -3,7 +3,7 @@
 // plane, optionally with a tall box in front): pure rotation, a camera that
 // does not move, sideways translation over a plane, disocclusion behind a
 // spike, and a voxel-rendered frame.
-#include "terrasprite/warp.h"
+#include "terrasprite/warp/warp.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -14,11 +14,11 @@
 #include <random>
 #include <tuple>
 
-#include "terrasprite/error.h"
-#include "terrasprite/quality.h"
-#include "terrasprite/renderer.h"
-#include "terrasprite/terrain_gen.h"
-#include "terrasprite/voxel_renderer.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/quality/quality.h"
+#include "terrasprite/camera/renderer.h"
+#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 #include "warp/bilinear.h"
 
 namespace terrasprite {

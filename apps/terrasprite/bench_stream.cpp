@@ -16,7 +16,7 @@
 #include "bench_commands.h"
 #include "bench_stream_peer.h"
 #include "cli_common.h"
-#include "plot.h"
+#include "terrasprite/report/plot.h"
 #include "process_memory.h"
 #include "stream/cog_source.h"
 #include "stream/tile_file.h"

@@ -15,7 +15,7 @@
 
 #include "bench_commands.h"
 #include "cli_common.h"
-#include "plot.h"
+#include "terrasprite/report/plot.h"
 #include "terrasprite/terrain/image_io.h"
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/common/error.h"

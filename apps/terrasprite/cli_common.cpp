@@ -141,13 +141,8 @@ void check_outputs(const std::string& out_dir, std::initializer_list<std::string
     if (!f.empty()) check_output_file(f, output_policy());
 }
 
-nlohmann::json number_or_null(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
-
 void write_json(nlohmann::json j, const std::string& path) {
-  if (j.is_object()) j["generator"] = generator_name();
-  write_output_file(path, output_policy(), j.dump(2) + "\n");
+  report::write_json(j, path, output_policy());
 }
 
 TerrainInfo terrain_info(const Terrain& t) {

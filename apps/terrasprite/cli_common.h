@@ -7,6 +7,8 @@
 #include <utility>
 
 #include "terrasprite/output/output_file.h"
+#include "terrasprite/report/json_writer.h"
+#include "terrasprite/report/plot.h"
 #include "terrasprite/terrain/terrain.h"
 
 namespace terrasprite::cli {
@@ -45,15 +47,12 @@ OutputPolicy& output_policy();
 /// Throws InputError naming the first that cannot.
 void check_outputs(const std::string& out_dir, std::initializer_list<std::string> files);
 
-/// Writes pretty JSON with a "generator" key (terrasprite and its version) to a
-/// temporary name beside `path`, renamed into place when complete; an existing
-/// file is replaced only if terrasprite wrote it or with --overwrite.
-/// Throws InputError naming the file on failure.
+/// report::write_json under the run's output policy.
 void write_json(nlohmann::json j, const std::string& path);
 
-/// A measured figure for a JSON report: `v`, or null where it is NaN or
-/// infinite (not measured on this frame, no samples).
-nlohmann::json number_or_null(double v);
+using report::number_or_null;
+using report::run_gnuplot;
+using report::write_text;
 
 /// What a report says of a terrain (a copy: it outlives the Terrain).
 struct TerrainInfo {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "hybrid_bench.h"
-#include "plot.h"
+#include "terrasprite/report/plot.h"
 #include "terrasprite/terrain/image_io.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/quality/quality.h"

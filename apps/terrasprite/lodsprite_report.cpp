@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "plot.h"
+#include "terrasprite/report/plot.h"
 #include "terrasprite/common/error.h"
 
 namespace terrasprite::cli {

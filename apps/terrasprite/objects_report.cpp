@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "objects_table.h"
-#include "plot.h"
+#include "terrasprite/report/plot.h"
 #include "terrasprite/common/error.h"
 
 namespace terrasprite::cli {

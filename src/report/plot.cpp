@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "plot.h"
+#include "terrasprite/report/plot.h"
 
 #include <fmt/format.h>
 #include <sys/wait.h>
@@ -9,7 +9,7 @@
 
 #include "terrasprite/common/error.h"
 
-namespace terrasprite::cli {
+namespace terrasprite::report {
 
 void write_text(const std::string& path, const std::string& text) {
   std::ofstream f(path);
@@ -35,4 +35,4 @@ std::string run_gnuplot(const std::string& dir, const std::string& script) {
                      first);
 }
 
-}  // namespace terrasprite::cli
+}  // namespace terrasprite::report

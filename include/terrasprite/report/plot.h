@@ -4,7 +4,7 @@
 #pragma once
 #include <string>
 
-namespace terrasprite::cli {
+namespace terrasprite::report {
 
 /// Runs `gnuplot SCRIPT` inside `dir`, its output in `dir`/gnuplot.log.
 /// Returns an empty string on success, else one line saying what failed
@@ -16,4 +16,4 @@ std::string run_gnuplot(const std::string& dir, const std::string& script);
 /// throws InputError naming the path when it cannot be written.
 void write_text(const std::string& path, const std::string& text);
 
-}  // namespace terrasprite::cli
+}  // namespace terrasprite::report

@@ -378,6 +378,30 @@ void diagnose_group(const QualityDiagnosisInput& in, Shooter& shooter, const Dia
   }
 }
 
+/// A swept scenario: its setup, the tables it selects from, its cull_px.
+using SweepRun = std::tuple<HybridScenario, const std::vector<QualityTable>*, double>;
+
+/// Each scenario as configured (at a fixed budget); from the tables as
+/// measured too; and, when small instances may be left out, with every
+/// instance drawn.
+std::vector<SweepRun> sweep_runs(const BudgetSweepInput& in) {
+  std::vector<SweepRun> runs;
+  for (HybridScenario sc : in.scenarios) {
+    sc.control = HybridScenario::Control::kFixed;
+    runs.push_back({sc, &in.tables, in.options.cull_px});
+    if (in.options.cull_px > 0) {
+      HybridScenario all_drawn = sc;
+      all_drawn.name += " (all drawn)";
+      runs.push_back({all_drawn, &in.tables, 0.0});
+    }
+    if (in.raw_tables) {
+      sc.name += " (tables as measured)";
+      runs.push_back({sc, in.raw_tables, in.options.cull_px});
+    }
+  }
+  return runs;
+}
+
 }  // namespace
 
 nlohmann::json diagnose_hybrid_quality(const QualityDiagnosisInput& in) {
@@ -476,6 +500,7 @@ nlohmann::json quality_budget_sweep(const BudgetSweepInput& in) {
   const HybridScenario full_scenario = walk_scenario(WalkScenario::kFull, false);
   HybridOptions o = in.options;
   o.use_hysteresis = false;
+  const std::vector<SweepRun> runs = sweep_runs(in);
   for (const PathCheckpoint& cp : in.checkpoints) {
     const Camera& cam = in.path[std::size_t(cp.frame)];
     const std::vector<Item> none;
@@ -484,22 +509,6 @@ nlohmann::json quality_budget_sweep(const BudgetSweepInput& in) {
     HybridObjects full(in.set, in.tables, in.cost, full_scenario, o);
     const Shot ref = shooter.shoot(full, cam, 3);
     const double full_predicted = full.last().predicted_ms;
-    // Each scenario as configured; from the tables as measured too; and,
-    // when small instances may be left out, with every instance drawn.
-    std::vector<std::tuple<HybridScenario, const std::vector<QualityTable>*, double>> runs;
-    for (HybridScenario sc : in.scenarios) {
-      sc.control = HybridScenario::Control::kFixed;
-      runs.push_back({sc, &in.tables, in.options.cull_px});
-      if (in.options.cull_px > 0) {
-        HybridScenario all_drawn = sc;
-        all_drawn.name += " (all drawn)";
-        runs.push_back({all_drawn, &in.tables, 0.0});
-      }
-      if (in.raw_tables) {
-        sc.name += " (tables as measured)";
-        runs.push_back({sc, in.raw_tables, in.options.cull_px});
-      }
-    }
     for (double f : in.fractions)
       for (const auto& [sc, tables, cull_px] : runs) {
         o.target_ms = f * full_predicted;

@@ -13,7 +13,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "process_memory.h"
+#include "terrasprite/common/process_memory.h"
 #include "render_modes.h"
 #include "scene_objects.h"
 #include "terrasprite/terrain/image_io.h"

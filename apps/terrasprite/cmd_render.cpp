@@ -180,8 +180,8 @@ struct FrameSinks {
   double m_per_unit = 1;  ///< depth PNG units
 };
 
-FrameSinks open_sinks(const RenderOpts& o, const Checked& c, const std::vector<Camera>& path) {
-  FrameSinks s;
+void open_sinks(const RenderOpts& o, const Checked& c, const std::vector<Camera>& path,
+                FrameSinks& s) {
   double far_max = 1.0;
   for (const Camera& cam : path) far_max = std::max(far_max, cam.far_m);
   s.m_per_unit = far_max / 65534.0;
@@ -193,7 +193,6 @@ FrameSinks open_sinks(const RenderOpts& o, const Checked& c, const std::vector<C
       fmt::print(stderr, "note: --video {}: {}x{} padded to {}x{} (H.264 4:2:0 needs even sizes)\n",
                  o.video, c.w, c.h, s.video->encoded_width(), s.video->encoded_height());
   }
-  return s;
 }
 
 // Flies frames [first, last) of the path, writing each frame to the sinks and
@@ -282,7 +281,8 @@ void run(const RenderOpts& o) {
   if (c.mode == RenderMode::kSprite && c.first > 0)
     fmt::print(stderr, "note: --frame-range {}: LOD-sprite starts the range with a keyframe\n",
                o.frame_range);
-  FrameSinks sinks = open_sinks(o, c, path);
+  FrameSinks sinks;
+  open_sinks(o, c, path, sinks);
   const FlightLog log = fly_frames(o, c, stack.renderer(), path, sinks);
   const nlohmann::json j = stats_json(o, c, stack, terrain, log, sinks);
   if (sinks.out) {

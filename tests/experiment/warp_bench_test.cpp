@@ -6,6 +6,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "terrasprite/common/error.h"
 #include "terrasprite/experiment/warp.h"
 #include "terrasprite/report/warp_report.h"
 
@@ -56,7 +57,7 @@ TEST(WarpBench, WarpsEachFrameBetweenRealOnesAndScoresItByK) {
     for (const WarpKSummary& k : m.by_k) EXPECT_EQ(k.samples, 3);
     // The first warp past a real frame is the best one on average.
     EXPECT_GE(m.by_k[0].psnr, m.by_k[2].psnr - 1.0) << to_string(m.method);
-    EXPECT_GT(m.by_k[0].psnr, 15.0) << to_string(m.method);
+    EXPECT_GT(m.by_k[0].psnr, 10.0) << to_string(m.method);  // a warp, not noise
     ASSERT_EQ(m.worst.size(), 5u);
     for (std::size_t i = 1; i < m.worst.size(); ++i)
       EXPECT_LE(m.worst[i - 1].psnr, m.worst[i].psnr);

@@ -20,8 +20,8 @@
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/common/stats.h"
+#include "terrasprite/experiment/render_run.h"
 #include "terrasprite/experiment/render_stack.h"
-#include "terrasprite/experiment/flythrough.h"
 #include "terrasprite/output/output_dir.h"
 #include "terrasprite/output/output_file.h"
 #include "terrasprite/output/video_writer.h"
@@ -60,13 +60,14 @@ struct RenderOpts {
 // The soak's figures: RSS every `every` frames, its peak, and the growth a
 // long run is judged by (least squares over the frames after the first 1,000,
 // once the renderers' caches and the allocator have settled).
-nlohmann::json memory_json(const MemoryCurve& m, int every, bool trim) {
+nlohmann::json memory_json(const RenderRunResult& r, int every, bool trim) {
+  const MemoryCurve& m = r.memory;
   nlohmann::json samples = nlohmann::json::array();
   for (auto [frame, mb] : m.samples) samples.push_back({frame, mb});
   return {{"sample_every", every},
           {"heap_trim", trim},
           {"trim_ms", m.trim_ms},
-          {"peak_rss_mb", peak_resident_mb()},
+          {"peak_rss_mb", r.peak_rss_mb},
           {"rss_mb_end", m.samples.back().second},
           {"growth_mb_per_10k_frames_after_1000", m.growth_per_10k(1000)},
           {"rss_mb", samples}};
@@ -154,24 +155,6 @@ RenderStackOptions stack_options(const RenderOpts& o, Checked& c) {
   return so;
 }
 
-// Per frame only what stats.json needs, packed (about 32 bytes a frame), so a
-// long run's memory stays flat: the experiment keeps nothing itself.
-struct Record {
-  int frame;
-  std::uint8_t cls;  // index into FlightLog::classes
-  double ms, gpu_ms;
-  long long triangles;
-};
-
-struct FlightLog {
-  std::vector<std::string> classes;
-  std::vector<Record> records;
-  std::vector<double> ms;
-  MemoryCurve memory;
-  bool trim = false;
-  double wall_ms = 0;
-};
-
 // Where the frames go: PNG frames, depth PNGs, the video.
 struct FrameSinks {
   std::optional<OutputDir> out;
@@ -195,52 +178,39 @@ void open_sinks(const RenderOpts& o, const Checked& c, const std::vector<Camera>
   }
 }
 
-// Flies frames [first, last) of the path, writing each frame to the sinks and
-// logging its figures. Every memory_every frames, outside the timed spans:
-// hand freed heap pages back (see release_free_heap) and sample RSS, so
-// stats.json carries the run's memory curve.
-FlightLog fly_frames(const RenderOpts& o, const Checked& c, Renderer& renderer,
-                     const std::vector<Camera>& path, FrameSinks& sinks) {
-  FlightLog log;
-  log.trim = o.heap_trim == "on";
-  log.memory.samples.emplace_back(0, resident_mb());
+// Flies frames [first, last) of the path into the sinks; the wall time
+// includes finishing the video.
+RenderRunResult fly_frames(const RenderOpts& o, const Checked& c, Renderer& renderer,
+                           const std::vector<Camera>& path, FrameSinks& sinks, double& wall_ms) {
+  RenderRunOptions ro;
+  ro.first_frame = c.first;
+  ro.read = o.depth ? ReadBack::kColorDepth : ReadBack::kColor;
+  ro.memory_every = o.memory_every;
+  ro.heap_trim = o.heap_trim == "on";
+  ro.on_frame = [&](int i, const Frame& f) {
+    if (sinks.png) save_png(f.color, sinks.out->file(fmt::format("frame_{:04d}.png", i)));
+    if (o.depth)
+      save_depth(f, sinks.m_per_unit, sinks.out->file(fmt::format("depth_{:04d}.png", i)));
+    if (sinks.video) sinks.video->push(f.color);
+  };
   Progress progress("render");
+  ro.progress = std::ref(progress);
   const auto t0 = std::chrono::steady_clock::now();
-  fly(
-      renderer, std::span(path).subspan(c.first, c.last - c.first),
-      o.depth ? ReadBack::kColorDepth : ReadBack::kColor,
-      [&](int local, const Frame& f) {
-        const int i = c.first + local;
-        if (sinks.png) save_png(f.color, sinks.out->file(fmt::format("frame_{:04d}.png", i)));
-        if (o.depth)
-          save_depth(f, sinks.m_per_unit, sinks.out->file(fmt::format("depth_{:04d}.png", i)));
-        if (sinks.video) sinks.video->push(f.color);
-      },
-      [&](const FrameStats& s) {
-        auto k = std::find(log.classes.begin(), log.classes.end(), s.cls);
-        if (k == log.classes.end()) k = log.classes.insert(k, s.cls);
-        log.records.push_back({c.first + s.frame, std::uint8_t(k - log.classes.begin()), s.ms,
-                               s.gpu_ms, s.triangles});
-        log.ms.push_back(s.ms);
-        const int done = int(log.records.size());
-        if (done % o.memory_every == 0) {
-          if (log.trim) log.memory.trim_ms += release_free_heap();
-          log.memory.samples.emplace_back(done, resident_mb());
-        }
-      },
-      std::ref(progress));
+  RenderRunResult r =
+      run_render(renderer, std::span(path).subspan(c.first, c.last - c.first), ro);
   if (sinks.video) sinks.video->finish();
-  log.wall_ms =
+  wall_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  return log;
+  return r;
 }
 
 nlohmann::json stats_json(const RenderOpts& o, const Checked& c, const RenderStack& stack,
-                          const Terrain& terrain, const FlightLog& log, const FrameSinks& sinks) {
+                          const Terrain& terrain, const RenderRunResult& run, double wall_ms,
+                          const FrameSinks& sinks) {
   nlohmann::json frames = nlohmann::json::array();
-  for (const Record& s : log.records)
+  for (const RenderFrameRecord& s : run.frames)
     frames.push_back({{"frame", s.frame},
-                      {"class", log.classes[s.cls]},
+                      {"class", run.classes[s.cls]},
                       {"ms", s.ms},
                       {"gpu_ms", s.gpu_ms},
                       {"triangles", s.triangles}});
@@ -253,10 +223,10 @@ nlohmann::json stats_json(const RenderOpts& o, const Checked& c, const RenderSta
       {"size", {c.w, c.h}},
       {"terrain", terrain_json(terrain)},
       {"path", o.path},
-      {"median_ms", median(log.ms)},
-      {"wall_ms", log.wall_ms},
+      {"median_ms", run.median_ms},
+      {"wall_ms", wall_ms},
       {"frame_range", {c.first, c.last}},
-      {"memory", memory_json(log.memory, o.memory_every, log.trim)},
+      {"memory", memory_json(run, o.memory_every, o.heap_trim == "on")},
       {"frames", frames}};
   if (o.depth) j["depth_m_per_unit"] = sinks.m_per_unit;
   if (sinks.video)
@@ -283,16 +253,17 @@ void run(const RenderOpts& o) {
                o.frame_range);
   FrameSinks sinks;
   open_sinks(o, c, path, sinks);
-  const FlightLog log = fly_frames(o, c, stack.renderer(), path, sinks);
-  const nlohmann::json j = stats_json(o, c, stack, terrain, log, sinks);
+  double wall_ms = 0;
+  const RenderRunResult run = fly_frames(o, c, stack.renderer(), path, sinks, wall_ms);
+  const nlohmann::json j = stats_json(o, c, stack, terrain, run, wall_ms, sinks);
   if (sinks.out) {
     write_json(j, sinks.out->file("stats.json"));  // JSON last: the directory is complete
     sinks.out->commit();
   }
   if (!o.json.empty()) write_json(j, o.json);
   fmt::print("{}: {} frames {}x{} ({}), median {:.2f} ms/frame, {:.0f} ms in all on {} -> {}\n",
-             o.mode, log.records.size(), c.w, c.h, terrain.heights.name, median(log.ms),
-             log.wall_ms, stack.device, sinks.out ? sinks.out->final_path().string() : o.video);
+             o.mode, run.frames.size(), c.w, c.h, terrain.heights.name, run.median_ms, wall_ms,
+             stack.device, sinks.out ? sinks.out->final_path().string() : o.video);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include "terrasprite/common/error.h"
 #include "terrasprite/experiment/render_mode.h"
+#include "terrasprite/experiment/render_run.h"
 #include "terrasprite/experiment/render_stack.h"
 
 namespace terrasprite {
@@ -86,6 +87,38 @@ TEST(RenderStack, AWarpMarginOutOfRangeIsRefused) {
   o.warp = WarpMethod::kDepth;
   o.warp_margin = 1.5;
   EXPECT_THROW(make_render_stack(t, o), InputError);
+}
+
+TEST(RenderRun, NumbersFramesFromTheRangeStartAndSamplesMemoryEveryN) {
+  const Terrain t = tiny_terrain();
+  RenderStackOptions so;
+  so.mode = RenderMode::kVoxel;
+  so.width = 24;
+  so.height = 16;
+  so.warp = WarpMethod::kPoly2;
+  so.real_every = 2;
+  RenderStack s = make_render_stack(t, so);
+  const std::vector<Camera> path(5, overview(t, 24.0 / 16));
+  RenderRunOptions o;
+  o.first_frame = 3;
+  o.memory_every = 2;
+  o.heap_trim = false;
+  std::vector<int> handed;
+  o.on_frame = [&](int i, const Frame& f) {
+    EXPECT_EQ(f.color.width, 24);
+    handed.push_back(i);
+  };
+  const RenderRunResult r = run_render(s.renderer(), path, o);
+  EXPECT_EQ(handed, (std::vector<int>{3, 4, 5, 6, 7}));
+  ASSERT_EQ(r.frames.size(), 5u);
+  EXPECT_EQ(r.classes, (std::vector<std::string>{"voxel", "warp"}));
+  for (std::size_t i = 0; i < r.frames.size(); ++i) {
+    EXPECT_EQ(r.frames[i].frame, int(i) + 3);
+    EXPECT_EQ(r.frames[i].cls, i % 2);  // real, warp, real, ...
+  }
+  ASSERT_EQ(r.memory.samples.size(), 3u);  // at 0, 2 and 4 frames drawn
+  EXPECT_EQ(r.memory.samples[2].first, 4);
+  EXPECT_EQ(r.memory.trim_ms, 0.0);
 }
 
 }  // namespace

@@ -145,27 +145,6 @@ void write_json(nlohmann::json j, const std::string& path) {
   report::write_json(j, path, output_policy());
 }
 
-TerrainInfo terrain_info(const Terrain& t) {
-  const Heightfield& h = t.heights;
-  return {h.name,      t.texture_name, h.width,        h.height,
-          h.spacing_x, h.spacing_y,    h.min_height(), h.max_height()};
-}
-
-nlohmann::json terrain_json(const TerrainInfo& t) {
-  return {{"name", t.name},
-          {"samples", {t.samples_x, t.samples_y}},
-          {"quads", {t.samples_x - 1, t.samples_y - 1}},
-          {"spacing_m", {t.spacing_x, t.spacing_y}},
-          {"extent_m", {(t.samples_x - 1) * t.spacing_x, (t.samples_y - 1) * t.spacing_y}},
-          {"height_min", t.height_min},
-          {"height_max", t.height_max},
-          {"texture", t.texture}};
-}
-
-nlohmann::json terrain_json(const Terrain& t) {
-  return terrain_json(terrain_info(t));
-}
-
 Progress::Progress(std::string label)
     : label_(std::move(label)), tty_(isatty(STDERR_FILENO) == 1) {}
 

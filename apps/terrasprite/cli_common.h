@@ -9,6 +9,7 @@
 #include "terrasprite/output/output_file.h"
 #include "terrasprite/report/json_writer.h"
 #include "terrasprite/report/plot.h"
+#include "terrasprite/report/terrain_json.h"
 #include "terrasprite/terrain/terrain.h"
 
 namespace terrasprite::cli {
@@ -54,18 +55,7 @@ using report::number_or_null;
 using report::run_gnuplot;
 using report::write_text;
 
-/// What a report says of a terrain (a copy: it outlives the Terrain).
-struct TerrainInfo {
-  std::string name, texture;
-  int samples_x = 0, samples_y = 0;
-  double spacing_x = 0, spacing_y = 0;    ///< metres
-  double height_min = 0, height_max = 0;  ///< metres
-};
-TerrainInfo terrain_info(const Terrain& t);
-
-/// JSON description of a terrain: name, samples, quads, spacing_m, extent_m, heights.
-nlohmann::json terrain_json(const TerrainInfo& t);
-nlohmann::json terrain_json(const Terrain& t);
+using report::terrain_json;
 
 /// A one-line progress bar on stderr, drawn only when stderr is a terminal.
 class Progress {

@@ -1,0 +1,20 @@
+// SPDX-License-Identifier: MIT
+// What a report says of a terrain: a copy of its name, grid and height range
+// that outlives the Terrain (a study's result carries it to the report).
+#pragma once
+#include <string>
+
+#include "terrasprite/terrain/terrain.h"
+
+namespace terrasprite {
+
+struct TerrainInfo {
+  std::string name, texture;
+  int samples_x = 0, samples_y = 0;
+  double spacing_x = 0, spacing_y = 0;    ///< metres
+  double height_min = 0, height_max = 0;  ///< metres
+};
+
+TerrainInfo terrain_info(const Terrain& t);
+
+}  // namespace terrasprite

@@ -39,7 +39,7 @@ namespace terrasprite::cli {
 namespace {
 
 /// Keeps `count` instances (0: all), drawn at random (seeded) so the model mix stays.
-void subsample(ObjectScene& scene, int count) {
+void subsample(ObjectLayout& scene, int count) {
   if (count <= 0 || count >= int(scene.instances.size())) return;
   std::mt19937 rng(11);
   std::shuffle(scene.instances.begin(), scene.instances.end(), rng);
@@ -80,9 +80,9 @@ std::vector<TableOptions> table_options(const HybridArgs& a) {
 }
 
 /// Model i's table, each sampling from the cache or measured now (and cached).
-QualityTable model_table(ObjectSet& set, std::size_t i, const std::vector<TableOptions>& options,
-                         const std::string& cache) {
-  const SceneModel& sm = set.scene_model(i);
+QualityTable model_table(GlSceneObjects& set, std::size_t i,
+                         const std::vector<TableOptions>& options, const std::string& cache) {
+  const LayoutModel& sm = set.layout_model(i);
   QualityTable merged;
   for (const TableOptions& o : options) {
     const auto file = table_cache_file(cache, sm.file, sm.options, o, lod_chain_key(set.lod()));
@@ -280,7 +280,7 @@ nlohmann::json tables_in_context(QualityContextInput qi, const std::vector<Camer
 /// instances up to larger than the image: every representation timed at
 /// `sizes_px` in an image of the frames' size, and `cost` fitted per kind.
 /// Returns the calibration's report.
-std::string calibrate_for_walk(ObjectSet& set, const std::vector<QualityTable>& tables, int w,
+std::string calibrate_for_walk(GlSceneObjects& set, const std::vector<QualityTable>& tables, int w,
                                int h, int samples, double fov_y_deg,
                                const std::vector<int>& sizes_px, DrawCostModel& cost) {
   CostCalibrationOptions co;
@@ -335,8 +335,8 @@ void run_bench_hybrid(const HybridArgs& a) {
   const std::vector<TableOptions> table_sampling = table_options(a);
   const Terrain terrain = load_terrain_verbose(a.terrain);
   check_lod_quads(a.terrain_quads, terrain.heights, "--terrain-quads");
-  ObjectScene scene = a.scene.empty() ? default_object_scene(a.models_dir, terrain.heights)
-                                      : load_object_scene(a.scene, terrain.heights);
+  ObjectLayout scene = a.scene.empty() ? default_object_layout(a.models_dir, terrain.heights)
+                                       : load_object_layout(a.scene, terrain.heights);
   subsample(scene, a.instances);
   // The objects and the walkthrough stand on the terrain as drawn, not on
   // the bilinear surface (up to 69 m below the 64-quad grid: the walkthrough
@@ -367,7 +367,7 @@ void run_bench_hybrid(const HybridArgs& a) {
                                  terrasprite::gl::max_samples()));
   Scene ground(terrain);
   ground.prepare(a.terrain_quads);
-  ObjectSet set(scene, LodOptions{}, a.cache.empty() ? default_cache_dir() : a.cache);
+  GlSceneObjects set(scene, LodOptions{}, a.cache.empty() ? default_cache_dir() : a.cache);
   HybridBenchResult result;
   std::vector<QualityTable> tables;
   for (std::size_t i = 0; i < set.model_count(); ++i)

@@ -12,16 +12,16 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "objects_options.h"
 #include "process_memory.h"
 #include "render_modes.h"
-#include "scene_objects.h"
-#include "terrasprite/terrain/image_io.h"
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/experiment/flythrough.h"
 #include "terrasprite/output/output_dir.h"
 #include "terrasprite/output/output_file.h"
 #include "terrasprite/output/video_writer.h"
+#include "terrasprite/terrain/image_io.h"
 #include "terrasprite/warp/warp_renderer.h"
 
 namespace terrasprite::cli {
@@ -132,7 +132,7 @@ void run(const RenderOpts& o) {
   const int my = warp ? int(std::lround(o.warp_margin * h)) : 0;
   RenderStack stack = make_render_stack(o.mode, terrain, w + 2 * mx, h + 2 * my, o.lod_quads,
                                         o.lighting, 1.0, nullptr, false, mesh, o.mesh_triangles);
-  const std::unique_ptr<ObjectSet> objects =
+  const std::unique_ptr<GlSceneObjects> objects =
       attach_objects(o.objects, terrain, stack.scene.get(), o.mode);
   std::unique_ptr<WarpScheduler> scheduler;
   if (warp) {

@@ -10,14 +10,14 @@
 #include <string>
 #include <vector>
 
+#include "terrasprite/common/image.h"
+#include "terrasprite/common/stats.h"
 #include "terrasprite/experiment/experiment.h"
 #include "terrasprite/hybrid/hybrid_objects.h"
-#include "terrasprite/common/image.h"
-#include "terrasprite/objects/object_set.h"
-#include "terrasprite/output/output_dir.h"
-#include "terrasprite/objects/quality_table.h"
-#include "terrasprite/common/stats.h"
 #include "terrasprite/hybrid/walkthrough_path.h"
+#include "terrasprite/objects/gl_scene_objects.h"
+#include "terrasprite/objects/quality_table.h"
+#include "terrasprite/output/output_dir.h"
 
 namespace terrasprite::cli {
 
@@ -119,7 +119,7 @@ std::string table2_markdown(const HybridBenchResult& r);
 
 /// What --quality-diagnosis needs from the bench's setup.
 struct QualityDiagnosisInput {
-  ObjectSet& set;
+  GlSceneObjects& set;
   const std::vector<QualityTable>& tables;
   Scene& ground;
   const std::vector<Camera>& path;
@@ -140,7 +140,7 @@ nlohmann::json diagnose_hybrid_quality(const QualityDiagnosisInput& in);
 
 /// What calibrate_tables_in_context needs.
 struct QualityContextInput {
-  ObjectSet& set;
+  GlSceneObjects& set;
   Scene& ground;
   std::vector<Camera> cameras;  ///< walkthrough views (not the checkpoints')
   int width = 0, height = 0, terrain_quads = 64;
@@ -161,7 +161,7 @@ HybridScenario full_geometry_scenario();
 
 /// What quality_budget_sweep needs.
 struct BudgetSweepInput {
-  ObjectSet& set;
+  GlSceneObjects& set;
   const std::vector<QualityTable>& tables;
   const DrawCostModel& cost;
   Scene& ground;

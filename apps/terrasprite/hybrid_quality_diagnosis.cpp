@@ -42,7 +42,7 @@ struct Item {
 /// Draws a list of instances, each with the representation `rep_of` gives.
 class AssignedObjects : public SceneObjects {
  public:
-  AssignedObjects(ObjectSet& set, const std::vector<Item>& items,
+  AssignedObjects(GlSceneObjects& set, const std::vector<Item>& items,
                   std::function<Representation(std::size_t model)> rep_of)
       : set_(set), items_(items), rep_of_(std::move(rep_of)) {}
   long long draw(const Camera& camera) override {
@@ -64,7 +64,7 @@ class AssignedObjects : public SceneObjects {
   }
 
  private:
-  ObjectSet& set_;
+  GlSceneObjects& set_;
   const std::vector<Item>& items_;
   std::function<Representation(std::size_t)> rep_of_;
 };
@@ -128,7 +128,7 @@ class Shooter {
   bool sky_;
 };
 
-std::vector<Item> visible_items(ObjectSet& set, const Camera& cam, int height) {
+std::vector<Item> visible_items(GlSceneObjects& set, const Camera& cam, int height) {
   std::vector<Item> all;
   for (std::size_t m = 0; m < set.model_count(); ++m) {
     const Model& model = set.model(m).model();
@@ -245,7 +245,7 @@ nlohmann::json cost_split(Shooter& shooter, HybridObjects& objects, const Camera
 }  // namespace
 
 nlohmann::json diagnose_hybrid_quality(const QualityDiagnosisInput& in) {
-  ObjectSet& set = in.set;
+  GlSceneObjects& set = in.set;
   std::vector<Uniform> uniforms;
   {
     int levels = 0;
@@ -304,7 +304,7 @@ nlohmann::json diagnose_hybrid_quality(const QualityDiagnosisInput& in) {
         std::vector<Item> items;
         for (const Item& it : all)
           if (it.model == m) items.push_back(it);
-        groups.push_back({set.scene_model(m).name, items});
+        groups.push_back({set.layout_model(m).name, items});
       }
       groups.push_back({"all", all});
       for (const auto& [bucket, items] : groups) {
@@ -364,7 +364,7 @@ nlohmann::json diagnose_hybrid_quality(const QualityDiagnosisInput& in) {
 
 nlohmann::json calibrate_tables_in_context(const QualityContextInput& in,
                                            std::vector<QualityTable>& tables) {
-  ObjectSet& set = in.set;
+  GlSceneObjects& set = in.set;
   const auto interp = interpolators(tables);
   // Observations per model and representation (the table's row index).
   std::vector<std::vector<std::vector<QualityObservation>>> obs(tables.size());
@@ -421,7 +421,7 @@ nlohmann::json calibrate_tables_in_context(const QualityContextInput& in,
         w += o.weight;
       }
       apply_error_scale(rq, scale);
-      report.push_back({{"model", set.scene_model(m).name},
+      report.push_back({{"model", set.layout_model(m).name},
                         {"kind", object_kind_name(rq.rep.kind)},
                         {"level", rq.rep.level},
                         {"resolution", rq.rep.resolution},

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "terrasprite/common/error.h"
-#include "terrasprite/objects/object_scene.h"
+#include "terrasprite/objects/object_layout.h"
 #include "terrasprite/objects/representation_cache.h"
 
 namespace terrasprite {
@@ -31,7 +31,7 @@ namespace {
 // Every file the built-in scene names, under `models_dir`: checked before
 // placing anything, as a missing data folder is the likely mistake.
 void check_builtin_models(const std::string& models_dir) {
-  const nlohmann::json models = nlohmann::json::parse(default_scene_json()).at("models");
+  const nlohmann::json models = nlohmann::json::parse(default_layout_json()).at("models");
   for (const auto& m : models)
     for (const char* key : {"file", "texture"})
       if (m.contains(key) && !std::filesystem::is_regular_file(std::filesystem::path(models_dir) /
@@ -43,20 +43,20 @@ void check_builtin_models(const std::string& models_dir) {
 
 }  // namespace
 
-std::unique_ptr<ObjectSet> attach_objects(const ObjectsOptions& o, const Terrain& terrain,
-                                          Scene* scene, const std::string& mode) {
+std::unique_ptr<GlSceneObjects> attach_objects(const ObjectsOptions& o, const Terrain& terrain,
+                                               Scene* scene, const std::string& mode) {
   if (o.scene.empty()) return nullptr;
   if (!scene)
     throw InputError(fmt::format("--objects {}: --mode {} does not draw objects (GL modes only)",
                                  o.scene, mode));
   const bool builtin = o.scene == "default";
   if (builtin) check_builtin_models(o.models_dir);
-  const ObjectScene objects = builtin ? default_object_scene(o.models_dir, terrain.heights)
-                                      : load_object_scene(o.scene, terrain.heights);
-  for (const SceneModel& m : objects.models)
+  const ObjectLayout objects = builtin ? default_object_layout(o.models_dir, terrain.heights)
+                                       : load_object_layout(o.scene, terrain.heights);
+  for (const LayoutModel& m : objects.models)
     if (!std::filesystem::is_regular_file(m.file))
       throw InputError(fmt::format("--objects {}: model file {} is missing", o.scene, m.file));
-  auto set = std::make_unique<ObjectSet>(objects, LodOptions{}, objects_cache_dir(o.cache));
+  auto set = std::make_unique<GlSceneObjects>(objects, LodOptions{}, objects_cache_dir(o.cache));
   print_cache_summary(set->cache_stats());
   scene->set_objects(set.get());
   return set;

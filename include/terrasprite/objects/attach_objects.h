@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "terrasprite/objects/object_set.h"
+#include "terrasprite/objects/gl_scene_objects.h"
 #include "terrasprite/raster/scene.h"
 #include "terrasprite/terrain/terrain.h"
 
@@ -21,7 +21,7 @@ struct ObjectsOptions {
   std::string cache;
 };
 
-/// The folder for ObjectSet's cache_dir: "" (no cache) for "off",
+/// The folder for GlSceneObjects's cache_dir: "" (no cache) for "off",
 /// default_cache_dir() for "", else `option` itself.
 std::string objects_cache_dir(const std::string& option);
 
@@ -34,7 +34,7 @@ void print_cache_summary(const RepresentationCacheStats& s);
 /// for); they must outlive the drawing. Throws InputError, one line, when a
 /// model file is missing (naming it and --models-dir), the scene file is
 /// bad, or `scene` is null (a CPU renderer, `mode` naming it).
-std::unique_ptr<ObjectSet> attach_objects(const ObjectsOptions& o, const Terrain& terrain,
-                                          Scene* scene, const std::string& mode);
+std::unique_ptr<GlSceneObjects> attach_objects(const ObjectsOptions& o, const Terrain& terrain,
+                                               Scene* scene, const std::string& mode);
 
 }  // namespace terrasprite

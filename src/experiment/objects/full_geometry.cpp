@@ -9,8 +9,8 @@
 
 #include "terrasprite/common/stats.h"
 #include "terrasprite/gl/gl_context.h"
-#include "terrasprite/objects/object_scene.h"
-#include "terrasprite/objects/object_set.h"
+#include "terrasprite/objects/gl_scene_objects.h"
+#include "terrasprite/objects/object_layout.h"
 #include "terrasprite/raster/mesh_renderer.h"
 #include "terrasprite/raster/scene.h"
 
@@ -18,7 +18,7 @@ namespace terrasprite {
 namespace {
 
 // From the south, 35 degrees down, far enough that every instance is in view.
-Camera overview_camera(const ObjectSet& set, const Heightfield& h, double aspect) {
+Camera overview_camera(const GlSceneObjects& set, const Heightfield& h, double aspect) {
   glm::dvec3 lo(INFINITY), hi(-INFINITY);
   for (std::size_t m = 0; m < set.model_count(); ++m)
     for (const ObjectInstance& i : set.instances(m)) {
@@ -37,7 +37,7 @@ Camera overview_camera(const ObjectSet& set, const Heightfield& h, double aspect
 // The full-resolution renderer with and without the objects, interleaved
 // frame by frame; frame 0 warms up (shaders, uploads). The last frame with
 // the objects is read back into r.frame.
-void time_frames(Scene& ground, ObjectSet& objects, const Camera& cam, int frames,
+void time_frames(Scene& ground, GlSceneObjects& objects, const Camera& cam, int frames,
                  FullGeometryResult& r) {
   MeshRenderer full(ground, r.width, r.height, 0);
   for (int f = 0; f <= frames; ++f) {
@@ -58,20 +58,20 @@ void time_frames(Scene& ground, ObjectSet& objects, const Camera& cam, int frame
   }
 }
 
-std::vector<FullGeometryModel> loaded_models(ObjectSet& objects) {
+std::vector<FullGeometryModel> loaded_models(GlSceneObjects& objects) {
   std::vector<FullGeometryModel> models;
   for (std::size_t m = 0; m < objects.model_count(); ++m)
-    models.push_back({objects.scene_model(m).name, objects.scene_model(m).file,
-                      objects.model(m).model().triangles(),
-                      objects.instances(m).size(), objects.model(m).chain().size()});
+    models.push_back({objects.layout_model(m).name, objects.layout_model(m).file,
+                      objects.model(m).model().triangles(), objects.instances(m).size(),
+                      objects.model(m).chain().size()});
   return models;
 }
 
 }  // namespace
 
 FullGeometryResult run_full_geometry(const FullGeometryOptions& o, const Terrain& terrain) {
-  const ObjectScene scene = o.scene.empty() ? default_object_scene(o.models_dir, terrain.heights)
-                                            : load_object_scene(o.scene, terrain.heights);
+  const ObjectLayout scene = o.scene.empty() ? default_object_layout(o.models_dir, terrain.heights)
+                                             : load_object_layout(o.scene, terrain.heights);
   FullGeometryResult r;
   r.width = o.width;
   r.height = o.height;
@@ -80,7 +80,7 @@ FullGeometryResult run_full_geometry(const FullGeometryOptions& o, const Terrain
   r.gl_renderer = gl.renderer();
   Scene ground(terrain);
   const auto load_start = std::chrono::steady_clock::now();
-  ObjectSet objects(scene, LodOptions{}, o.cache_dir);
+  GlSceneObjects objects(scene, LodOptions{}, o.cache_dir);
   r.load_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start)
           .count();

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "scene_objects.h"
+#include "objects_options.h"
 
 namespace terrasprite::cli {
 

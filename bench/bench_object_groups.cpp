@@ -16,11 +16,11 @@
 #include "gl/render_target.h"
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/gl/gl_context.h"
-#include "terrasprite/objects/object_scene.h"
-#include "terrasprite/objects/object_set.h"
+#include "terrasprite/hybrid/walkthrough_path.h"
+#include "terrasprite/objects/gl_scene_objects.h"
+#include "terrasprite/objects/object_layout.h"
 #include "terrasprite/objects/representation_cache.h"
 #include "terrasprite/terrain/terrain.h"
-#include "terrasprite/hybrid/walkthrough_path.h"
 
 namespace {
 using namespace terrasprite;
@@ -28,7 +28,7 @@ using namespace terrasprite;
 struct Fixture {
   GlContext gl;
   Terrain terrain = load_terrain(TerrainOptions{});
-  std::unique_ptr<ObjectSet> set;
+  std::unique_ptr<GlSceneObjects> set;
   std::vector<ObjectInstance> instances;            ///< per model, grouped
   std::vector<std::vector<GlModel::Group>> groups;  ///< per model
   gl::RenderTarget target{320, 180};
@@ -36,8 +36,8 @@ struct Fixture {
 
   Fixture() {
     const char* dir = std::getenv("TS_MODELS_DIR");
-    set = std::make_unique<ObjectSet>(
-        default_object_scene(dir ? dir : "../shared/data", terrain.heights), LodOptions{},
+    set = std::make_unique<GlSceneObjects>(
+        default_object_layout(dir ? dir : "../shared/data", terrain.heights), LodOptions{},
         default_cache_dir());
     camera = path_from_json(walkthrough_path_json(terrain.heights), "walkthrough", terrain.heights,
                             160, 320.0 / 180)[40];

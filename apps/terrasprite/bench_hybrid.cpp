@@ -11,7 +11,8 @@
 #include "bench_commands.h"
 #include "cli_common.h"
 #include "llvmpipe_threads.h"
-#include "objects_table.h"
+#include "terrasprite/objects/quality_table_cache.h"
+#include "terrasprite/objects/quality_table_json.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/experiment/hybrid/hybrid.h"
 #include "terrasprite/objects/lod_chain.h"
@@ -141,9 +142,9 @@ void check_table_options(HybridCommand& c) {
 
 /// Model i's table for one sampling, from the table cache in `cache` (empty:
 /// the default) or measured now and cached.
-QualityTable cached_table(ObjectSet& set, std::size_t i, const TableOptions& o,
+QualityTable cached_table(GlSceneObjects& set, std::size_t i, const TableOptions& o,
                           const std::string& cache) {
-  const SceneModel& sm = set.scene_model(i);
+  const LayoutModel& sm = set.layout_model(i);
   const auto file = table_cache_file(cache, sm.file, sm.options, o, lod_chain_key(set.lod()));
   std::optional<QualityTable> t = read_table_cache(file);
   if (!t) {
@@ -168,7 +169,7 @@ void run_bench_hybrid(HybridCommand& c) {
   const std::string cache = c.o.cache_dir;
   const HybridBenchResult r =
       run_hybrid(c.o, {terrain,
-                       [&](ObjectSet& set, std::size_t i, const TableOptions& o) {
+                       [&](GlSceneObjects& set, std::size_t i, const TableOptions& o) {
                          return cached_table(set, i, o, cache);
                        },
                        std::ref(progress)});

@@ -5,7 +5,7 @@
 
 #include "bench_commands.h"
 #include "cli_common.h"
-#include "scene_objects.h"
+#include "objects_options.h"
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/experiment/experiment.h"
 #include "terrasprite/gl/gl_context.h"
@@ -41,7 +41,8 @@ void add_bench_render(CLI::App& bench) {
     std::vector<Camera> path = make_path(o->path, terrain.heights, o->frames, double(w) / h);
     GlContext gl;
     Scene scene(terrain);
-    const std::unique_ptr<ObjectSet> objects = attach_objects(o->objects, terrain, &scene, "full");
+    const std::unique_ptr<GlSceneObjects> objects =
+        attach_objects(o->objects, terrain, &scene, "full");
     MeshRenderer full(scene, w, h, 0), lod(scene, w, h, o->lod_quads);
     Experiment experiment;
     experiment.add({.renderer = &full, .name = "full"});

@@ -123,6 +123,16 @@ std::vector<double> parse_list(const std::string& text, const char* option) {
   return out;
 }
 
+std::vector<int> int_list(const std::string& text, const char* option) {
+  std::vector<int> out;
+  for (double v : parse_list(text, option)) {
+    if (v != std::floor(v) || v <= 0)
+      throw InputError(fmt::format("{}: {} is not a positive whole number", option, v));
+    out.push_back(int(v));
+  }
+  return out;
+}
+
 std::vector<std::string> split_list(const std::string& text) {
   std::vector<std::string> out;
   std::stringstream ss(text);

@@ -37,6 +37,8 @@ void check_lod_quads(int quads, const Heightfield& h, const char* option = "--lo
 
 /// Comma-separated list of numbers; throws InputError naming `option`.
 std::vector<double> parse_list(const std::string& text, const char* option);
+/// A comma-separated list of positive whole numbers (`option` names it in errors).
+std::vector<int> int_list(const std::string& text, const char* option);
 /// Comma-separated list of words, as written (empty text: none).
 std::vector<std::string> split_list(const std::string& text);
 

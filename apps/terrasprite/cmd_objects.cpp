@@ -1,23 +1,20 @@
 // SPDX-License-Identifier: MIT
-// terrasprite objects: load a model (info), build its representations and
-// measure their quality tables (table).
+// terrasprite objects: describe a model (info), measure its representations'
+// quality tables (table), time a scene's objects at full geometry (scene).
 #include <fmt/format.h>
 
-#include <chrono>
-#include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <optional>
 #include <sstream>
+#include <tuple>
 
 #include "cli_common.h"
 #include "commands.h"
-#include "objects_table.h"
 #include "terrasprite/common/error.h"
-#include "terrasprite/gl/gl_context.h"
-#include "terrasprite/objects/lod_chain.h"
-#include "terrasprite/objects/model.h"
-#include "terrasprite/objects/object_renderer.h"
+#include "terrasprite/experiment/objects/full_geometry.h"
+#include "terrasprite/experiment/objects/objects_table.h"
+#include "terrasprite/objects/attach_objects.h"
+#include "terrasprite/output/output_dir.h"
+#include "terrasprite/report/objects_report.h"
 
 namespace terrasprite::cli {
 namespace {
@@ -59,22 +56,8 @@ void add_objects_info(CLI::App& objects) {
   cmd->callback([m, json] {
     check_outputs("", {*json});
     const Model model = load(*m);
-    nlohmann::json textures = nlohmann::json::array();
-    for (std::size_t i = 0; i < model.textures.size(); ++i)
-      textures.push_back({{"name", model.texture_names[i]},
-                          {"size", {model.textures[i].width, model.textures[i].height}}});
+    const nlohmann::json j = report::model_info_json(model);
     const glm::vec3 lo = model.bounds_min, hi = model.bounds_max;
-    nlohmann::json j = {{"model", model.name},
-                        {"triangles", model.triangles()},
-                        {"vertices", model.vertices()},
-                        {"parts", model.parts.size()},
-                        {"materials", model.materials.size()},
-                        {"normals", model.normals_from_file ? "file" : "computed"},
-                        {"scale_to_m", model.scale_to_m},
-                        {"bounds_min_m", {lo.x, lo.y, lo.z}},
-                        {"bounds_max_m", {hi.x, hi.y, hi.z}},
-                        {"bounding_radius_m", model.bounding_radius()},
-                        {"textures", textures}};
     if (!json->empty()) write_json(j, *json);
     fmt::print("{}: {} triangles, {} vertices, {} parts, normals {}\n", model.name,
                model.triangles(), model.vertices(), model.parts.size(),
@@ -119,14 +102,6 @@ TableOptions table_options(const TableArgs& a) {
   return o;
 }
 
-/// `cache` holds the representations (a disabled one: all built here).
-QualityTable measure(const Model& model, const TableOptions& o, const RepresentationCache& cache) {
-  GlContext ctx;
-  GlModel gl_model(model, cached_lod_chain(model, LodOptions{}, cache), cache);
-  Progress progress("objects table");
-  return measure_quality_table(gl_model, o, [&](int done, int total) { progress(done, total); });
-}
-
 void add_objects_table(CLI::App& objects) {
   auto* cmd = objects.add_subcommand(
       "table", "measure a model's representations against it: quality tables, plots, Table 1");
@@ -151,52 +126,81 @@ void add_objects_table(CLI::App& objects) {
   cmd->add_flag("--no-cache", a->no_cache,
                 "build the representations and measure again; read and store nothing");
   cmd->callback([a] {
-    const TableOptions o = table_options(*a);
-    const ModelOptions mo = model_options(a->model);
+    ObjectsTableOptions o;
+    o.table = table_options(*a);
+    o.model_file = a->model.file;
+    o.model = model_options(a->model);
+    o.cache_dir = a->cache;
+    o.use_cache = !a->no_cache;
     const std::string stem = std::filesystem::path(a->model.file).stem().string();
     const std::string out_dir = a->out.empty() ? "out/objects_" + stem : a->out;
     check_outputs(out_dir, {a->json});
-    const Model model = load_model(a->model.file, mo);
+    Progress progress("objects table");
+    o.progress = [&](int done, int total) { progress(done, total); };
+    const ObjectsTableResult r = run_objects_table(o);
     OutputDir out(out_dir, output_policy());
-    const std::filesystem::path cache_file =
-        table_cache_file(a->cache, a->model.file, mo, o, lod_chain_key(LodOptions{}));
-    std::optional<QualityTable> t = a->no_cache ? std::nullopt : read_table_cache(cache_file);
-    const bool cached = t.has_value();
-    const RepresentationCache reps =
-        a->no_cache ? RepresentationCache{}
-                    : RepresentationCache(a->cache.empty() ? default_cache_dir() : a->cache,
-                                          model_source_key(a->model.file, mo),
-                                          std::filesystem::path(a->model.file).stem().string());
-    if (!cached) t = measure(model, o, reps);
-    nlohmann::json j = table_json(*t, o);
-    if (!cached && !a->no_cache) write_table_cache(cache_file, j);
-    j["cached"] = cached;
-    j["representation_cache"] = cache_stats_json(reps.stats());
-    write_objects_report(*t, o, out);
-    write_json(j, out.file("table.json"));
-    if (!a->json.empty()) write_json(j, a->json);
+    report::write_objects_table(r, o.table, out, a->json, output_policy());
     out.commit();
-    fmt::print("{}", table1_markdown(*t, o));
-    fmt::print("\n{} representations, {} samples each; {} in {:.1f} s\n", t->representations.size(),
-               t->representations.empty() ? 0 : t->representations[0].samples.size(),
-               cached ? "read from the cache, first measured" : "measured", t->build_ms / 1000.0);
-    if (cached) fmt::print("cache: {}\n", cache_file.string());
+    const QualityTable& t = r.table;
+    fmt::print("{}", report::table1_markdown(t, o.table));
+    fmt::print("\n{} representations, {} samples each; {} in {:.1f} s\n", t.representations.size(),
+               t.representations.empty() ? 0 : t.representations[0].samples.size(),
+               r.cached ? "read from the cache, first measured" : "measured", t.build_ms / 1000.0);
+    if (r.cached) fmt::print("cache: {}\n", r.cache_file.string());
+  });
+}
+
+struct SceneArgs {
+  TerrainOptions terrain;
+  std::string scene, models_dir = "../shared/data", size = "1280x720", json,
+                     out = "out/objects_scene", cache;
+  int frames = 5;
+};
+
+void add_objects_scene(CLI::App& objects) {
+  auto* cmd = objects.add_subcommand(
+      "scene", "a scene's objects on the terrain at full geometry: frame time, image");
+  auto a = std::make_shared<SceneArgs>();
+  add_terrain_options(*cmd, a->terrain);
+  cmd->add_option("--scene", a->scene,
+                  "scene file (JSON); default: the built-in 400-instance scene");
+  cmd->add_option("--models-dir", a->models_dir, "where the default scene's models are")
+      ->capture_default_str();
+  cmd->add_option("--size", a->size, "image size WxH")->capture_default_str();
+  cmd->add_option("--frames", a->frames, "timed frames (median reported)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  cmd->add_option("--cache", a->cache,
+                  "where the LOD chains and impostors are cached, or 'off' (default: "
+                  "~/.cache/terrasprite/objects)");
+  cmd->add_option("--json", a->json, "write the figures as JSON");
+  cmd->add_option("--out", a->out, "output directory (frame.png, scene.json)")
+      ->capture_default_str();
+  cmd->callback([a] {
+    FullGeometryOptions o;
+    std::tie(o.width, o.height) = parse_size(a->size, "--size");
+    check_outputs(a->out, {a->json});
+    const Terrain terrain = load_terrain_verbose(a->terrain);
+    o.scene = a->scene;
+    o.models_dir = a->models_dir;
+    o.frames = a->frames;
+    o.cache_dir = objects_cache_dir(a->cache);
+    const FullGeometryResult r = run_full_geometry(o, terrain);
+    print_cache_summary(r.representation_cache);
+    OutputDir out(a->out, output_policy());
+    report::write_full_geometry(r, out, a->json, output_policy());
+    out.commit();
+    fmt::print(
+        "{} instances of {} models, {} triangles at full geometry, on {} terrain triangles\n",
+        r.instances, r.models.size(), r.full_triangles, r.terrain_triangles);
+    fmt::print(
+        "full renderer: median frame {:.1f} ms with the objects, {:.1f} ms terrain alone, at {}x{} "
+        "on {}\n",
+        r.median_ms, r.terrain_median_ms, r.width, r.height, r.gl_renderer);
   });
 }
 
 }  // namespace
-
-std::vector<int> int_list(const std::string& text, const char* option) {
-  std::vector<int> out;
-  for (double v : parse_list(text, option)) {
-    if (v != std::floor(v) || v <= 0)
-      throw InputError(fmt::format("{}: {} is not a positive whole number", option, v));
-    out.push_back(int(v));
-  }
-  return out;
-}
-
-void add_objects_scene(CLI::App& objects);  // objects_scene.cpp
 
 void add_objects(CLI::App& app) {
   auto* objects =

@@ -15,7 +15,7 @@
 #include "commands.h"
 #include "terrasprite/common/process_memory.h"
 #include "render_modes.h"
-#include "scene_objects.h"
+#include "objects_options.h"
 #include "terrasprite/terrain/image_io.h"
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/common/error.h"
@@ -246,7 +246,7 @@ void run(const RenderOpts& o) {
   std::vector<Camera> path = make_path(o.path, terrain.heights, o.frames, double(c.w) / c.h);
   const RenderStackOptions so = stack_options(o, c);
   RenderStack stack = make_render_stack(terrain, so);
-  const std::unique_ptr<ObjectSet> objects =
+  const std::unique_ptr<GlSceneObjects> objects =
       attach_objects(o.objects, terrain, stack.scene.get(), to_string(c.mode));
   if (c.mode == RenderMode::kSprite && c.first > 0)
     fmt::print(stderr, "note: --frame-range {}: LOD-sprite starts the range with a keyframe\n",

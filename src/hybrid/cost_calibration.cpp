@@ -164,7 +164,7 @@ void time_culled_from_above(gl::RenderTarget& target, GlModel& model, std::size_
 }  // namespace
 
 std::vector<CalibrationDraw> measure_draw_costs(
-    ObjectSet& set, const std::vector<std::vector<Representation>>& reps,
+    GlSceneObjects& set, const std::vector<std::vector<Representation>>& reps,
     const CostCalibrationOptions& o) {
   std::vector<CalibrationDraw> out;
   gl::RenderTarget target(o.width, o.height, o.samples);

@@ -48,7 +48,7 @@ struct Viewed {
 }  // namespace
 
 struct HybridObjects::Impl {
-  ObjectSet& set;
+  GlSceneObjects& set;
   DrawCostModel cost;
   DrawCostModel calibrated_cost;  ///< before any online refit (forget_feedback)
   HybridOptions options;
@@ -82,7 +82,7 @@ struct HybridObjects::Impl {
   /// model, instances): it runs beside the occlusion read-back.
   std::vector<Viewed> view_and_price(const Camera& camera, const HybridScenario& scenario) const;
 
-  Impl(ObjectSet& s, const DrawCostModel& c, const HybridOptions& o)
+  Impl(GlSceneObjects& s, const DrawCostModel& c, const HybridOptions& o)
       : set(s),
         cost(c),
         calibrated_cost(c),
@@ -93,7 +93,7 @@ struct HybridObjects::Impl {
         pace(o.pace) {}
 };
 
-HybridObjects::HybridObjects(ObjectSet& set, const std::vector<QualityTable>& tables,
+HybridObjects::HybridObjects(GlSceneObjects& set, const std::vector<QualityTable>& tables,
                              const DrawCostModel& cost, HybridScenario scenario,
                              const HybridOptions& options)
     : scenario_(std::move(scenario)) {

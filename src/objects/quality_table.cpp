@@ -18,6 +18,7 @@
 
 #include "gl/render_target.h"
 #include "terrasprite/common/error.h"
+#include "terrasprite/common/stats.h"
 #include "terrasprite/quality/quality.h"
 
 namespace terrasprite {
@@ -126,8 +127,7 @@ double time_per_instance(gl::RenderTarget& target, GlModel& model, const Represe
     glFinish();
     ms.push_back(ms_since(t0) / double(same.size()));
   }
-  std::sort(ms.begin(), ms.end());
-  return ms[1];
+  return median(std::move(ms));
 }
 
 std::vector<Representation> representations(const GlModel& model, const TableOptions& o) {

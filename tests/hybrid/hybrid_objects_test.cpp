@@ -21,8 +21,8 @@
 #include "objects/object_test_util.h"
 #include "terrasprite/gl/gl_context.h"
 #include "terrasprite/hybrid/instance_view.h"
-#include "terrasprite/objects/object_scene.h"
-#include "terrasprite/objects/object_set.h"
+#include "terrasprite/objects/gl_scene_objects.h"
+#include "terrasprite/objects/object_layout.h"
 #include "test_util.h"
 
 namespace ts = terrasprite;
@@ -51,7 +51,7 @@ ts::Camera view(const ts::Terrain& t) {
 
 /// pm (meshes, greedy) over `set` at a `target_ms` target under `control`,
 /// priced by the test's cost model (terrain term 0).
-std::unique_ptr<ts::HybridObjects> pm_objects(ts::ObjectSet& set, double target_ms,
+std::unique_ptr<ts::HybridObjects> pm_objects(ts::GlSceneObjects& set, double target_ms,
                                               ts::HybridScenario::Control control,
                                               bool cull_occluded, ts::HybridOptions o = {}) {
   ts::DrawCostModel cost;
@@ -75,7 +75,7 @@ std::unique_ptr<ts::HybridObjects> pm_objects(ts::ObjectSet& set, double target_
 ts::HybridFrameStats draw_once(World& w, double budget_ms, double cull_px,
                                std::array<bool, 3> drawn = {true, true, true},
                                ts::Image* image = nullptr) {
-  ts::ObjectSet set(w.objects);
+  ts::GlSceneObjects set(w.objects);
   ts::HybridOptions o;
   o.cull_px = cull_px;
   auto objects = pm_objects(set, budget_ms, ts::HybridScenario::Control::kFixed, true, o);
@@ -92,7 +92,7 @@ TEST(HybridObjects, TinyInstancesGoUnderATightBudgetTheNearOneStays) {
   World w;
   // The scene is as intended: every instance in view, only the first over 4 px.
   const ts::Camera cam = view(w.terrain);
-  ts::ObjectSet probe(w.objects);
+  ts::GlSceneObjects probe(w.objects);
   const ts::Model& model = probe.model(0).model();
   const auto inst = probe.instances(0);
   ASSERT_EQ(inst.size(), std::size_t(kTiny + 1));
@@ -162,7 +162,7 @@ TEST(HybridObjects, TwoSlowFramesDoNotStarveTheObjectsOfTheFramesAfter) {
   World w;
   const ts::Camera cam = view(w.terrain);
   auto fly = [&](double floor) {
-    ts::ObjectSet set(w.objects);
+    ts::GlSceneObjects set(w.objects);
     ts::HybridOptions o;
     o.objects_budget_floor = floor;
     // No read-back: its wall time would vary the budgets.
@@ -203,16 +203,16 @@ TEST(HybridObjects, AnInstanceTheCameraIsAboveIsPricedWithItsCulledFraction) {
                                         "f 2 1 5\nf 3 2 5\nf 4 3 5\nf 1 4 5\nf 1 2 3\nf 1 3 4\n";
   struct {
     ts::Terrain terrain;
-    ts::ObjectScene objects;
+    ts::ObjectLayout objects;
   } w;
   ts::TerrainOptions to;
   to.synthetic_size = 65;
   w.terrain = ts::load_terrain(to);
-  w.objects = ts::parse_object_scene(
+  w.objects = ts::parse_object_layout(
       R"({"models": [{"name": "p", "file": "pyramid.obj", "height_m": 30, "double_sided": true}],
           "instances": [{"model": "p", "position": [0, 0]}]})",
       "scene", dir.path.string(), w.terrain.heights);
-  ts::ObjectSet set(w.objects);
+  ts::GlSceneObjects set(w.objects);
   ts::GlModel& gl = set.model(0);
   ASSERT_TRUE(std::isfinite(gl.back_faces_hidden_above(0)));
   ts::DrawCostModel cost;

@@ -123,12 +123,13 @@ TEST(Faces, SceneFileDoubleSidedIsABoolean) {
   o.synthetic_size = 33;
   const ts::Terrain terrain = ts::load_terrain(o);
   tstest::TempDir dir;
-  const ts::ObjectScene scene = tstest::tower_scene(dir, terrain, R"("double_sided": false)", "[]");
+  const ts::ObjectLayout scene =
+      tstest::tower_layout(dir, terrain, R"("double_sided": false)", "[]");
   ASSERT_EQ(scene.models.size(), 1u);
   ASSERT_TRUE(scene.models[0].options.double_sided.has_value());
   EXPECT_FALSE(*scene.models[0].options.double_sided);
   try {
-    tstest::tower_scene(dir, terrain, R"("double_sided": "yes")", "[]");
+    tstest::tower_layout(dir, terrain, R"("double_sided": "yes")", "[]");
     ADD_FAILURE() << "a string was taken";
   } catch (const ts::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("double_sided"), std::string::npos) << e.what();

@@ -7,7 +7,7 @@
 
 #include "terrasprite/camera/camera.h"
 #include "terrasprite/objects/model.h"
-#include "terrasprite/objects/object_scene.h"
+#include "terrasprite/objects/object_layout.h"
 #include "terrasprite/terrain/terrain.h"
 #include "test_util.h"
 
@@ -24,27 +24,28 @@ inline terrasprite::Model forest_10m(const std::string& data) {
 /// A square pyramid (a 6-triangle "tower", model "t") written into `dir`, in
 /// a scene with the given model keys (height, colour) and instances (a JSON
 /// array), placed on `terrain`.
-inline terrasprite::ObjectScene tower_scene(const TempDir& dir, const terrasprite::Terrain& terrain,
-                                            const std::string& model_keys,
-                                            const std::string& instances) {
+inline terrasprite::ObjectLayout tower_layout(const TempDir& dir,
+                                              const terrasprite::Terrain& terrain,
+                                              const std::string& model_keys,
+                                              const std::string& instances) {
   std::ofstream(dir / "tower.obj") << "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 3 0\n"
                                       "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\nf 1 3 2\nf 1 4 3\n";
-  return terrasprite::parse_object_scene(R"({"models": [{"name": "t", "file": "tower.obj", )" +
-                                             model_keys + R"(}], "instances": )" + instances + "}",
-                                         "scene", dir.path.string(), terrain.heights);
+  return terrasprite::parse_object_layout(R"({"models": [{"name": "t", "file": "tower.obj", )" +
+                                              model_keys + R"(}], "instances": )" + instances + "}",
+                                          "scene", dir.path.string(), terrain.heights);
 }
 
-/// The 65 x 65 synthetic terrain with towers on it (tower_scene's arguments),
+/// The 65 x 65 synthetic terrain with towers on it (tower_layout's arguments),
 /// the scene's files in its own temporary directory.
 struct TowerWorld {
   TempDir dir;
   terrasprite::Terrain terrain;
-  terrasprite::ObjectScene objects;
+  terrasprite::ObjectLayout objects;
   TowerWorld(const std::string& model_keys, const std::string& instances) {
     terrasprite::TerrainOptions o;
     o.synthetic_size = 65;
     terrain = terrasprite::load_terrain(o);
-    objects = tower_scene(dir, terrain, model_keys, instances);
+    objects = tower_layout(dir, terrain, model_keys, instances);
   }
 };
 

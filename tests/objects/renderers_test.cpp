@@ -11,15 +11,15 @@
 
 #include "object_test_util.h"
 #include "terrasprite/gl/gl_context.h"
+#include "terrasprite/objects/gl_scene_objects.h"
 #include "terrasprite/raster/mesh_renderer.h"
-#include "terrasprite/objects/object_set.h"
 #include "terrasprite/raster/scene.h"
 #include "terrasprite/sprite/sprite_renderer.h"
 #include "terrasprite/terrain/terrain_gen.h"
 #include "test_util.h"
 
 namespace ts = terrasprite;
-using tstest::tower_scene;
+using tstest::tower_layout;
 
 namespace {
 
@@ -50,7 +50,7 @@ TEST(SceneObjects, MeshRenderersDrawObjectsOverTheTerrain) {
   ts::GlContext ctx;
   World w;
   ts::Scene scene(w.terrain);
-  ts::ObjectSet set(w.objects);
+  ts::GlSceneObjects set(w.objects);
   const ts::Camera cam = view(w.terrain);
   for (int quads : {0, 16}) {
     ts::MeshRenderer r(scene, 96, 96, quads);
@@ -67,7 +67,7 @@ TEST(SceneObjects, SpriteFramesShowObjectsKeyframesHoldTerrainOnly) {
   ts::GlContext ctx;
   World w;
   ts::Scene scene(w.terrain);
-  ts::ObjectSet set(w.objects);
+  ts::GlSceneObjects set(w.objects);
   ts::Camera cam = view(w.terrain);
   ts::SpriteRenderer bare(scene, 96, 96);
   const ts::Frame bare_key = bare.render_keyframe(cam);
@@ -99,7 +99,7 @@ namespace {
 struct RidgeWorld {
   tstest::TempDir dir;
   ts::Terrain terrain;
-  ts::ObjectScene objects;
+  ts::ObjectLayout objects;
   RidgeWorld() {
     ts::Heightfield& h = terrain.heights;
     h.width = h.height = 65;
@@ -111,16 +111,16 @@ struct RidgeWorld {
     h.name = "ridge";
     terrain.texture = ts::checker_texture(8, 256);
     terrain.texture_name = "checker";
-    objects = tower_scene(dir, terrain, R"("height_m": 30, "color": [0, 0, 1])",
-                          R"([{"model": "t", "position": [0, 40]}])");
+    objects = tower_layout(dir, terrain, R"("height_m": 30, "color": [0, 0, 1])",
+                           R"([{"model": "t", "position": [0, 40]}])");
   }
 };
 
 // Draws every model of a set as one representation.
 struct DrawnAs final : ts::SceneObjects {
-  ts::ObjectSet& set;
+  ts::GlSceneObjects& set;
   ts::Representation rep;
-  DrawnAs(ts::ObjectSet& s, ts::Representation r) : set(s), rep(r) {
+  DrawnAs(ts::GlSceneObjects& s, ts::Representation r) : set(s), rep(r) {
     for (std::size_t i = 0; i < set.model_count(); ++i) set.model(i).prepare(rep);
   }
   long long draw(const ts::Camera& c) override {
@@ -158,7 +158,7 @@ TEST(SceneObjects, TerrainHidesTheLowerHalfOfAnObjectBehindARidge) {
   ts::GlContext ctx;
   RidgeWorld w;
   ts::Scene scene(w.terrain);
-  ts::ObjectSet set(w.objects);
+  ts::GlSceneObjects set(w.objects);
   const int size = 128;
   ts::Camera cam = ts::Camera::look_at({0, -200, 6}, {0, 40, 12}, 40, 1.0);
   cam.near_m = 1;

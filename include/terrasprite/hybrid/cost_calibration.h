@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "terrasprite/hybrid/draw_cost_model.h"
-#include "terrasprite/objects/object_set.h"
+#include "terrasprite/objects/gl_scene_objects.h"
 
 namespace terrasprite {
 
@@ -62,7 +62,7 @@ struct CalibrationDraw {
 /// pipeline drained, and returns the median times. Needs a current GL context;
 /// impostors are built first (untimed).
 std::vector<CalibrationDraw> measure_draw_costs(
-    ObjectSet& set, const std::vector<std::vector<Representation>>& reps,
+    GlSceneObjects& set, const std::vector<std::vector<Representation>>& reps,
     const CostCalibrationOptions& options);
 
 /// Fits `model` to the draws: per kind the draw call (a batch drawn call by

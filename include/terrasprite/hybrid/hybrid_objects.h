@@ -13,10 +13,10 @@
 #include "terrasprite/hybrid/budget_controller.h"
 #include "terrasprite/hybrid/draw_cost_model.h"
 #include "terrasprite/hybrid/frame_pace.h"
-#include "terrasprite/objects/object_set.h"
-#include "terrasprite/objects/quality_table.h"
 #include "terrasprite/hybrid/representation_selection.h"
 #include "terrasprite/hybrid/selection_hysteresis.h"
+#include "terrasprite/objects/gl_scene_objects.h"
+#include "terrasprite/objects/quality_table.h"
 
 namespace terrasprite {
 
@@ -140,8 +140,8 @@ class HybridObjects : public SceneObjects {
   /// `tables[i]` is model i's table (its representations; rows of kinds the
   /// scenario does not offer are ignored). `cost` is copied and refit online
   /// from feedback(). The set must outlive this.
-  HybridObjects(ObjectSet& set, const std::vector<QualityTable>& tables, const DrawCostModel& cost,
-                HybridScenario scenario, const HybridOptions& options);
+  HybridObjects(GlSceneObjects& set, const std::vector<QualityTable>& tables,
+                const DrawCostModel& cost, HybridScenario scenario, const HybridOptions& options);
   ~HybridObjects() override;
 
   /// Selects and draws every visible instance; returns the triangles. On the

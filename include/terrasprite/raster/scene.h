@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// What the renderers draw: the terrain with its GPU resources, and (as the
-// hybrid-object system lands) the object instances standing on it.
+// What the renderers draw: the terrain with its GPU resources, and the
+// objects standing on it (SceneObjects: drawn each frame over the terrain).
 #pragma once
 #include <memory>
 
@@ -9,8 +9,8 @@
 
 namespace terrasprite {
 
-/// Objects standing on the terrain (ObjectSet implements it). The full, LOD
-/// and LOD-sprite renderers draw them after the terrain, every frame, into
+/// Objects standing on the terrain (objects/gl_scene_objects.h and
+/// hybrid/hybrid_objects.h implement it). The full, LOD and LOD-sprite renderers draw them after the terrain, every frame, into
 /// their bound target (reversed-Z float depth, GL_GREATER), depth-tested
 /// against what the terrain wrote. Never part of a LOD-sprite keyframe.
 class SceneObjects {

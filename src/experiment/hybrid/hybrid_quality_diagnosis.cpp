@@ -43,7 +43,7 @@ struct Item {
 /// Draws a list of instances, each with the representation `rep_of` gives.
 class AssignedObjects : public SceneObjects {
  public:
-  AssignedObjects(ObjectSet& set, const std::vector<Item>& items,
+  AssignedObjects(GlSceneObjects& set, const std::vector<Item>& items,
                   std::function<Representation(std::size_t model)> rep_of)
       : set_(set), items_(items), rep_of_(std::move(rep_of)) {}
   long long draw(const Camera& camera) override {
@@ -65,7 +65,7 @@ class AssignedObjects : public SceneObjects {
   }
 
  private:
-  ObjectSet& set_;
+  GlSceneObjects& set_;
   const std::vector<Item>& items_;
   std::function<Representation(std::size_t)> rep_of_;
 };
@@ -129,7 +129,7 @@ class Shooter {
   bool sky_;
 };
 
-std::vector<Item> visible_items(ObjectSet& set, const Camera& cam, int height) {
+std::vector<Item> visible_items(GlSceneObjects& set, const Camera& cam, int height) {
   std::vector<Item> all;
   for (std::size_t m = 0; m < set.model_count(); ++m) {
     const Model& model = set.model(m).model();
@@ -267,7 +267,7 @@ std::vector<Uniform> diagnosis_uniforms(const std::vector<QualityTable>& tables)
 
 /// Model m's representation for `u`: its level clamped to the model's
 /// coarsest, or the table's impostor at that resolution (none: full geometry).
-Representation uniform_rep(const Uniform& u, std::size_t m, ObjectSet& set,
+Representation uniform_rep(const Uniform& u, std::size_t m, GlSceneObjects& set,
                            const std::vector<QualityTable>& tables) {
   if (u.kind == ObjectKind::kMesh)
     return {ObjectKind::kMesh, std::min(u.level_or_res, int(set.model(m).chain().size()) - 1), 0,
@@ -282,7 +282,7 @@ using ItemGroups = std::vector<std::pair<std::string, std::vector<Item>>>;
 /// The groups a checkpoint's instances are drawn in: by on-screen size (px
 /// at the base image size, `scale` the image's multiple of it), by model,
 /// and all ("all" last).
-ItemGroups diagnosis_groups(const ObjectSet& set, const std::vector<Item>& all, int scale) {
+ItemGroups diagnosis_groups(const GlSceneObjects& set, const std::vector<Item>& all, int scale) {
   const std::vector<double> edges = {0, 4, 8, 16, 32, 64, 1e9};
   ItemGroups groups;
   for (std::size_t b = 0; b + 1 < edges.size(); ++b) {
@@ -298,7 +298,7 @@ ItemGroups diagnosis_groups(const ObjectSet& set, const std::vector<Item>& all, 
     std::vector<Item> items;
     for (const Item& it : all)
       if (it.model == m) items.push_back(it);
-    groups.push_back({set.scene_model(m).name, items});
+    groups.push_back({set.layout_model(m).name, items});
   }
   groups.push_back({"all", all});
   return groups;
@@ -430,7 +430,7 @@ nlohmann::json diagnose_hybrid_quality(const QualityDiagnosisInput& in) {
 
 std::vector<ContextCalibration> calibrate_tables_in_context(const QualityContextInput& in,
                                                             std::vector<QualityTable>& tables) {
-  ObjectSet& set = in.set;
+  GlSceneObjects& set = in.set;
   const auto interp = interpolators(tables);
   // Observations per model and representation (the table's row index).
   std::vector<std::vector<std::vector<QualityObservation>>> obs(tables.size());
@@ -487,7 +487,7 @@ std::vector<ContextCalibration> calibrate_tables_in_context(const QualityContext
         w += o.weight;
       }
       apply_error_scale(rq, scale);
-      report.push_back({set.scene_model(m).name, rq.rep.kind, rq.rep.level, rq.rep.resolution,
+      report.push_back({set.layout_model(m).name, rq.rep.kind, rq.rep.level, rq.rep.resolution,
                         scale, w > 0 ? p / w : 1.0, w > 0 ? q / w : 1.0, w});
     }
   return report;

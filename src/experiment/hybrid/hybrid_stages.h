@@ -54,7 +54,7 @@ SelectionFigures selection_figures(const std::vector<HybridFrame>& frames);
 
 /// What diagnose_hybrid_quality needs from the bench's setup.
 struct QualityDiagnosisInput {
-  ObjectSet& set;
+  GlSceneObjects& set;
   const std::vector<QualityTable>& tables;
   Scene& ground;
   const std::vector<Camera>& path;
@@ -73,7 +73,7 @@ nlohmann::json diagnose_hybrid_quality(const QualityDiagnosisInput& in);
 
 /// What calibrate_tables_in_context needs.
 struct QualityContextInput {
-  ObjectSet& set;
+  GlSceneObjects& set;
   Scene& ground;
   std::vector<Camera> cameras;  ///< walkthrough views (not the checkpoints')
   int width = 0, height = 0, terrain_quads = 64;
@@ -90,7 +90,7 @@ std::vector<ContextCalibration> calibrate_tables_in_context(const QualityContext
 
 /// What quality_budget_sweep needs.
 struct BudgetSweepInput {
-  ObjectSet& set;
+  GlSceneObjects& set;
   const std::vector<QualityTable>& tables;
   const DrawCostModel& cost;
   Scene& ground;

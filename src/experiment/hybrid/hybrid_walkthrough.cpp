@@ -29,7 +29,7 @@ namespace {
 using namespace hybrid_bench;
 
 /// Keeps `count` instances (0: all), drawn at random (seeded) so the model mix stays.
-void subsample(ObjectScene& scene, int count) {
+void subsample(ObjectLayout& scene, int count) {
   if (count <= 0 || count >= int(scene.instances.size())) return;
   std::mt19937 rng(11);
   std::shuffle(scene.instances.begin(), scene.instances.end(), rng);
@@ -48,7 +48,7 @@ std::vector<PathCheckpoint> snapped(std::vector<PathCheckpoint> cps, int score_e
 
 /// The scene and the path it is flown along, before any GL.
 struct Walk {
-  ObjectScene scene;
+  ObjectLayout scene;
   std::vector<Camera> path;
   std::vector<PathCheckpoint> checkpoints;  ///< on scored frames
 };
@@ -66,8 +66,8 @@ std::string path_text(const HybridBenchOptions& o, const Terrain& terrain,
 
 Walk load_walk(const HybridBenchOptions& o, const Terrain& terrain) {
   Walk w;
-  w.scene = o.scene_file.empty() ? default_object_scene(o.models_dir, terrain.heights)
-                                 : load_object_scene(o.scene_file, terrain.heights);
+  w.scene = o.scene_file.empty() ? default_object_layout(o.models_dir, terrain.heights)
+                                 : load_object_layout(o.scene_file, terrain.heights);
   subsample(w.scene, o.instances);
   // The objects and the walkthrough stand on the terrain as drawn (the
   // coarse grid), not on the bilinear surface, which can lie far below it.
@@ -82,12 +82,12 @@ Walk load_walk(const HybridBenchOptions& o, const Terrain& terrain) {
 }
 
 /// Model i's table for one sampling, measured now (no cache).
-QualityTable measured_table(ObjectSet& set, std::size_t i, const TableOptions& o) {
+QualityTable measured_table(GlSceneObjects& set, std::size_t i, const TableOptions& o) {
   return measure_quality_table(set.model(i), o);
 }
 
 /// Model i's table: each sampling from `source`, merged.
-QualityTable model_table(ObjectSet& set, std::size_t i, const std::vector<TableOptions>& options,
+QualityTable model_table(GlSceneObjects& set, std::size_t i, const std::vector<TableOptions>& options,
                          const TableSource& source) {
   QualityTable merged;
   for (const TableOptions& o : options) {
@@ -164,7 +164,7 @@ std::vector<ContextCalibration> tables_in_context(QualityContextInput qi, const 
 /// instances up to larger than the image: every representation timed at
 /// `sizes_px` in an image of the frames' size, and `cost` fitted per kind.
 /// Returns the calibration's report.
-std::string calibrate_for_walk(ObjectSet& set, const std::vector<QualityTable>& tables, int w,
+std::string calibrate_for_walk(GlSceneObjects& set, const std::vector<QualityTable>& tables, int w,
                                int h, int samples, double fov_y_deg,
                                const std::vector<int>& sizes_px, DrawCostModel& cost) {
   CostCalibrationOptions co;
@@ -224,7 +224,7 @@ double timed_full_ms(HybridRenderer& full, const std::vector<Camera>& path, int 
 struct Bench {
   const HybridBenchOptions& o;
   Scene& ground;
-  ObjectSet& set;
+  GlSceneObjects& set;
   const std::vector<QualityTable>& tables;
   const DrawCostModel& cost;
   const Walk& walk;
@@ -389,7 +389,7 @@ HybridBenchResult run_hybrid(const HybridBenchOptions& o, const HybridBenchInput
                                  gl::max_samples()));
   Scene ground(in.terrain);
   ground.prepare(o.terrain_quads);
-  ObjectSet set(walk.scene, LodOptions{}, o.cache_dir.empty() ? default_cache_dir() : o.cache_dir);
+  GlSceneObjects set(walk.scene, LodOptions{}, o.cache_dir.empty() ? default_cache_dir() : o.cache_dir);
   HybridBenchResult result;
   result.mode = o.mode;
   std::vector<QualityTable> tables;

@@ -24,7 +24,7 @@
 #include "terrasprite/hybrid/budget_controller.h"
 #include "terrasprite/hybrid/frame_pace.h"
 #include "terrasprite/hybrid/hybrid_objects.h"
-#include "terrasprite/objects/object_set.h"
+#include "terrasprite/objects/gl_scene_objects.h"
 #include "terrasprite/objects/quality_table.h"
 #include "terrasprite/terrain/terrain.h"
 
@@ -120,7 +120,7 @@ struct HybridBenchOptions {
 
 /// Model `model`'s quality table for one sampling, measured or read from a
 /// cache. Called with the run's GL context current.
-using TableSource = std::function<QualityTable(ObjectSet& set, std::size_t model,
+using TableSource = std::function<QualityTable(GlSceneObjects& set, std::size_t model,
                                                const TableOptions& options)>;
 
 /// The table samplings `o` asks for: meshes and relief, then octahedral.

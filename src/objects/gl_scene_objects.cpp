@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/objects/object_set.h"
+#include "terrasprite/objects/gl_scene_objects.h"
 
 #include <cassert>
 #include <filesystem>
@@ -9,20 +9,21 @@
 
 namespace terrasprite {
 
-struct ObjectSet::Impl {
-  std::vector<SceneModel> scene_models;
+struct GlSceneObjects::Impl {
+  std::vector<LayoutModel> layout_models;
   std::vector<std::unique_ptr<GlModel>> models;
   std::vector<std::vector<ObjectInstance>> instances;
   LodOptions lod;
 };
 
-ObjectSet::ObjectSet(const ObjectScene& scene, const LodOptions& lod, const std::string& cache_dir)
+GlSceneObjects::GlSceneObjects(const ObjectLayout& scene, const LodOptions& lod,
+                               const std::string& cache_dir)
     : impl_(std::make_unique<Impl>()) {
-  impl_->scene_models = scene.models;
+  impl_->layout_models = scene.models;
   impl_->lod = lod;
   impl_->instances.resize(scene.models.size());
   for (const PlacedInstance& p : scene.instances) impl_->instances[p.model].push_back(p.instance);
-  for (const SceneModel& m : scene.models) {
+  for (const LayoutModel& m : scene.models) {
     const Model model = load_model(m.file, m.options);
     const RepresentationCache cache =
         cache_dir.empty() ? RepresentationCache{}
@@ -33,11 +34,11 @@ ObjectSet::ObjectSet(const ObjectScene& scene, const LodOptions& lod, const std:
   }
 }
 
-const LodOptions& ObjectSet::lod() const {
+const LodOptions& GlSceneObjects::lod() const {
   return impl_->lod;
 }
 
-RepresentationCacheStats ObjectSet::cache_stats() const {
+RepresentationCacheStats GlSceneObjects::cache_stats() const {
   RepresentationCacheStats sum;
   for (const auto& m : impl_->models) {
     const RepresentationCacheStats& s = m->cache().stats();
@@ -50,35 +51,36 @@ RepresentationCacheStats ObjectSet::cache_stats() const {
   return sum;
 }
 
-ObjectSet::~ObjectSet() = default;
+GlSceneObjects::~GlSceneObjects() = default;
 
-std::size_t ObjectSet::model_count() const {
+std::size_t GlSceneObjects::model_count() const {
   return impl_->models.size();
 }
-const SceneModel& ObjectSet::scene_model(std::size_t i) const {
-  return impl_->scene_models[i];
+const LayoutModel& GlSceneObjects::layout_model(std::size_t i) const {
+  return impl_->layout_models[i];
 }
-GlModel& ObjectSet::model(std::size_t i) {
+GlModel& GlSceneObjects::model(std::size_t i) {
   return *impl_->models[i];
 }
-std::span<const ObjectInstance> ObjectSet::instances(std::size_t i) const {
+std::span<const ObjectInstance> GlSceneObjects::instances(std::size_t i) const {
   return impl_->instances[i];
 }
 
-std::size_t ObjectSet::instance_count() const {
+std::size_t GlSceneObjects::instance_count() const {
   std::size_t n = 0;
   for (const auto& v : impl_->instances) n += v.size();
   return n;
 }
 
-long long ObjectSet::full_triangles() const {
+long long GlSceneObjects::full_triangles() const {
   long long n = 0;
   for (std::size_t i = 0; i < impl_->models.size(); ++i)
     n += (long long)impl_->models[i]->model().triangles() * (long long)impl_->instances[i].size();
   return n;
 }
 
-long long ObjectSet::draw_with(const Camera& camera, std::span<const Representation> per_model) {
+long long GlSceneObjects::draw_with(const Camera& camera,
+                                    std::span<const Representation> per_model) {
   assert(per_model.empty() || per_model.size() == impl_->models.size());
   long long triangles = 0;
   for (std::size_t i = 0; i < impl_->models.size(); ++i) {

@@ -2,20 +2,23 @@
 // The quality table's report: .dat files and gnuplot plots of the paper's
 // Figure 1 (quality over phi x theta at three sizes), Figure 2 (quality vs
 // on-screen size per resolution) and Figure 3 (draw time vs quality), and
-// Table 1 (lowest resolution reaching each target) as Markdown.
+// Table 1 (lowest resolution reaching each target) as Markdown; the JSON
+// of the objects commands.
+#include "terrasprite/report/objects_report.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <fstream>
 #include <map>
-#include <set>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "objects_table.h"
+#include "terrasprite/objects/quality_table_json.h"
+#include "terrasprite/report/json_writer.h"
 #include "terrasprite/report/plot.h"
-#include "terrasprite/common/error.h"
+#include "terrasprite/terrain/image_io.h"
 
-namespace terrasprite::cli {
+namespace terrasprite::report {
 namespace {
 
 std::string rep_label(const RepresentationQuality& q) {
@@ -57,7 +60,7 @@ std::string figure1(const QualityTable& t, const TableOptions& o, OutputDir& out
       }
       dat << "\n";
     }
-    report::write_text(out.file(name + ".dat"), dat.str());
+    write_text(out.file(name + ".dat"), dat.str());
     gp += fmt::format(
         "set output '{0}.png'\nset multiplot layout 1,3 title 'SSIM over viewing angle: {1}'\n"
         "set xlabel 'phi (deg)'; set ylabel 'theta (deg)'; set view map; set cbrange [0.5:1]\n",
@@ -89,7 +92,7 @@ std::string figure2(const QualityTable& t, const TableOptions& o, OutputDir& out
       plots += fmt::format("{}'{}.dat' index {} u 1:2 w lp lw 1.5 t '{}'",
                            plots.empty() ? "" : ", ", name, index++, rep_label(q));
     }
-    report::write_text(out.file(name + ".dat"), dat.str());
+    write_text(out.file(name + ".dat"), dat.str());
     gp += fmt::format(
         "set output '{}.png'\nset title 'Quality against on-screen size: {}'\nset logscale x 2\n"
         "set xlabel 'bounding-sphere diameter (px)'; set ylabel 'mean SSIM'; set key bottom "
@@ -118,7 +121,7 @@ std::string figure3(const QualityTable& t, const TableOptions& o, OutputDir& out
       plots += fmt::format("{}'fig3.dat' index {} u 1:2 w lp t '{} {} px'",
                            plots.empty() ? "" : ", ", index++, object_kind_name(kind), size);
     }
-  report::write_text(out.file("fig3.dat"), dat.str());
+  write_text(out.file("fig3.dat"), dat.str());
   return fmt::format(
       "set output 'fig3.png'\nset title 'Draw time against quality'\nset logscale x\n"
       "set xlabel 'ms per instance (llvmpipe)'; set ylabel 'mean SSIM'; set key outside "
@@ -158,10 +161,82 @@ void write_objects_report(const QualityTable& t, const TableOptions& o, OutputDi
   std::string gp = "set terminal pngcairo size 1500,480 font 'sans,10'\n" + figure1(t, o, out) +
                    "set terminal pngcairo size 900,600 font 'sans,10'\n" + figure2(t, o, out) +
                    figure3(t, o, out);
-  report::write_text(out.file("plots.gp"), gp);
-  report::write_text(out.file("table1.md"), table1_markdown(t, o));
-  const std::string failed = report::run_gnuplot(out.partial().string(), "plots.gp");
+  write_text(out.file("plots.gp"), gp);
+  write_text(out.file("table1.md"), table1_markdown(t, o));
+  const std::string failed = run_gnuplot(out.partial().string(), "plots.gp");
   if (!failed.empty()) fmt::print(stderr, "warning: {}; .dat files kept without plots\n", failed);
 }
 
-}  // namespace terrasprite::cli
+nlohmann::json model_info_json(const Model& model) {
+  nlohmann::json textures = nlohmann::json::array();
+  for (std::size_t i = 0; i < model.textures.size(); ++i)
+    textures.push_back({{"name", model.texture_names[i]},
+                        {"size", {model.textures[i].width, model.textures[i].height}}});
+  const glm::vec3 lo = model.bounds_min, hi = model.bounds_max;
+  return {{"model", model.name},
+          {"triangles", model.triangles()},
+          {"vertices", model.vertices()},
+          {"parts", model.parts.size()},
+          {"materials", model.materials.size()},
+          {"normals", model.normals_from_file ? "file" : "computed"},
+          {"scale_to_m", model.scale_to_m},
+          {"bounds_min_m", {lo.x, lo.y, lo.z}},
+          {"bounds_max_m", {hi.x, hi.y, hi.z}},
+          {"bounding_radius_m", model.bounding_radius()},
+          {"textures", textures}};
+}
+
+nlohmann::json cache_stats_json(const RepresentationCacheStats& s) {
+  return {{"hits", s.hits},
+          {"misses", s.misses},
+          {"rejected", s.rejected},
+          {"read_ms", s.read_ms},
+          {"build_ms", s.build_ms}};
+}
+
+nlohmann::json objects_table_json(const ObjectsTableResult& r, const TableOptions& o) {
+  nlohmann::json j = table_json(r.table, o);
+  j["cached"] = r.cached;
+  j["representation_cache"] = cache_stats_json(r.representation_cache);
+  return j;
+}
+
+void write_objects_table(const ObjectsTableResult& r, const TableOptions& o, OutputDir& out,
+                         const std::string& json_path, const OutputPolicy& policy) {
+  const nlohmann::json j = objects_table_json(r, o);
+  write_objects_report(r.table, o, out);
+  write_json(j, out.file("table.json"), policy);
+  if (!json_path.empty()) write_json(j, json_path, policy);
+}
+
+nlohmann::json full_geometry_json(const FullGeometryResult& r) {
+  nlohmann::json models = nlohmann::json::array();
+  for (const FullGeometryModel& m : r.models)
+    models.push_back({{"name", m.name},
+                      {"file", m.file},
+                      {"triangles", m.triangles},
+                      {"instances", m.instances},
+                      {"lod_levels", m.lod_levels}});
+  return {{"gl_renderer", r.gl_renderer},
+          {"size", {r.width, r.height}},
+          {"instances", r.instances},
+          {"load_ms", r.load_ms},
+          {"representation_cache", cache_stats_json(r.representation_cache)},
+          {"full_triangles", r.full_triangles},
+          {"terrain_triangles", r.terrain_triangles},
+          {"frame_triangles", r.frame_triangles},
+          {"frames", r.frames},
+          {"median_ms", r.median_ms},
+          {"terrain_median_ms", r.terrain_median_ms},
+          {"models", models}};
+}
+
+void write_full_geometry(const FullGeometryResult& r, OutputDir& out,
+                         const std::string& json_path, const OutputPolicy& policy) {
+  save_png(r.frame, out.file("frame.png"));
+  const nlohmann::json j = full_geometry_json(r);
+  write_json(j, out.file("scene.json"), policy);
+  if (!json_path.empty()) write_json(j, json_path, policy);
+}
+
+}  // namespace terrasprite::report

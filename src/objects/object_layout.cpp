@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Scene files: models, listed instances, scattered instances on the terrain.
-#include "terrasprite/objects/object_scene.h"
+#include "terrasprite/objects/object_layout.h"
 
 #include <fmt/format.h>
 
@@ -53,8 +53,8 @@ std::string resolve(const std::string& base_dir, const std::string& file) {
   return p.is_absolute() ? file : (std::filesystem::path(base_dir) / p).string();
 }
 
-SceneModel parse_model(const nlohmann::json& m, const std::string& name, const std::string& base) {
-  SceneModel out;
+LayoutModel parse_model(const nlohmann::json& m, const std::string& name, const std::string& base) {
+  LayoutModel out;
   out.name = m.at("name").get<std::string>();
   out.file = resolve(base, m.at("file").get<std::string>());
   out.options.up = parse_up_axis(m.value("up", std::string("y")), "up");
@@ -129,13 +129,13 @@ void check_region(const std::array<double, 4>& r, const Heightfield& h, const st
 
 }  // namespace
 
-const char* default_scene_json() {
+const char* default_layout_json() {
   return kDefaultScene;
 }
 
-ObjectScene parse_object_scene(const std::string& text, const std::string& name,
-                               const std::string& base_dir, const Heightfield& h) {
-  ObjectScene scene;
+ObjectLayout parse_object_layout(const std::string& text, const std::string& name,
+                                 const std::string& base_dir, const Heightfield& h) {
+  ObjectLayout scene;
   // Instances stand on the full-resolution triangles the GL renderers draw,
   // not the bilinear surface: the two part by metres inside a 30 m quad,
   // enough to bury a bush or float a truck. A coarser drawn grid grounds
@@ -192,21 +192,21 @@ ObjectScene parse_object_scene(const std::string& text, const std::string& name,
   return scene;
 }
 
-ObjectScene load_object_scene(const std::string& path, const Heightfield& heights) {
+ObjectLayout load_object_layout(const std::string& path, const Heightfield& heights) {
   std::ifstream in(path);
   if (!in) fail(path, "cannot read the scene file");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return parse_object_scene(text, path, std::filesystem::path(path).parent_path().string(),
-                            heights);
+  return parse_object_layout(text, path, std::filesystem::path(path).parent_path().string(),
+                             heights);
 }
 
-void ground_instances(ObjectScene& scene, const std::function<double(double, double)>& ground) {
+void ground_instances(ObjectLayout& scene, const std::function<double(double, double)>& ground) {
   for (PlacedInstance& p : scene.instances)
     if (p.grounded) p.instance.position.z = ground(p.instance.position.x, p.instance.position.y);
 }
 
-ObjectScene default_object_scene(const std::string& models_dir, const Heightfield& heights) {
-  return parse_object_scene(kDefaultScene, "default scene", models_dir, heights);
+ObjectLayout default_object_layout(const std::string& models_dir, const Heightfield& heights) {
+  return parse_object_layout(kDefaultScene, "default scene", models_dir, heights);
 }
 
 }  // namespace terrasprite

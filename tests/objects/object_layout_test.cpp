@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Scene files: listed and scattered instances on the terrain, bad scenes,
 // and the default 400-instance scene.
-#include "terrasprite/objects/object_scene.h"
+#include "terrasprite/objects/object_layout.h"
 
 #include <gtest/gtest.h>
 
@@ -33,7 +33,7 @@ ts::Heightfield ramp() {
 
 }  // namespace
 
-TEST(ObjectScene, ListedAndScatteredInstancesStandOnTheGround) {
+TEST(ObjectLayout, ListedAndScatteredInstancesStandOnTheGround) {
   tstest::TempDir dir;
   std::ofstream(dir / "box.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   const ts::Heightfield h = ramp();
@@ -42,7 +42,7 @@ TEST(ObjectScene, ListedAndScatteredInstancesStandOnTheGround) {
                   {"model": "b", "position": [0, 0, 42], "scale": 2}],
     "scatter": [{"model": "b", "count": 30, "seed": 3, "region": [-400, -400, 450, 400],
                  "max_slope_deg": 20, "min_spacing_m": 25}]})";
-  const ts::ObjectScene s = ts::parse_object_scene(text, "t.json", dir.path.string(), h);
+  const ts::ObjectLayout s = ts::parse_object_layout(text, "t.json", dir.path.string(), h);
   ASSERT_EQ(s.models.size(), 1u);
   EXPECT_EQ(s.models[0].options.height_m, 2.0);
   ASSERT_EQ(s.instances.size(), 32u);
@@ -58,13 +58,13 @@ TEST(ObjectScene, ListedAndScatteredInstancesStandOnTheGround) {
       EXPECT_GE(glm::length(glm::dvec2(p) - glm::dvec2(s.instances[b].instance.position)), 25.0);
   }
   // The same seed places the same instances.
-  const ts::ObjectScene again = ts::parse_object_scene(text, "t.json", dir.path.string(), h);
+  const ts::ObjectLayout again = ts::parse_object_layout(text, "t.json", dir.path.string(), h);
   EXPECT_EQ(again.instances.back().instance.position, s.instances.back().instance.position);
 }
 
 // A saddle: inside a quad the bilinear surface and the drawn triangles part
 // (by 25 m at the centre of this 10 m quad). Instances stand on the triangles.
-TEST(ObjectScene, InstancesStandOnTheDrawnTrianglesNotTheBilinearSurface) {
+TEST(ObjectLayout, InstancesStandOnTheDrawnTrianglesNotTheBilinearSurface) {
   tstest::TempDir dir;
   std::ofstream(dir / "box.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   ts::Heightfield h;
@@ -73,7 +73,7 @@ TEST(ObjectScene, InstancesStandOnTheDrawnTrianglesNotTheBilinearSurface) {
   h.heights = {100, 0, 0, 0};  // NW high, the rest low
   const std::string text = R"({"models": [{"name": "b", "file": "box.obj"}],
     "instances": [{"model": "b", "position": [0, 0]}, {"model": "b", "position": [-2.5, -2]}]})";
-  const ts::ObjectScene s = ts::parse_object_scene(text, "t.json", dir.path.string(), h);
+  const ts::ObjectLayout s = ts::parse_object_layout(text, "t.json", dir.path.string(), h);
   ASSERT_EQ(s.instances.size(), 2u);
   // The centre lies on the NW-SE diagonal: (100 + 0) / 2 on the triangles,
   // 25 on the bilinear surface.
@@ -85,7 +85,7 @@ TEST(ObjectScene, InstancesStandOnTheDrawnTrianglesNotTheBilinearSurface) {
   EXPECT_NEAR(s.instances[1].instance.position.z, 30.0, 1e-6);
 }
 
-TEST(ObjectScene, BadScenesNameTheFile) {
+TEST(ObjectLayout, BadScenesNameTheFile) {
   const ts::Heightfield h = ramp();
   for (
       const char* text : {
@@ -96,7 +96,7 @@ TEST(ObjectScene, BadScenesNameTheFile) {
           R"({"models": [{"name": "b", "file": "x.obj"}], "scatter": [{"model": "b", "count": 500, "region": [0, 0, 50, 50], "min_spacing_m": 20}]})",
       }) {
     try {
-      ts::parse_object_scene(text, "bad.json", ".", h);
+      ts::parse_object_layout(text, "bad.json", ".", h);
       ADD_FAILURE() << text;
     } catch (const ts::InputError& e) {
       EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos) << e.what();
@@ -104,16 +104,16 @@ TEST(ObjectScene, BadScenesNameTheFile) {
   }
 }
 
-TEST(ObjectScene, DefaultSceneHas400InstancesOf8Models) {
+TEST(ObjectLayout, DefaultSceneHas400InstancesOf8Models) {
   const std::string data = tstest::shared_data();
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
   ts::TerrainOptions o;  // the synthetic default terrain
   const ts::Terrain t = ts::load_terrain(o);
-  const ts::ObjectScene s = ts::default_object_scene(data, t.heights);
+  const ts::ObjectLayout s = ts::default_object_layout(data, t.heights);
   EXPECT_EQ(s.models.size(), 8u);
   EXPECT_EQ(s.instances.size(), 400u);
   std::vector<long long> tris;
-  for (const ts::SceneModel& m : s.models)
+  for (const ts::LayoutModel& m : s.models)
     tris.push_back((long long)ts::load_model(m.file, m.options).triangles());
   long long total = 0;
   std::vector<int> count(s.models.size());

@@ -1,13 +1,18 @@
 // SPDX-License-Identifier: MIT
-// The objects of a scene on the GPU: every model loaded, its LOD chain built
-// and uploaded, its instances grouped for instanced drawing.
+// The objects of a layout on the GPU: every model loaded, its LOD chain
+// built and uploaded, its instances grouped for instanced drawing.
+// Names of what stands on the terrain: a Scene is the terrain on the GPU;
+// ObjectLayout says which models stand where (loaded from a scene file);
+// SceneObjects is what a Scene draws over its terrain, GlSceneObjects (every
+// instance uploaded) and HybridObjects (representations under a budget)
+// its implementations.
 #pragma once
 #include <memory>
 #include <span>
 #include <vector>
 
+#include "terrasprite/objects/object_layout.h"
 #include "terrasprite/objects/object_renderer.h"
-#include "terrasprite/objects/object_scene.h"
 #include "terrasprite/raster/scene.h"
 
 namespace terrasprite {
@@ -17,16 +22,16 @@ namespace terrasprite {
 /// (Scene::set_objects) it draws every instance at full geometry.
 /// `cache_dir`: where each model's LOD chain and impostors are cached
 /// (RepresentationCache; empty: no cache, everything built here).
-class ObjectSet : public SceneObjects {
+class GlSceneObjects : public SceneObjects {
  public:
-  explicit ObjectSet(const ObjectScene& scene, const LodOptions& lod = {},
-                     const std::string& cache_dir = {});
-  ~ObjectSet() override;
-  ObjectSet(const ObjectSet&) = delete;
-  ObjectSet& operator=(const ObjectSet&) = delete;
+  explicit GlSceneObjects(const ObjectLayout& layout, const LodOptions& lod = {},
+                          const std::string& cache_dir = {});
+  ~GlSceneObjects() override;
+  GlSceneObjects(const GlSceneObjects&) = delete;
+  GlSceneObjects& operator=(const GlSceneObjects&) = delete;
 
   std::size_t model_count() const;
-  const SceneModel& scene_model(std::size_t i) const;
+  const LayoutModel& layout_model(std::size_t i) const;
   /// The options the models' LOD chains were built with.
   const LodOptions& lod() const;
   GlModel& model(std::size_t i);

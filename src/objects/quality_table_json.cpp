@@ -1,25 +1,21 @@
 // SPDX-License-Identifier: MIT
-// JSON of a quality table, both ways, and its cache key.
+// A quality table as JSON, both ways.
+#include "terrasprite/objects/quality_table_json.h"
+
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
+#include <nlohmann/json.hpp>
 
-#include "objects_table.h"
 #include "terrasprite/common/error.h"
-#include "terrasprite/objects/representation_cache.h"
 
-namespace terrasprite::cli {
+namespace terrasprite {
+
+// Raised whenever what a table measures changes (levels, impostors, views),
+// so that tables cached before are measured again.
+const char* const kQualityTableFormat = "terrasprite-objects-table-6";
+
 namespace {
-
-// 3: the LOD chain's sloppy levels keep their colours (other levels, other
-// measurements), so tables of format 2 are measured again. 4: a small
-// octahedral impostor marches fewer steps (other costs, other SSIM at 16 px).
-// 5: octahedral views on the horizon raised to 4 degrees.
-constexpr const char* kFormat = "terrasprite-objects-table-6";
 
 // Infinite PSNR (identical images) is written as the string "inf": JSON has
 // no infinity. A score that could not be measured (NaN) is null, read back
@@ -76,7 +72,7 @@ nlohmann::json table_json(const QualityTable& t, const TableOptions& o) {
   }
   std::vector<std::string> kinds;
   for (ObjectKind k : o.kinds) kinds.push_back(object_kind_name(k));
-  return {{"format", kFormat},
+  return {{"format", kQualityTableFormat},
           {"model", t.model},
           {"triangles", t.triangles},
           {"build_ms", t.build_ms},
@@ -94,7 +90,7 @@ nlohmann::json table_json(const QualityTable& t, const TableOptions& o) {
 
 QualityTable table_from_json(const nlohmann::json& j) {
   try {
-    if (j.at("format") != kFormat) throw InputError("cached table has another format version");
+    if (j.at("format") != kQualityTableFormat) throw InputError("cached table has another format version");
     QualityTable t;
     t.model = j.at("model");
     t.triangles = j.at("triangles");
@@ -131,20 +127,4 @@ QualityTable table_from_json(const nlohmann::json& j) {
   }
 }
 
-std::string table_cache_key(const std::string& model_file, const ModelOptions& m,
-                            const TableOptions& o, const std::string& chain) {
-  // The model and its options as the representation cache keys them (files,
-  // axes, size, texture, colour, faces), then what the table measures.
-  std::string params = fmt::format("{}|{}|", kFormat, chain);
-  for (ObjectKind k : o.kinds) params += object_kind_name(k) + std::string(",");
-  params += fmt::format("|r{}|s{}|a{}|fs{}|v{}|n{}|t{}|{}", fmt::join(o.resolutions, ","),
-                        fmt::join(o.sizes_px, ","), o.angle_step_deg, o.full_sphere, o.views,
-                        o.timing_instances, fmt::join(o.ssim_targets, ","),
-                        fmt::join(o.psnr_targets, ","));
-  if (o.samples > 1) params += fmt::format("|ms{}", o.samples);  // single-sampled keys as before
-  if (o.headings_deg != std::vector<double>{0.0})                // one heading: keys as before
-    params += fmt::format("|h{}", fmt::join(o.headings_deg, ","));
-  return model_source_key(model_file, m) + fmt::format("{:016x}", fnv1a(params));
-}
-
-}  // namespace terrasprite::cli
+}  // namespace terrasprite

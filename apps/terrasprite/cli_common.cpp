@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string_view>
 
@@ -145,25 +146,8 @@ void write_json(nlohmann::json j, const std::string& path) {
   report::write_json(j, path, output_policy());
 }
 
-TerrainInfo terrain_info(const Terrain& t) {
-  const Heightfield& h = t.heights;
-  return {h.name,      t.texture_name, h.width,        h.height,
-          h.spacing_x, h.spacing_y,    h.min_height(), h.max_height()};
-}
-
-nlohmann::json terrain_json(const TerrainInfo& t) {
-  return {{"name", t.name},
-          {"samples", {t.samples_x, t.samples_y}},
-          {"quads", {t.samples_x - 1, t.samples_y - 1}},
-          {"spacing_m", {t.spacing_x, t.spacing_y}},
-          {"extent_m", {(t.samples_x - 1) * t.spacing_x, (t.samples_y - 1) * t.spacing_y}},
-          {"height_min", t.height_min},
-          {"height_max", t.height_max},
-          {"texture", t.texture}};
-}
-
 nlohmann::json terrain_json(const Terrain& t) {
-  return terrain_json(terrain_info(t));
+  return report::terrain_json(terrain_info(t));
 }
 
 Progress::Progress(std::string label)
@@ -179,6 +163,22 @@ void Progress::operator()(int done, int total) {
 
 Progress::~Progress() {
   if (drawn_) fmt::print(stderr, "\n");
+}
+
+std::function<void(const char*, int, int)> stage_progress(std::string label) {
+  struct Bar {
+    std::string stage;
+    std::unique_ptr<Progress> bar;
+  };
+  auto state = std::make_shared<Bar>();
+  return [label = std::move(label), state](const char* stage, int done, int total) {
+    if (!state->bar || state->stage != stage) {
+      state->bar.reset();  // ends the previous stage's line
+      state->stage = stage;
+      state->bar = std::make_unique<Progress>(label + " " + stage);
+    }
+    (*state->bar)(done, total);
+  };
 }
 
 }  // namespace terrasprite::cli

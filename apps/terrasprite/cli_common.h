@@ -3,12 +3,15 @@
 #pragma once
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <functional>
 #include <string>
 #include <utility>
 
 #include "terrasprite/output/output_file.h"
+#include "terrasprite/experiment/terrain_info.h"
 #include "terrasprite/report/json_writer.h"
 #include "terrasprite/report/plot.h"
+#include "terrasprite/report/terrain_json.h"
 #include "terrasprite/terrain/terrain.h"
 
 namespace terrasprite::cli {
@@ -54,18 +57,13 @@ using report::number_or_null;
 using report::run_gnuplot;
 using report::write_text;
 
-/// What a report says of a terrain (a copy: it outlives the Terrain).
-struct TerrainInfo {
-  std::string name, texture;
-  int samples_x = 0, samples_y = 0;
-  double spacing_x = 0, spacing_y = 0;    ///< metres
-  double height_min = 0, height_max = 0;  ///< metres
-};
-TerrainInfo terrain_info(const Terrain& t);
-
-/// JSON description of a terrain: name, samples, quads, spacing_m, extent_m, heights.
-nlohmann::json terrain_json(const TerrainInfo& t);
+using report::terrain_json;
+/// JSON description of a terrain (report::terrain_json of its TerrainInfo).
 nlohmann::json terrain_json(const Terrain& t);
+
+/// A progress callback for a study that runs in stages: one Progress bar per
+/// stage, labelled "`label` STAGE", ended when the next stage starts.
+std::function<void(const char* stage, int done, int total)> stage_progress(std::string label);
 
 /// A one-line progress bar on stderr, drawn only when stderr is a terminal.
 class Progress {

@@ -55,7 +55,8 @@ TEST(RunLodsprite, FrameClassesAndKeyframesAgree) {
                                      [](const LodspriteFrame& f) { return f.key(); }));
   EXPECT_EQ(r.sprite.keyframes, keys);
   EXPECT_GE(keys, 1);
-  EXPECT_LE(keys, r.frames);
+  EXPECT_LT(keys, r.frames);  // the path is slow enough for sprite frames
+
   EXPECT_EQ(r.sprite.keyframes + r.sprite.sprite_frames, r.frames);
   EXPECT_DOUBLE_EQ(r.bound.f, double(keys) / r.frames);
   for (const LodspriteFrame& f : r.per_frame) {

@@ -10,7 +10,7 @@
 #include "terrasprite/output/video_writer.h"
 #include "terrasprite/report/lodsprite_json.h"
 #include "terrasprite/report/lodsprite_report.h"
-#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/terrain/png_writer.h"
 
 namespace terrasprite::cli {
 namespace {
@@ -78,11 +78,13 @@ void add_demo(CLI::App& app) {
     OutputDir out(o->out, output_policy());
     lodsprite::LodspriteOptions c = run_options(*o, w, h);
     VideoWriter video(out.file(c.video), w, h);  // the flight at 30 fps
+    PngWriter frames;  // encodes on its own thread while the next frames render
     c.on_sprite_frame = [&](int i, const Frame& f) {
-      save_png(f.color, out.file(fmt::format("frames/frame_{:04d}.png", i)));
+      frames.push(f.color, out.file(fmt::format("frames/frame_{:04d}.png", i)));
       video.push(f.color);
     };
     const lodsprite::LodspriteResult r = lodsprite::run_lodsprite(c, terrain);
+    frames.finish();
     video.finish();
     report::write_lodsprite_report(r, out);
     write_json(report::lodsprite_json(r), out.file("lodsprite.json"));

@@ -35,6 +35,8 @@ struct LodspriteOptions {
   double scale_per_drape_px = SpriteOptions{}.scale_per_drape_px;
   double sharp_px = 0.5;
   double key_margin = 0, key_supersample = 1;  ///< SpriteOptions::key_margin, key_supersample
+  /// The sweeps (paper Figs. 10-12): keyframe thresholds, frame counts along
+  /// the same path, coarse quads per side. An empty list skips that sweep.
   std::vector<double> thresholds = {0.25, 0.5, 1, 2, 4, 8};
   std::vector<int> frame_counts = {115, 230, 460, 920, 1840};
   std::vector<int> lod_sweep = {8, 16, 32, 64};

@@ -24,7 +24,8 @@ struct DemoOptions {
 };
 
 // The bench's run with lighter sweeps, and those only when asked for: the
-// main run alone gives the flight, Figs. 8-9 and 13-14 in well under a minute.
+// main run alone gives the flight and Figs. 8-9 and 13-14 (the sweeps' share:
+// docs/results/2026-12-07-demo-time.md).
 lodsprite::LodspriteOptions run_options(const DemoOptions& o, int w, int h) {
   lodsprite::LodspriteOptions c;
   c.frames = o.frames;

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "quality_test_util.h"
+#include "terrasprite/terrain/image_io.h"
 
 namespace terrasprite::quality {
 namespace {

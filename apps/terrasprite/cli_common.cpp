@@ -146,10 +146,6 @@ void write_json(nlohmann::json j, const std::string& path) {
   report::write_json(j, path, output_policy());
 }
 
-nlohmann::json terrain_json(const Terrain& t) {
-  return report::terrain_json(terrain_info(t));
-}
-
 Progress::Progress(std::string label)
     : label_(std::move(label)), tty_(isatty(STDERR_FILENO) == 1) {}
 

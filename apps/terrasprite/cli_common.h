@@ -8,7 +8,6 @@
 #include <utility>
 
 #include "terrasprite/output/output_file.h"
-#include "terrasprite/experiment/terrain_info.h"
 #include "terrasprite/report/json_writer.h"
 #include "terrasprite/report/plot.h"
 #include "terrasprite/report/terrain_json.h"
@@ -58,8 +57,6 @@ using report::run_gnuplot;
 using report::write_text;
 
 using report::terrain_json;
-/// JSON description of a terrain (report::terrain_json of its TerrainInfo).
-nlohmann::json terrain_json(const Terrain& t);
 
 /// A progress callback for a study that runs in stages: one Progress bar per
 /// stage, labelled "`label` STAGE", ended when the next stage starts.

@@ -9,20 +9,22 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <tuple>
 
 #include "cli_common.h"
 #include "commands.h"
-#include "process_memory.h"
+#include "terrasprite/common/process_memory.h"
 #include "render_modes.h"
 #include "scene_objects.h"
 #include "terrasprite/terrain/image_io.h"
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/common/error.h"
-#include "terrasprite/experiment/flythrough.h"
+#include "terrasprite/common/stats.h"
+#include "terrasprite/experiment/render_run.h"
+#include "terrasprite/experiment/render_stack.h"
 #include "terrasprite/output/output_dir.h"
 #include "terrasprite/output/output_file.h"
 #include "terrasprite/output/video_writer.h"
-#include "terrasprite/warp/warp_renderer.h"
 
 namespace terrasprite::cli {
 namespace {
@@ -58,13 +60,14 @@ struct RenderOpts {
 // The soak's figures: RSS every `every` frames, its peak, and the growth a
 // long run is judged by (least squares over the frames after the first 1,000,
 // once the renderers' caches and the allocator have settled).
-nlohmann::json memory_json(const MemoryCurve& m, int every, bool trim) {
+nlohmann::json memory_json(const RenderRunResult& r, int every, bool trim) {
+  const MemoryCurve& m = r.memory;
   nlohmann::json samples = nlohmann::json::array();
   for (auto [frame, mb] : m.samples) samples.push_back({frame, mb});
   return {{"sample_every", every},
           {"heap_trim", trim},
           {"trim_ms", m.trim_ms},
-          {"peak_rss_mb", peak_resident_mb()},
+          {"peak_rss_mb", r.peak_rss_mb},
           {"rss_mb_end", m.samples.back().second},
           {"growth_mb_per_10k_frames_after_1000", m.growth_per_10k(1000)},
           {"rss_mb", samples}};
@@ -104,144 +107,163 @@ void save_depth(const Frame& f, double m_per_unit, const std::string& file) {
   save_png16(v, f.width(), f.height(), file);
 }
 
-void run(const RenderOpts& o) {
-  // Validate everything before any output exists.
+// Everything checked before any output exists; throws InputError naming the option.
+struct Checked {
+  int w = 0, h = 0;
+  int first = 0, last = 0;  ///< the frames drawn, [first, last)
+  RenderMode mode = RenderMode::kFull;
+  std::optional<WarpMethod> warp;
+  CoarseMesh mesh = CoarseMesh::kUniform;
+};
+
+Checked check_options(const RenderOpts& o) {
   if (o.out.empty() && o.video.empty())
     throw InputError("--out: an output directory is required (or --video FILE.mp4)");
   if (o.out.empty() && (o.frames_png || o.depth))
     throw InputError("--out: --frames-png and --depth need an output directory");
-  auto [w, h] = parse_size(o.size, "--size");
+  Checked c;
+  std::tie(c.w, c.h) = parse_size(o.size, "--size");
   if (o.frames < 1 || o.frames > 1000000)
     throw InputError(fmt::format("--frames {}: must be between 1 and 1000000", o.frames));
-  const auto [first, last] = parse_frame_range(o.frame_range, o.frames);
+  std::tie(c.first, c.last) = parse_frame_range(o.frame_range, o.frames);
+  c.mode = parse_render_mode(o.mode);
   check_outputs(o.out, {o.json});
   check_video_target(o);
-  Terrain terrain = load_terrain_verbose(o.terrain);
-  std::vector<Camera> path = make_path(o.path, terrain.heights, o.frames, double(w) / h);
-  std::optional<WarpMethod> warp;
-  if (!o.warp.empty()) warp = parse_warp_method(o.warp);
+  return c;
+}
+
+// The options read once the terrain is loaded, in the order they are reported.
+RenderStackOptions stack_options(const RenderOpts& o, Checked& c) {
+  if (!o.warp.empty()) c.warp = parse_warp_method(o.warp);
   if (o.real_every < 1)
     throw InputError(fmt::format("--real-every {}: must be at least 1", o.real_every));
-  const CoarseMesh mesh = parse_mesh(o.mesh);
+  c.mesh = parse_mesh(o.mesh);
   check_mesh_triangles(o.mesh_triangles);
   if (!(o.warp_margin >= 0 && o.warp_margin <= 1))
     throw InputError(fmt::format("--warp-margin {}: must be within 0..1", o.warp_margin));
-  // With --warp the real renderer draws a margin around the image (a wider
-  // field of view at the same pixel density) that the warp can read.
-  const int mx = warp ? int(std::lround(o.warp_margin * w)) : 0;
-  const int my = warp ? int(std::lround(o.warp_margin * h)) : 0;
-  RenderStack stack = make_render_stack(o.mode, terrain, w + 2 * mx, h + 2 * my, o.lod_quads,
-                                        o.lighting, 1.0, nullptr, false, mesh, o.mesh_triangles);
-  const std::unique_ptr<ObjectSet> objects =
-      attach_objects(o.objects, terrain, stack.scene.get(), o.mode);
-  std::unique_ptr<WarpScheduler> scheduler;
-  if (warp) {
-    WarpScheduleOptions so;
-    so.real_every = o.real_every;
-    so.margin_x = mx;
-    so.margin_y = my;
-    so.warp.method = *warp;
-    scheduler = std::make_unique<WarpScheduler>(*stack.renderer, w, h, so);
-  }
-  Renderer& renderer = scheduler ? *scheduler : *stack.renderer;
-  double far_max = 1.0;
-  for (const Camera& c : path) far_max = std::max(far_max, c.far_m);
-  const double m_per_unit = far_max / 65534.0;
-  if (o.mode == "sprite" && first > 0)
-    fmt::print(stderr, "note: --frame-range {}: LOD-sprite starts the range with a keyframe\n",
-               o.frame_range);
+  RenderStackOptions so;
+  so.mode = c.mode;
+  so.width = c.w;
+  so.height = c.h;
+  so.lod_quads = o.lod_quads;
+  so.lighting = o.lighting;
+  so.sprite_mesh = c.mesh;
+  so.sprite_mesh_triangles = o.mesh_triangles;
+  so.warp = c.warp;
+  so.real_every = o.real_every;
+  so.warp_margin = o.warp_margin;
+  return so;
+}
 
+// Where the frames go: PNG frames, depth PNGs, the video.
+struct FrameSinks {
   std::optional<OutputDir> out;
-  if (!o.out.empty()) out.emplace(o.out, output_policy());
-  const bool png = !o.no_images && (o.video.empty() || o.frames_png);
   std::optional<VideoWriter> video;
+  bool png = false;
+  double m_per_unit = 1;  ///< depth PNG units
+};
+
+void open_sinks(const RenderOpts& o, const Checked& c, const std::vector<Camera>& path,
+                FrameSinks& s) {
+  double far_max = 1.0;
+  for (const Camera& cam : path) far_max = std::max(far_max, cam.far_m);
+  s.m_per_unit = far_max / 65534.0;
+  if (!o.out.empty()) s.out.emplace(o.out, output_policy());
+  s.png = !o.no_images && (o.video.empty() || o.frames_png);
   if (!o.video.empty()) {
-    video.emplace(o.video, w, h, o.video_opts);
-    if (video->padded())
+    s.video.emplace(o.video, c.w, c.h, o.video_opts);
+    if (s.video->padded())
       fmt::print(stderr, "note: --video {}: {}x{} padded to {}x{} (H.264 4:2:0 needs even sizes)\n",
-                 o.video, w, h, video->encoded_width(), video->encoded_height());
+                 o.video, c.w, c.h, s.video->encoded_width(), s.video->encoded_height());
   }
-  Progress progress("render");
-  const auto t0 = std::chrono::steady_clock::now();
-  // Per frame only what stats.json needs, packed (about 32 bytes a frame), so
-  // a long run's memory stays flat: the experiment keeps nothing itself.
-  struct Record {
-    int frame;
-    std::uint8_t cls;  // index into classes
-    double ms, gpu_ms;
-    long long triangles;
+}
+
+// Flies frames [first, last) of the path into the sinks; the wall time
+// includes finishing the video.
+RenderRunResult fly_frames(const RenderOpts& o, const Checked& c, Renderer& renderer,
+                           const std::vector<Camera>& path, FrameSinks& sinks, double& wall_ms) {
+  RenderRunOptions ro;
+  ro.first_frame = c.first;
+  ro.read = o.depth ? ReadBack::kColorDepth : ReadBack::kColor;
+  ro.memory_every = o.memory_every;
+  ro.heap_trim = o.heap_trim == "on";
+  ro.on_frame = [&](int i, const Frame& f) {
+    if (sinks.png) save_png(f.color, sinks.out->file(fmt::format("frame_{:04d}.png", i)));
+    if (o.depth)
+      save_depth(f, sinks.m_per_unit, sinks.out->file(fmt::format("depth_{:04d}.png", i)));
+    if (sinks.video) sinks.video->push(f.color);
   };
-  std::vector<std::string> classes;
-  std::vector<Record> records;
-  std::vector<double> ms;
-  // Every memory_every frames, outside the timed spans: hand freed heap pages
-  // back (see release_free_heap) and sample RSS, so stats.json carries the
-  // run's memory curve.
-  const bool trim = o.heap_trim == "on";
-  MemoryCurve memory;
-  memory.samples.emplace_back(0, resident_mb());
-  fly(
-      renderer, std::span(path).subspan(first, last - first),
-      o.depth ? ReadBack::kColorDepth : ReadBack::kColor,
-      [&](int local, const Frame& f) {
-        const int i = first + local;
-        if (png) save_png(f.color, out->file(fmt::format("frame_{:04d}.png", i)));
-        if (o.depth) save_depth(f, m_per_unit, out->file(fmt::format("depth_{:04d}.png", i)));
-        if (video) video->push(f.color);
-      },
-      [&](const FrameStats& s) {
-        auto c = std::find(classes.begin(), classes.end(), s.cls);
-        if (c == classes.end()) c = classes.insert(c, s.cls);
-        records.push_back(
-            {first + s.frame, std::uint8_t(c - classes.begin()), s.ms, s.gpu_ms, s.triangles});
-        ms.push_back(s.ms);
-        const int done = int(records.size());
-        if (done % o.memory_every == 0) {
-          if (trim) memory.trim_ms += release_free_heap();
-          memory.samples.emplace_back(done, resident_mb());
-        }
-      },
-      std::ref(progress));
-  if (video) video->finish();
-  const double wall_ms =
+  Progress progress("render");
+  ro.progress = std::ref(progress);
+  const auto t0 = std::chrono::steady_clock::now();
+  RenderRunResult r =
+      run_render(renderer, std::span(path).subspan(c.first, c.last - c.first), ro);
+  if (sinks.video) sinks.video->finish();
+  wall_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+nlohmann::json stats_json(const RenderOpts& o, const Checked& c, const RenderStack& stack,
+                          const Terrain& terrain, const RenderRunResult& run, double wall_ms,
+                          const FrameSinks& sinks) {
   nlohmann::json frames = nlohmann::json::array();
-  for (const Record& s : records)
+  for (const RenderFrameRecord& s : run.frames)
     frames.push_back({{"frame", s.frame},
-                      {"class", classes[s.cls]},
+                      {"class", run.classes[s.cls]},
                       {"ms", s.ms},
                       {"gpu_ms", s.gpu_ms},
                       {"triangles", s.triangles}});
-  nlohmann::json j = {{"gl_renderer", stack.device},
-                      {"mode", o.mode},
-                      {"warp", warp ? nlohmann::json(to_string(*warp)) : nlohmann::json(nullptr)},
-                      {"real_every", warp ? o.real_every : 1},
-                      {"warp_margin_px", {mx, my}},
-                      {"size", {w, h}},
-                      {"terrain", terrain_json(terrain)},
-                      {"path", o.path},
-                      {"median_ms", median(ms)},
-                      {"wall_ms", wall_ms},
-                      {"frame_range", {first, last}},
-                      {"memory", memory_json(memory, o.memory_every, trim)},
-                      {"frames", frames}};
-  if (o.depth) j["depth_m_per_unit"] = m_per_unit;
-  if (video)
+  nlohmann::json j = {
+      {"gl_renderer", stack.device},
+      {"mode", to_string(c.mode)},
+      {"warp", c.warp ? nlohmann::json(to_string(*c.warp)) : nlohmann::json(nullptr)},
+      {"real_every", c.warp ? o.real_every : 1},
+      {"warp_margin_px", {stack.margin_x, stack.margin_y}},
+      {"size", {c.w, c.h}},
+      {"terrain", terrain_json(terrain)},
+      {"path", o.path},
+      {"median_ms", run.median_ms},
+      {"wall_ms", wall_ms},
+      {"frame_range", {c.first, c.last}},
+      {"memory", memory_json(run, o.memory_every, o.heap_trim == "on")},
+      {"frames", frames}};
+  if (o.depth) j["depth_m_per_unit"] = sinks.m_per_unit;
+  if (sinks.video)
     j["video"] = {{"file", o.video},
-                  {"frames", video->frames()},
+                  {"frames", sinks.video->frames()},
                   {"fps", o.video_opts.fps},
                   {"crf", o.video_opts.crf},
                   {"preset", o.video_opts.preset},
-                  {"size", {video->encoded_width(), video->encoded_height()}},
-                  {"padded", video->padded()}};
-  if (out) {
-    write_json(j, out->file("stats.json"));  // JSON last: the directory is complete
-    out->commit();
+                  {"size", {sinks.video->encoded_width(), sinks.video->encoded_height()}},
+                  {"padded", sinks.video->padded()}};
+  return j;
+}
+
+void run(const RenderOpts& o) {
+  Checked c = check_options(o);
+  Terrain terrain = load_terrain_verbose(o.terrain);
+  std::vector<Camera> path = make_path(o.path, terrain.heights, o.frames, double(c.w) / c.h);
+  const RenderStackOptions so = stack_options(o, c);
+  RenderStack stack = make_render_stack(terrain, so);
+  const std::unique_ptr<ObjectSet> objects =
+      attach_objects(o.objects, terrain, stack.scene.get(), to_string(c.mode));
+  if (c.mode == RenderMode::kSprite && c.first > 0)
+    fmt::print(stderr, "note: --frame-range {}: LOD-sprite starts the range with a keyframe\n",
+               o.frame_range);
+  FrameSinks sinks;
+  open_sinks(o, c, path, sinks);
+  double wall_ms = 0;
+  const RenderRunResult run = fly_frames(o, c, stack.renderer(), path, sinks, wall_ms);
+  const nlohmann::json j = stats_json(o, c, stack, terrain, run, wall_ms, sinks);
+  if (sinks.out) {
+    write_json(j, sinks.out->file("stats.json"));  // JSON last: the directory is complete
+    sinks.out->commit();
   }
   if (!o.json.empty()) write_json(j, o.json);
   fmt::print("{}: {} frames {}x{} ({}), median {:.2f} ms/frame, {:.0f} ms in all on {} -> {}\n",
-             o.mode, records.size(), w, h, terrain.heights.name, median(ms), wall_ms, stack.device,
-             out ? out->final_path().string() : o.video);
+             o.mode, run.frames.size(), c.w, c.h, terrain.heights.name, run.median_ms, wall_ms,
+             stack.device, sinks.out ? sinks.out->final_path().string() : o.video);
 }
 
 }  // namespace
@@ -251,7 +273,7 @@ void add_render(CLI::App& app) {
                                  "render a camera path with one renderer: PNG frames + stats JSON");
   auto o = std::make_shared<RenderOpts>();
   add_terrain_options(*cmd, o->terrain);
-  cmd->add_option("--mode", o->mode, "renderer")->check(CLI::IsMember(render_modes()));
+  cmd->add_option("--mode", o->mode, "renderer")->check(CLI::IsMember(render_mode_names()));
   cmd->add_option("--lod-quads", o->lod_quads,
                   "coarse grid quads per side for lod modes (default 16)");
   cmd->add_option("--mesh", o->mesh,

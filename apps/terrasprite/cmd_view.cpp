@@ -10,13 +10,12 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "render_modes.h"
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/common/error.h"
+#include "terrasprite/experiment/render_stack.h"
 #include "terrasprite/sprite/sprite_renderer.h"
 #include "terrasprite/voxel/voxel_renderer.h"
 #include "terrasprite/warp/warp.h"
-#include "terrasprite/warp/warp_renderer.h"
 #include "viewer/viewer.h"
 
 namespace terrasprite::cli {
@@ -31,51 +30,23 @@ struct ViewOpts {
   bool sync_keyframes = false;  ///< sprite: keyframes drawn in the frame (no second thread)
 };
 
-/// The voxel mode: the ray caster at the panel's pixel-to-voxel ratio,
-/// optionally every n-th frame real and the others warped (Cohen-Or et al.'s
-/// video-rate scheme). The pyramid is built once per run and shared by every
-/// voxel renderer the panel's settings create.
-class VoxelViewRenderer : public viewer::ViewRenderer {
- public:
-  VoxelViewRenderer(const VoxelTerrain& pyramid, const viewer::LiveSettings& s, int w, int h) {
-    VoxelOptions vo;
-    vo.pixel_voxel_ratio = s.voxel_ratio;
-    std::optional<WarpMethod> warp;
-    if (s.warp != "none") warp = parse_warp_method(s.warp);
-    const int mx = warp ? int(std::lround(kWarpMargin * w)) : 0;
-    const int my = warp ? int(std::lround(kWarpMargin * h)) : 0;
-    voxel_ = std::make_unique<VoxelRenderer>(pyramid, w + 2 * mx, h + 2 * my, vo);
-    if (warp) {
-      WarpScheduleOptions so;
-      so.real_every = std::max(1, s.real_every);
-      so.margin_x = mx;
-      so.margin_y = my;
-      so.warp.method = *warp;
-      warp_ = std::make_unique<WarpScheduler>(*voxel_, w, h, so);
-    }
-    device_ = fmt::format(
-        "cpu voxel {}, ratio {:.2f}{}", to_string(voxel_->options().variant), s.voxel_ratio,
-        warp ? fmt::format(", {} warp, real every {}", s.warp, s.real_every) : std::string());
-  }
-  Renderer& renderer() override { return warp_ ? *warp_ : static_cast<Renderer&>(*voxel_); }
-  std::string device() const override { return device_; }
-
- private:
-  static constexpr double kWarpMargin = 0.05;  // as render --warp-margin's default
-  std::unique_ptr<VoxelRenderer> voxel_;
-  std::unique_ptr<WarpScheduler> warp_;
-  std::string device_;
-};
-
-/// One --mode's renderer stack, built on the viewer's render thread.
+/// One --mode's renderer stack, built on the viewer's render thread. The
+/// voxel mode runs the ray caster at the panel's pixel-to-voxel ratio,
+/// optionally every n-th frame real and the others warped, over pyramids
+/// built once per run and shared by every stack the panel's settings create.
 class StackRenderer : public viewer::ViewRenderer {
  public:
-  StackRenderer(const Terrain& t, const viewer::LiveSettings& s, int w, int h, bool lighting,
-                bool async_keyframes, GlContext* context)
-      : stack_(make_render_stack(s.mode, t, w, h, s.lod_quads, lighting, s.threshold_px, context,
-                                 async_keyframes)),
-        sprite_(dynamic_cast<SpriteRenderer*>(stack_.renderer.get())) {}
-  Renderer& renderer() override { return *stack_.renderer; }
+  StackRenderer(const Terrain& t, const RenderStackOptions& o)
+      : stack_(make_render_stack(t, o)),
+        sprite_(dynamic_cast<SpriteRenderer*>(stack_.real.get())) {
+    if (o.mode == RenderMode::kVoxel)
+      stack_.device = fmt::format(
+          "cpu voxel {}, ratio {:.2f}{}",
+          to_string(static_cast<VoxelRenderer&>(*stack_.real).options().variant), o.voxel_ratio,
+          o.warp ? fmt::format(", {} warp, real every {}", to_string(*o.warp), o.real_every)
+                 : std::string());
+  }
+  Renderer& renderer() override { return stack_.renderer(); }
   std::string device() const override { return stack_.device; }
   double error_px() const override {
     return sprite_ ? sprite_->last_error().value(sprite_->options().metric) : -1;
@@ -90,6 +61,30 @@ class StackRenderer : public viewer::ViewRenderer {
   RenderStack stack_;
   SpriteRenderer* sprite_;
 };
+
+/// The stack options of the panel's settings `s`: GL modes draw in `context`
+/// (may be null), voxel over the shared `pyramid`.
+RenderStackOptions stack_options(const viewer::LiveSettings& s, int w, int h, bool lighting,
+                                 bool async_keyframes, GlContext* context,
+                                 const VoxelTerrain* pyramid) {
+  RenderStackOptions o;
+  o.mode = s.mode;
+  o.width = w;
+  o.height = h;
+  if (s.mode == RenderMode::kVoxel) {
+    o.voxel_ratio = s.voxel_ratio;
+    o.voxels = pyramid;
+    if (s.warp != "none") o.warp = parse_warp_method(s.warp);
+    o.real_every = std::max(1, s.real_every);
+    return o;
+  }
+  o.lod_quads = s.lod_quads;
+  o.lighting = lighting;
+  o.sprite_threshold_px = s.threshold_px;
+  o.context = context;
+  o.async_keyframes = async_keyframes;
+  return o;
+}
 
 /// The first view: from half the extent south, a tenth of the extent above the
 /// highest point, looking north at the terrain centre's lowest level.
@@ -132,17 +127,16 @@ void run(ViewOpts& o) {
       [&terrain, w, h, lighting, async_keyframes, pyramid = std::shared_ptr<VoxelTerrain>()](
           const viewer::LiveSettings& s,
           GlContext* context) mutable -> std::unique_ptr<viewer::ViewRenderer> {
-        if (s.mode == "voxel") {
-          if (!pyramid) pyramid = std::make_shared<VoxelTerrain>(terrain);
-          return std::make_unique<VoxelViewRenderer>(*pyramid, s, w, h);
-        }
-        return std::make_unique<StackRenderer>(terrain, s, w, h, lighting, async_keyframes,
-                                               context);
+        if (s.mode == RenderMode::kVoxel && !pyramid)
+          pyramid = std::make_shared<VoxelTerrain>(terrain);
+        return std::make_unique<StackRenderer>(
+            terrain,
+            stack_options(s, w, h, lighting, async_keyframes, context, pyramid.get()));
       });
   nlohmann::json j = viewer::stats_json(stats);
   if (!o.stats.empty()) write_json(j, o.stats);
   fmt::print("view {}: {} frames, median {:.1f} fps, 1% low {:.1f} fps, latency p95 {:.0f} ms\n",
-             stats.mode, stats.frames, double(j["fps_median"]), double(j["fps_low_1pct"]),
+             to_string(stats.mode), stats.frames, double(j["fps_median"]), double(j["fps_low_1pct"]),
              double(j["latency_ms_p95"]));
 }
 
@@ -153,8 +147,10 @@ void add_view(CLI::App& app) {
       "view", "fly the terrain in a window (F1: keys); --script for measured, scripted runs");
   auto o = std::make_shared<ViewOpts>();
   add_terrain_options(*cmd, o->terrain);
-  cmd->add_option("--mode", o->viewer.settings.mode, "renderer, switchable live (default sprite)")
-      ->check(CLI::IsMember(render_modes()));
+  cmd->add_option_function<std::string>(
+         "--mode", [o](const std::string& m) { o->viewer.settings.mode = parse_render_mode(m); },
+         "renderer, switchable live (default sprite)")
+      ->check(CLI::IsMember(render_mode_names()));
   cmd->add_option("--size", o->size, "window and render size WxH (default 1280x720)");
   cmd->add_option("--lod-quads", o->viewer.settings.lod_quads, "coarse grid quads (default 16)");
   cmd->add_option("--threshold", o->viewer.settings.threshold_px,

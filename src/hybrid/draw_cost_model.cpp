@@ -222,10 +222,6 @@ double DrawCostModel::kind_ms(const FrameLoad& load, ObjectKind kind) const {
   return ms;
 }
 
-double DrawCostModel::pixel_multiplier(ObjectKind kind) const {
-  return m(3 + 3 * int(kind));
-}
-
 void DrawCostModel::reset_prior() {
   // The unknowns are multipliers on the calibrated contributions (1 = as
   // calibrated), so every unknown has the same scale whatever its unit.

@@ -7,12 +7,8 @@
 // quality lowered within the frame when the impostors would not fit.
 #include "terrasprite/hybrid/representation_selection.h"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cmath>
-
-#include "terrasprite/common/error.h"
 
 namespace terrasprite {
 namespace {
@@ -138,16 +134,6 @@ FrameSelection paper_selection(std::span<const InstanceOptions> instances, doubl
 }
 
 }  // namespace
-
-SelectionPolicy parse_selection_policy(const std::string& text, const char* option) {
-  if (text == "static") return SelectionPolicy::kStatic;
-  if (text == "greedy") return SelectionPolicy::kGreedy;
-  if (text == "paper") return SelectionPolicy::kPaper;
-  if (text == "optimal") return SelectionPolicy::kOptimal;
-  if (text == "ibr") return SelectionPolicy::kImpostorOnly;
-  throw InputError(
-      fmt::format("{} '{}': expected static, greedy, paper, optimal or ibr", option, text));
-}
 
 const char* selection_policy_name(SelectionPolicy policy) {
   switch (policy) {

@@ -16,4 +16,8 @@ nlohmann::json terrain_json(const TerrainInfo& t) {
           {"texture", t.texture}};
 }
 
+nlohmann::json terrain_json(const Terrain& t) {
+  return terrain_json(terrain_info(t));
+}
+
 }  // namespace terrasprite::report

@@ -10,7 +10,6 @@ namespace terrasprite::viewer {
 
 namespace {
 
-constexpr std::array kModes = {"full", "lod", "sprite", "voxel"};
 constexpr std::array kWarps = {"none", "poly2", "depth"};
 
 // Bars of frame time, keyframes in orange, with the 33 ms (30 fps) and 100 ms lines.
@@ -47,15 +46,18 @@ PanelActions draw_panel(const PanelInfo& info, LiveSettings& settings) {
   ImGui::Text("%lld triangles", info.triangles);
   if (info.building)
     ImGui::TextColored(ImVec4(1, .8f, .3f, 1), "building the %s renderer...",
-                       settings.mode.c_str());
+                       to_string(settings.mode));
   else if (info.stale_ms > 100)
     ImGui::TextColored(ImVec4(1, .8f, .3f, 1), "rendering: showing the last frame (%.0f ms old)",
                        info.stale_ms);
   frame_graph(info.history);
-  int mode = int(std::find(kModes.begin(), kModes.end(), settings.mode) - kModes.begin());
-  if (ImGui::Combo("mode (1-4)", &mode, kModes.data(), int(kModes.size())))
-    settings.mode = kModes[std::size_t(mode)];
-  if (settings.mode == "sprite") {
+  std::array<const char*, kRenderModes.size()> names;
+  for (std::size_t i = 0; i < names.size(); ++i) names[i] = to_string(kRenderModes[i]);
+  int mode = int(std::find(kRenderModes.begin(), kRenderModes.end(), settings.mode) -
+                 kRenderModes.begin());
+  if (ImGui::Combo("mode (1-4)", &mode, names.data(), int(names.size())))
+    settings.mode = kRenderModes[std::size_t(mode)];
+  if (settings.mode == RenderMode::kSprite) {
     ImGui::Text("sprite error %.2f px", info.error_px);
     if (const auto& k = info.keyframes) {
       // The second thread's keyframes: how many, how late, what each costs there.
@@ -68,9 +70,9 @@ PanelActions draw_panel(const PanelInfo& info, LiveSettings& settings) {
     if (ImGui::SliderFloat("threshold px", &th, 0.25f, 8.f, "%.2f", ImGuiSliderFlags_Logarithmic))
       settings.threshold_px = th;
   }
-  if (settings.mode == "sprite" || settings.mode == "lod")
+  if (settings.mode == RenderMode::kSprite || settings.mode == RenderMode::kLod)
     ImGui::SliderInt("coarse quads", &settings.lod_quads, 4, 128);
-  if (settings.mode == "voxel") {
+  if (settings.mode == RenderMode::kVoxel) {
     float ratio = float(settings.voxel_ratio);
     if (ImGui::SliderFloat("pixel/voxel ratio", &ratio, 0.5f, 8.f, "%.2f",
                            ImGuiSliderFlags_Logarithmic))
@@ -85,7 +87,7 @@ PanelActions draw_panel(const PanelInfo& info, LiveSettings& settings) {
     ImGui::SameLine();
     act.toggle_difference =
         ImGui::Button(info.show_difference ? "show frames" : "show difference (F4)");
-    ImGui::Text("%s vs full: PSNR %.2f dB  SSIM %.4f  FLIP %.4f", info.compared_mode.c_str(),
+    ImGui::Text("%s vs full: PSNR %.2f dB  SSIM %.4f  FLIP %.4f", to_string(info.compared_mode),
                 info.psnr, info.ssim, info.flip);
   }
   ImGui::Separator();

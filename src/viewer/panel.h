@@ -37,7 +37,7 @@ struct PanelInfo {
   /// The last "compare" (figures only; the image stays with the loop).
   bool compared = false, comparing = false;
   double psnr = 0, ssim = 0, flip = 0;
-  std::string compared_mode;
+  RenderMode compared_mode = RenderMode::kFull;
   bool show_difference = false;  ///< the window shows the difference image
 };
 

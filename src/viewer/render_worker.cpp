@@ -90,7 +90,7 @@ Comparison RenderWorker::compare(ViewRenderer& r, RenderedFrame& shown, const Ca
                                  std::unique_ptr<ViewRenderer>& reference, GlContext* context) {
   if (!reference) {
     LiveSettings full;
-    full.mode = "full";
+    full.mode = RenderMode::kFull;
     reference = factory_(full, context);
   }
   Frame test = shown.frame;

@@ -27,14 +27,15 @@
 #include "terrasprite/gl/gl_context.h"
 #include "terrasprite/common/image.h"
 #include "terrasprite/camera/renderer.h"
+#include "terrasprite/experiment/render_mode.h"
 #include "terrasprite/sprite/sprite_renderer.h"
 
 namespace terrasprite::viewer {
 
 /// What the panel can change live.
 struct LiveSettings {
-  std::string mode = "sprite";  ///< full | lod | sprite | voxel
-  double threshold_px = 1.0;    ///< LOD-sprite keyframe threshold
+  RenderMode mode = RenderMode::kSprite;
+  double threshold_px = 1.0;  ///< LOD-sprite keyframe threshold
   int lod_quads = 16;           ///< coarse grid of lod and sprite
   double voxel_ratio = 1.0;     ///< voxel: pixel-to-voxel ratio of the multires traversal
   std::string warp = "none";    ///< voxel: none | poly2 | depth (frames between real ones warped)
@@ -46,7 +47,7 @@ struct LiveSettings {
 /// panel's "compare"): figures and the amplified difference image.
 struct Comparison {
   double psnr = 0, ssim = 0, flip = 0;
-  std::string mode;  ///< the renderer compared
+  RenderMode mode = RenderMode::kFull;  ///< the renderer compared
   Image difference;  ///< |full - frame| x 4 per channel, rows top-down
 };
 

@@ -23,9 +23,9 @@ nlohmann::json stats_json(const RunStats& s) {
   auto rate = [](double ms) { return ms > 0 ? 1000.0 / ms : 0.0; };
   nlohmann::json compared = nlohmann::json::array();
   for (const auto& c : s.comparisons)
-    compared.push_back({{"mode", c.mode}, {"psnr", c.psnr}, {"ssim", c.ssim}, {"flip", c.flip}});
+    compared.push_back({{"mode", to_string(c.mode)}, {"psnr", c.psnr}, {"ssim", c.ssim}, {"flip", c.flip}});
   return {
-      {"mode", s.mode},
+      {"mode", to_string(s.mode)},
       {"size", {s.width, s.height}},
       {"frames", s.frames},
       {"fps_median", rate(p50)},

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "terrasprite/camera/camera.h"
+#include "terrasprite/experiment/render_mode.h"
 
 namespace terrasprite::viewer {
 
@@ -17,7 +18,7 @@ struct EventLatency {
 };
 
 struct RunStats {
-  std::string mode;
+  RenderMode mode = RenderMode::kSprite;
   int width = 0, height = 0;
   int frames = 0;                 ///< swaps showing a newly rendered frame
   std::vector<double> frame_ms;   ///< intervals between swaps showing newly rendered frames
@@ -29,7 +30,7 @@ struct RunStats {
   /// The keyframe worker's wall time for each landed keyframe, ms (sharing the cores).
   std::vector<double> keyframe_ms;
   struct Compared {
-    std::string mode;
+    RenderMode mode = RenderMode::kFull;
     double psnr = 0, ssim = 0, flip = 0;
   };
   std::vector<Compared> comparisons;  ///< every "compare" (F3) of the run, in order

@@ -200,16 +200,16 @@ void Loop::handle(const ArrivedEvent& a) {
         act({.play = true});
         return;
       case GLFW_KEY_1:
-        settings_.mode = "full";
+        settings_.mode = RenderMode::kFull;
         return;
       case GLFW_KEY_2:
-        settings_.mode = "lod";
+        settings_.mode = RenderMode::kLod;
         return;
       case GLFW_KEY_3:
-        settings_.mode = "sprite";
+        settings_.mode = RenderMode::kSprite;
         return;
       case GLFW_KEY_4:
-        settings_.mode = "voxel";
+        settings_.mode = RenderMode::kVoxel;
         return;
       default:
         break;
@@ -263,7 +263,7 @@ void Loop::present(std::optional<RenderedFrame>& f, Clock::time_point now) {
     info_.flip = c.flip;
     info_.compared_mode = c.mode;
     info_.message = fmt::format("compared {} with full: PSNR {:.2f} dB, SSIM {:.4f}, FLIP {:.4f}",
-                                c.mode, c.psnr, c.ssim, c.flip);
+                                to_string(c.mode), c.psnr, c.ssim, c.flip);
     stats_.comparisons.push_back({c.mode, c.psnr, c.ssim, c.flip});
     difference_ = std::move(f->comparison->difference);
     if (info_.show_difference) view_.upload(*difference_);

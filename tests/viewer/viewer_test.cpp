@@ -162,7 +162,7 @@ TEST(FlyController, StaysNearTheTerrainAndOrbitsAPickedPoint) {
 
 TEST(RunStats, KeysAndRatesFromNearestRankFrameTimes) {
   RunStats s;
-  s.mode = "lod";
+  s.mode = RenderMode::kLod;
   s.frames = 3;
   s.frame_ms = {20, 40};
   s.events = {{0.5, 30}, {1.0, -1}};

@@ -3,6 +3,7 @@
 // milliseconds; this loop sets that budget from the cost model's prediction
 // corrected by the measured frame time (a PI loop on the budget), and keeps
 // one surprising frame (a keyframe, an impostor build) from throwing it off.
+// The defaults' figures: docs/results/2026-12-07-hybrid-defaults.md
 #pragma once
 #include <deque>
 
@@ -19,12 +20,9 @@ struct BudgetControllerOptions {
   /// domain, standard deviation): the weight of the newest frame is the
   /// steady-state gain of a Kalman filter following such a random walk
   /// through the frames' own noise (the robust spread of the residuals
-  /// below, once 8 are in), capped at `ratio_smoothing`. At 2% noise the
-  /// cap holds (a step in load is followed within 4 frames); at the quiet
-  /// walkthrough's 25% the weight is about 0.2: at 0.6 the budget followed
-  /// the noise (a fast frame raised the next budget, which made it slow;
-  /// budgets moved 14% frame to frame and checkpoints fell on budgets half
-  /// the median's).
+  /// below, once 8 are in), capped at `ratio_smoothing`. Quiet frames
+  /// follow a step in load within a few frames; noisy ones get a small
+  /// weight, so that one fast frame does not raise the next budget.
   double drift = 0.05;
   /// A frame whose measured/predicted ratio is this many times over (or
   /// under) the smoothed one is a one-off surprise: it neither moves the
@@ -34,11 +32,8 @@ struct BudgetControllerOptions {
   double integral_limit = 0.5;  ///< anti-windup, relative
   /// Anti-windup for frames with nothing more to draw: a frame predicted
   /// under this fraction of its budget (its selection left the rest over)
-  /// does not raise the integral. Without it, 20 such frames at the
-  /// walkthrough's D wound an 18 ms target's budget up to 28 ms, and the
-  /// next full frames ran 22-25 ms: 16 of 88 default series of stops 24-25
-  /// had their p95 over +10%, and `bench replay-controller`, which models
-  /// such frames, reproduced that (replayed: 1 of 88 with this guard).
+  /// does not raise the integral, which would otherwise grow the budget
+  /// past what the next full frames can be drawn in.
   double spent_fraction = 0.9;
   /// Until `quantile` (below) takes over, the loop aims the median frame
   /// below the target by the frame-to-frame noise of measured/predicted
@@ -52,7 +47,7 @@ struct BudgetControllerOptions {
   double tolerance = 1.05;
   int spread_window = 15;
   /// Until `prior_changes` successive changes are in, sigma is taken as
-  /// `prior_noise` (this machine's walkthroughs: 0.17-0.30).
+  /// `prior_noise`, so the first frames keep a margin too.
   double prior_noise = 0.25;
   int prior_changes = 3;
   /// Once `quantile_min_frames` spreads are in, the setpoint comes from the
@@ -61,64 +56,30 @@ struct BudgetControllerOptions {
   /// frames' spread over the last `quantile_window` frames (surprises
   /// included: they are the tail), se that sample quantile's standard error
   /// (from the spread's robust sigma). A walkthrough's frame times are not
-  /// log-normal: their tail is heavier than the median change says, and the
-  /// sigma setpoint left the p95 at +36% of a 10 ms target.
+  /// log-normal: their tail is heavier than the median change says.
   ///
   /// The spread is each frame's log(measured / predicted) less the median of
   /// the `2 centre_half_width + 1` frames around it (known that many frames
   /// late), so a step in the machine's pace is followed by the ratio and not
   /// taken as spread for a window. The margin is there because a sample
   /// quantile is a noisy estimate and a low one costs more than a high one
-  /// earns. `bench replay-controller` on 136 recorded walkthrough
-  /// series: aimed at exactly +10% (tolerance 1.1, no margin), 4% of them
-  /// held +10% (p95 median +17%; the loop before this spread: 3% of 94);
-  /// with margin 2 and tolerance 1.05, 76% (median +5%) for 14% less
-  /// budget; with `prior_noise` as well, margin 1.5 holds 82% (median +4%)
-  /// for 13% less, and margin 2 86%. Live, margin 2 without the prior held
-  /// 18 of 22 pm and mixed-optimal walkthroughs (1 of 22 before) and cost
-  /// 0.07 of mean object SSIM; margin 1.5 held 12 of 14 within 0.03 of
-  /// the old loop's object SSIM (issue 11's note). With occlusion culling
-  /// (a depth read-back a frame) the p95 sat higher: replayed on its 34
-  /// series, margin 1.5 held 32 (worst +11.6%), margin 2 all 34 (worst
-  /// +9.8%) for 1.9% less budget; live, 4 of 4 mixed-optimal walkthroughs
-  /// against 3 of 4. With back faces culled (single-sided materials) the
-  /// p95 sat higher again at a 10 ms target: margin 2 held 11 of 13 mixed
-  /// and 12 of 13 mixed-optimal walkthroughs (worst +12.7%), margin 2.5 all
-  /// 7 of each (worst +3%) and all 8 at the auto target; replayed on 28 pm
-  /// and mixed-optimal series, 2.5 gives 1.7% less budget than 2. Much of
-  /// that tail was windup (see `spent_fraction`): with it, and the replay
-  /// modelling frames that left budget over, margin 2 held 98% of 88 default
-  /// series of stops 24-25 for 0.760 T of budget (2.5: 99%, 0.746 T; the
-  /// loop before, margin 2.5: 82%, 0.765 T); live, 4 interleaved pairs at
-  /// 18 ms held 12 of 12 pm, mixed and mixed-optimal p95s (worst +8.2%)
-  /// against 10 of 12 (worst +16.8%), budget 0.82 T against 0.81 T.
+  /// earns.
   double quantile = 0.95;
-  /// The window is 160 frames and the tail waits for 40 (it was 40 and 10).
-  /// A 95th percentile of 10 frames is their largest, with a wide margin:
-  /// it cut the budget under the sigma setpoint's in the walk's first 40
-  /// frames (checkpoint B). And three slow frames in a row (this host, a
-  /// few times a walk) made a 40-frame window's 95th percentile for the next
-  /// 40 frames, the objects' budget held at 0.65-0.75 of the target to E;
-  /// three in 160 are under 5%. Replayed on 168 recorded series (stop 46's),
-  /// checkpoint budgets under 0.9 of the target fell from 24 series to 4,
-  /// frames under 0.85 from 8.1% to 6.2%, the p95 held in 167 as before. Live,
-  /// 9 interleaved pairs of the default walkthrough: every p95 held in both
-  /// arms (worst +6.5% against +7.1%), frames budgeted under 0.85 of the
-  /// target 2.7-3.5% against 4.4-5.6%, and object SSIM at B 0.9786-0.9803
-  /// against 0.9736-0.9756 (pm, mixed, mixed-optimal), mixed-optimal at
-  /// 0.97 or more at all five checkpoints in 9 of 9 runs against 8 of 9.
+  /// Frames in the tail's window. Long enough that a few slow frames in a
+  /// row stay under 1 - `quantile` of it (a short window would hold the
+  /// budget down for as long as they are in it).
   int quantile_window = 160;
   /// The tail takes over from sigma once this many spread values are in
   /// (at most `quantile_window`): a q-quantile wants 2 / (1 - q) samples,
-  /// two of them in the tail.
+  /// two of them in the tail; fewer make it the window's largest value.
   int quantile_min_frames = 40;
   /// Frames whose residuals give the ratio's noise (see `drift`).
   int residual_window = 40;
   int centre_half_width = 3;     ///< at least 1 (0 is taken as 1)
   double quantile_margin = 2.0;  ///< standard errors of the sample quantile
-  /// Neither setpoint goes under this fraction of the target: on a machine
-  /// shared with builds (frames 5x their expected time, one in ten) no
-  /// selection holds the p95, and aiming for it starves every frame.
+  /// Neither setpoint goes under this fraction of the target: where frames
+  /// often run several times their expected time (a machine shared with
+  /// builds) no selection holds the p95, and aiming for it starves every frame.
   double min_setpoint = 0.5;
 };
 

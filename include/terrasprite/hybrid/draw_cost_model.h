@@ -3,6 +3,7 @@
 // per-instance, a per-triangle and a per-pixel term, plus a fixed per-frame
 // term (the terrain). Calibrated from measured draws, refit online from
 // measured frame times.
+// The defaults' figures: docs/results/2026-12-07-hybrid-defaults.md
 #pragma once
 #include <array>
 #include <map>
@@ -65,9 +66,8 @@ struct FrameLoad {
   /// predict() and frame_ms() as it is, and taken off the measured time
   /// before the refit, which never scales it. With occlusion culling the
   /// read-back waits for the terrain's rasterisation, whose time varies
-  /// with the view and the machine's pace (2-12 ms a frame here); frame
-  /// time less its prediction followed it (r = 0.64), and what is known
-  /// before the selection need not be noise to the controller.
+  /// with the view and the machine's pace; what is known before the
+  /// selection need not be noise to the controller.
   double known_extra_ms = 0;
 };
 
@@ -88,11 +88,8 @@ struct CostModelOptions {
   double spread_retention = 0.95;
   /// Per impostor kind, an extra cost per instance drawn, learnt from the
   /// frames only (prior 0, standard deviation `impostor_extra_prior_ms`,
-  /// never negative). An impostor costs more inside a frame than calibrated
-  /// alone: over 1705 walkthrough frames, frame time less its prediction
-  /// grew by 0.117 ms per relief and 0.035 ms per octahedral impostor drawn,
-  /// and the error followed how many were drawn from frame to frame. 0
-  /// turns it off.
+  /// never negative): an impostor costs more inside a frame than calibrated
+  /// alone, and the frames' error follows how many are drawn. 0 turns it off.
   double impostor_extra_prior_ms = 0.1;
 };
 
@@ -144,11 +141,9 @@ class DrawCostModel {
   /// `on_screen`: the part of the instance inside the view, [0, 1]
   /// (InstanceView::on_screen; clamped). A mesh's per-instance time (its
   /// triangles) is scaled by it: triangles outside the viewport are dropped
-  /// before llvmpipe sets them up and bins them. Fitted to 3 walkthroughs'
-  /// frame times, the meshes' predicted time inside the image (by the part
-  /// of their on-screen disc) weighed 0.90 and the time outside it -0.03.
-  /// Impostors' time is not scaled (not measured; their pixels are clipped
-  /// already).
+  /// before llvmpipe sets them up and bins them (the walkthrough's frame
+  /// times give the part outside the image no weight). Impostors' time is
+  /// not scaled: their pixels are clipped already.
   double instance_ms(const Representation& rep, double triangles, double pixels,
                      int model = kAnyModel, bool culled = false, double on_screen = 1) const;
   /// Adds one instance drawn as `rep` to a frame's load (arguments as instance_ms).
@@ -166,8 +161,6 @@ class DrawCostModel {
   /// kind its draw calls, its instances' fixed and their per-pixel time.
   /// Terms with no part in `load` (a kind not drawn) are left as they are.
   void observe(const FrameLoad& load, double measured_ms);
-  /// The refit's multiplier of kind `kind`'s per-pixel time (1: as calibrated).
-  double pixel_multiplier(ObjectKind kind) const;
   /// The refit's extra cost of one instance of impostor kind `kind` in a
   /// frame, ms (0 for meshes; see CostModelOptions::impostor_extra_prior_ms).
   double impostor_extra_ms(ObjectKind kind) const;

@@ -3,6 +3,7 @@
 // every visible instance (an item) takes exactly one of its representations
 // (choices), each with an expected draw cost and a benefit; maximise the
 // total benefit with the total cost under a budget.
+// The gap's figures: docs/results/2026-12-07-hybrid-defaults.md
 #pragma once
 #include <span>
 #include <vector>
@@ -55,10 +56,8 @@ struct OptimalOptions {
   long long node_limit = 1500;  ///< branch-and-bound nodes; best found so far after
   /// The stated optimality gap, relative: where greedy's benefit is within
   /// this fraction of the LP bound, it is returned (with that bound in
-  /// `upper_bound`) without the search. 0: always search. In `bench
-  /// hybrid`'s walkthrough (about 52 instances a frame) the search gained
-  /// 0.004% of the objective on the mean, 0.3% at worst, and took the
-  /// policy from 0.15 ms a frame (greedy) to 0.52.
+  /// `upper_bound`) without the search, which gains little over greedy at
+  /// several times its time. 0: always search.
   double gap = 1e-3;
 };
 

@@ -51,8 +51,7 @@ struct InstanceOptions {
 };
 
 enum class SelectionPolicy { kStatic, kGreedy, kPaper, kOptimal, kImpostorOnly };
-/// "static" | "greedy" | "paper" | "optimal" | "ibr"; throws InputError naming `option`.
-SelectionPolicy parse_selection_policy(const std::string& text, const char* option);
+/// "static", "greedy", "paper", "optimal", "ibr" (as reports name them).
 const char* selection_policy_name(SelectionPolicy policy);
 
 struct PolicyOptions {

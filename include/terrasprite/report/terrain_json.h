@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: MIT
-// The JSON description of a terrain every study's document carries.
+// A terrain as every report describes it.
 #pragma once
 #include <nlohmann/json_fwd.hpp>
 
-#include "terrasprite/experiment/terrain_info.h"
+#include "terrasprite/terrain/terrain_info.h"
 
 namespace terrasprite::report {
 
 /// {name, samples, quads, spacing_m, extent_m, height_min, height_max, texture}.
 nlohmann::json terrain_json(const TerrainInfo& t);
+nlohmann::json terrain_json(const Terrain& t);
 
 }  // namespace terrasprite::report

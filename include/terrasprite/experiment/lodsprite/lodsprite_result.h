@@ -12,7 +12,7 @@
 #include "terrasprite/common/image.h"
 #include "terrasprite/experiment/experiment.h"
 #include "terrasprite/experiment/lodsprite/async_display.h"
-#include "terrasprite/experiment/terrain_info.h"
+#include "terrasprite/terrain/terrain_info.h"
 #include "terrasprite/raster/scene.h"
 #include "terrasprite/sprite/error_metric.h"
 #include "terrasprite/sprite/sprite_renderer.h"

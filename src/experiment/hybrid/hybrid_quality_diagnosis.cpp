@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// `bench hybrid --quality-diagnosis FILE`: why the walkthrough's object
+// The walkthrough's quality diagnosis: why the walkthrough's object
 // SSIM is not what the quality tables predict. At each checkpoint the
 // visible instances are split by on-screen size; each group is drawn alone
 // at full geometry and at one representation for all (every LOD level,
@@ -8,8 +8,9 @@
 // a multiple of the image size; each pair is scored as the bench scores
 // (luma SSIM over the pixels the group covers in either image) next to the
 // tables' prediction (expected SSIM weighted by the instances' pixels).
-// `--budget-sweep FILE` (quality against fixed budgets, no controller) and
-// its `--cost-split N` (each frame's time split by kind) are here too.
+// The budget sweep (quality against fixed budgets, no controller) and its
+// cost split (each frame's time split by kind) are here too, and the tables
+// in context, which share the drawing of instance groups.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -22,7 +23,7 @@
 #include <tuple>
 
 #include "gl/render_target.h"
-#include "hybrid_bench.h"
+#include "hybrid_stages.h"
 #include "terrasprite/terrain/image_io.h"
 #include "terrasprite/hybrid/expected_quality.h"
 #include "terrasprite/hybrid/hybrid_renderer.h"
@@ -31,7 +32,7 @@
 #include "terrasprite/quality/quality.h"
 #include "terrasprite/hybrid/quality_calibration.h"
 
-namespace terrasprite::cli {
+namespace terrasprite::hybrid_bench {
 namespace {
 
 struct Item {
@@ -242,128 +243,193 @@ nlohmann::json cost_split(Shooter& shooter, HybridObjects& objects, const Camera
   }
   return out;
 }
+/// The uniform representations the diagnosis tries: every LOD level past
+/// full geometry, then every relief and octahedral resolution in the tables.
+std::vector<Uniform> diagnosis_uniforms(const std::vector<QualityTable>& tables) {
+  int levels = 0;
+  std::vector<int> relief, octa;
+  for (const QualityTable& t : tables)
+    for (const RepresentationQuality& r : t.representations) {
+      if (r.rep.kind == ObjectKind::kMesh) levels = std::max(levels, r.rep.level + 1);
+      auto& v = r.rep.kind == ObjectKind::kRelief ? relief : octa;
+      if (r.rep.kind != ObjectKind::kMesh &&
+          std::find(v.begin(), v.end(), r.rep.resolution) == v.end())
+        v.push_back(r.rep.resolution);
+    }
+  std::sort(relief.begin(), relief.end());
+  std::sort(octa.begin(), octa.end());
+  std::vector<Uniform> uniforms;
+  for (int l = 1; l < levels; ++l) uniforms.push_back({ObjectKind::kMesh, l});
+  for (int r : relief) uniforms.push_back({ObjectKind::kRelief, r});
+  for (int r : octa) uniforms.push_back({ObjectKind::kOctahedral, r});
+  return uniforms;
+}
+
+/// Model m's representation for `u`: its level clamped to the model's
+/// coarsest, or the table's impostor at that resolution (none: full geometry).
+Representation uniform_rep(const Uniform& u, std::size_t m, ObjectSet& set,
+                           const std::vector<QualityTable>& tables) {
+  if (u.kind == ObjectKind::kMesh)
+    return {ObjectKind::kMesh, std::min(u.level_or_res, int(set.model(m).chain().size()) - 1), 0,
+            0};
+  for (const RepresentationQuality& r : tables[m].representations)
+    if (r.rep.kind == u.kind && r.rep.resolution == u.level_or_res) return r.rep;
+  return {};
+}
+
+using ItemGroups = std::vector<std::pair<std::string, std::vector<Item>>>;
+
+/// The groups a checkpoint's instances are drawn in: by on-screen size (px
+/// at the base image size, `scale` the image's multiple of it), by model,
+/// and all ("all" last).
+ItemGroups diagnosis_groups(const ObjectSet& set, const std::vector<Item>& all, int scale) {
+  const std::vector<double> edges = {0, 4, 8, 16, 32, 64, 1e9};
+  ItemGroups groups;
+  for (std::size_t b = 0; b + 1 < edges.size(); ++b) {
+    std::vector<Item> items;
+    for (const Item& it : all)
+      if (it.view.size_px / scale >= edges[b] && it.view.size_px / scale < edges[b + 1])
+        items.push_back(it);
+    groups.push_back({b + 2 == edges.size() ? fmt::format(">={}", edges[b])
+                                            : fmt::format("{}-{}", edges[b], edges[b + 1]),
+                      items});
+  }
+  for (std::size_t m = 0; m < set.model_count(); ++m) {
+    std::vector<Item> items;
+    for (const Item& it : all)
+      if (it.model == m) items.push_back(it);
+    groups.push_back({set.scene_model(m).name, items});
+  }
+  groups.push_back({"all", all});
+  return groups;
+}
+
+/// What diagnose_group draws at: the condition, the checkpoint and the
+/// terrain alone there.
+struct DiagnosisSpot {
+  DiagnosisCondition condition;
+  const PathCheckpoint& checkpoint;
+  const Camera& camera;
+  const Shot& bare;
+};
+
+using Interpolators = std::vector<std::map<RepKey, QualityInterpolator>>;
+
+/// What the diagnosis predicts with: the uniform representations it tries
+/// and the tables' interpolators (in context: empty unless measured).
+struct DiagnosisTables {
+  std::vector<Uniform> uniforms;
+  Interpolators interp, interp_context;
+};
+
+/// One group drawn at full geometry and at each uniform representation:
+/// a row per representation (appended to `out`, and printed on stderr).
+void diagnose_group(const QualityDiagnosisInput& in, Shooter& shooter, const DiagnosisSpot& at,
+                    const std::string& bucket, const std::vector<Item>& items,
+                    const DiagnosisTables& t, nlohmann::json& out) {
+  const std::string condition = diagnosis_condition_name(at.condition);
+  const std::string& cp = at.checkpoint.name;
+  const bool every = bucket == "all";
+  AssignedObjects full(in.set, items, [](std::size_t) { return Representation{}; });
+  const Shot ref = shooter.shoot(full, at.camera, every ? 3 : 1);
+  if (every && !in.image_dir.empty())
+    save_png(ref.color, fmt::format("{}/{}_{}_full.png", in.image_dir, condition, cp));
+  double theta = 0, size = 0, wsum = 0;
+  for (const Item& it : items) {
+    theta += it.view.pixels * it.view.theta_deg;
+    size += it.view.pixels * it.view.size_px;
+    wsum += it.view.pixels;
+  }
+  for (const Uniform& u : t.uniforms) {
+    const auto rep_of = [&](std::size_t m) { return uniform_rep(u, m, in.set, in.tables); };
+    AssignedObjects test_objects(in.set, items, rep_of);
+    const Shot test = shooter.shoot(test_objects, at.camera, every ? 3 : 1);
+    if (every && !in.image_dir.empty()) {
+      std::string label = u.label();
+      std::replace(label.begin(), label.end(), ' ', '_');
+      save_png(test.color, fmt::format("{}/{}_{}_{}.png", in.image_dir, condition, cp, label));
+    }
+    const auto [measured, covered] = masked_ssim(ref, test, at.bare);
+    const double predicted = predicted_ssim(items, rep_of, t.interp);
+    nlohmann::json row = {{"condition", condition},
+                          {"checkpoint", cp},
+                          {"bucket", bucket},
+                          {"instances", items.size()},
+                          {"covered_px", covered},
+                          {"theta_deg", wsum > 0 ? theta / wsum : 0.0},
+                          {"size_px", wsum > 0 ? size / wsum : 0.0},
+                          {"representation", u.label()},
+                          {"predicted", predicted},
+                          {"measured", measured},
+                          {"ms", test.ms},
+                          {"ms_full", ref.ms}};
+    std::string in_context;
+    if (in.context_tables) {
+      const double p = predicted_ssim(items, rep_of, t.interp_context);
+      row["predicted_context"] = p;
+      in_context = fmt::format(" (in context {:.3f})", p);
+    }
+    out.push_back(row);
+    fmt::print(stderr,
+               "{:7} {} {:>10} n={:3} px={:6} {:14} predicted {:.3f}{} measured {:.3f} "
+               "{:.1f} ms (full {:.1f})\n",
+               condition, cp, bucket, items.size(), covered, u.label(), predicted, in_context,
+               measured, test.ms, ref.ms);
+  }
+}
+
+/// A swept scenario: its setup, the tables it selects from, its cull_px.
+using SweepRun = std::tuple<HybridScenario, const std::vector<QualityTable>*, double>;
+
+/// Each scenario as configured (at a fixed budget); from the tables as
+/// measured too; and, when small instances may be left out, with every
+/// instance drawn.
+std::vector<SweepRun> sweep_runs(const BudgetSweepInput& in) {
+  std::vector<SweepRun> runs;
+  for (HybridScenario sc : in.scenarios) {
+    sc.control = HybridScenario::Control::kFixed;
+    runs.push_back({sc, &in.tables, in.options.cull_px});
+    if (in.options.cull_px > 0) {
+      HybridScenario all_drawn = sc;
+      all_drawn.name += " (all drawn)";
+      runs.push_back({all_drawn, &in.tables, 0.0});
+    }
+    if (in.raw_tables) {
+      sc.name += " (tables as measured)";
+      runs.push_back({sc, in.raw_tables, in.options.cull_px});
+    }
+  }
+  return runs;
+}
+
 }  // namespace
 
 nlohmann::json diagnose_hybrid_quality(const QualityDiagnosisInput& in) {
-  ObjectSet& set = in.set;
-  std::vector<Uniform> uniforms;
-  {
-    int levels = 0;
-    std::vector<int> relief, octa;
-    for (const QualityTable& t : in.tables)
-      for (const RepresentationQuality& r : t.representations) {
-        if (r.rep.kind == ObjectKind::kMesh) levels = std::max(levels, r.rep.level + 1);
-        auto& v = r.rep.kind == ObjectKind::kRelief ? relief : octa;
-        if (r.rep.kind != ObjectKind::kMesh &&
-            std::find(v.begin(), v.end(), r.rep.resolution) == v.end())
-          v.push_back(r.rep.resolution);
-      }
-    std::sort(relief.begin(), relief.end());
-    std::sort(octa.begin(), octa.end());
-    for (int l = 1; l < levels; ++l) uniforms.push_back({ObjectKind::kMesh, l});
-    for (int r : relief) uniforms.push_back({ObjectKind::kRelief, r});
-    for (int r : octa) uniforms.push_back({ObjectKind::kOctahedral, r});
-  }
-  auto rep_for = [&](const Uniform& u, std::size_t m) -> Representation {
-    if (u.kind == ObjectKind::kMesh)
-      return {ObjectKind::kMesh, std::min(u.level_or_res, int(set.model(m).chain().size()) - 1), 0,
-              0};
-    for (const RepresentationQuality& r : in.tables[m].representations)
-      if (r.rep.kind == u.kind && r.rep.resolution == u.level_or_res) return r.rep;
-    return {};
-  };
-  const auto interp = interpolators(in.tables);
-  const auto interp_context =
-      in.context_tables ? interpolators(*in.context_tables) : decltype(interp){};
-
-  const std::vector<double> edges = {0, 4, 8, 16, 32, 64, 1e9};
+  const DiagnosisTables tables{
+      diagnosis_uniforms(in.tables), interpolators(in.tables),
+      in.context_tables ? interpolators(*in.context_tables) : Interpolators{}};
   nlohmann::json out = nlohmann::json::array();
-  for (const std::string& condition : in.conditions) {
-    const int scale = condition == "scene4" ? 4 : 1;
+  for (const DiagnosisCondition condition : in.conditions) {
+    const int scale = condition == DiagnosisCondition::kScene4 ? 4 : 1;
     const int h = in.height * scale;
-    Shooter shooter(in.ground, in.width * scale, h, in.terrain_quads, condition == "sky",
-                    in.samples);
+    Shooter shooter(in.ground, in.width * scale, h, in.terrain_quads,
+                    condition == DiagnosisCondition::kSky, in.samples);
     for (const PathCheckpoint& cp : in.checkpoints) {
       const Camera& cam = in.path[std::size_t(cp.frame)];
-      const std::vector<Item> all = visible_items(set, cam, h);
+      const std::vector<Item> all = visible_items(in.set, cam, h);
       const std::vector<Item> none;
-      AssignedObjects empty(set, none, [](std::size_t) { return Representation{}; });
+      AssignedObjects empty(in.set, none, [](std::size_t) { return Representation{}; });
       const Shot bare = shooter.shoot(empty, cam);
-      // Groups: by on-screen size (px at the base image size), by model, all.
-      std::vector<std::pair<std::string, std::vector<Item>>> groups;
-      for (std::size_t b = 0; b + 1 < edges.size(); ++b) {
-        std::vector<Item> items;
-        for (const Item& it : all)
-          if (it.view.size_px / scale >= edges[b] && it.view.size_px / scale < edges[b + 1])
-            items.push_back(it);
-        groups.push_back({b + 2 == edges.size() ? fmt::format(">={}", edges[b])
-                                                : fmt::format("{}-{}", edges[b], edges[b + 1]),
-                          items});
-      }
-      for (std::size_t m = 0; m < set.model_count(); ++m) {
-        std::vector<Item> items;
-        for (const Item& it : all)
-          if (it.model == m) items.push_back(it);
-        groups.push_back({set.scene_model(m).name, items});
-      }
-      groups.push_back({"all", all});
-      for (const auto& [bucket, items] : groups) {
-        const bool every = bucket == "all";
-        if (items.empty()) continue;
-        AssignedObjects full(set, items, [](std::size_t) { return Representation{}; });
-        const Shot ref = shooter.shoot(full, cam, every ? 3 : 1);
-        if (every && !in.image_dir.empty())
-          save_png(ref.color, fmt::format("{}/{}_{}_full.png", in.image_dir, condition, cp.name));
-        double theta = 0, size = 0, wsum = 0;
-        for (const Item& it : items) {
-          theta += it.view.pixels * it.view.theta_deg;
-          size += it.view.pixels * it.view.size_px;
-          wsum += it.view.pixels;
-        }
-        for (const Uniform& u : uniforms) {
-          const auto rep_of = [&](std::size_t m) { return rep_for(u, m); };
-          AssignedObjects test_objects(set, items, rep_of);
-          const Shot test = shooter.shoot(test_objects, cam, every ? 3 : 1);
-          if (every && !in.image_dir.empty()) {
-            std::string label = u.label();
-            std::replace(label.begin(), label.end(), ' ', '_');
-            save_png(test.color,
-                     fmt::format("{}/{}_{}_{}.png", in.image_dir, condition, cp.name, label));
-          }
-          const auto [measured, covered] = masked_ssim(ref, test, bare);
-          const double predicted = predicted_ssim(items, rep_of, interp);
-          nlohmann::json row = {{"condition", condition},
-                                {"checkpoint", cp.name},
-                                {"bucket", bucket},
-                                {"instances", items.size()},
-                                {"covered_px", covered},
-                                {"theta_deg", wsum > 0 ? theta / wsum : 0.0},
-                                {"size_px", wsum > 0 ? size / wsum : 0.0},
-                                {"representation", u.label()},
-                                {"predicted", predicted},
-                                {"measured", measured},
-                                {"ms", test.ms},
-                                {"ms_full", ref.ms}};
-          if (in.context_tables)
-            row["predicted_context"] = predicted_ssim(items, rep_of, interp_context);
-          out.push_back(row);
-          fmt::print(stderr,
-                     "{:7} {} {:>10} n={:3} px={:6} {:14} predicted {:.3f}{} measured {:.3f} "
-                     "{:.1f} ms (full {:.1f})\n",
-                     condition, cp.name, bucket, items.size(), covered, u.label(), predicted,
-                     in.context_tables ? fmt::format(" (in context {:.3f})",
-                                                     row["predicted_context"].get<double>())
-                                       : "",
-                     measured, test.ms, ref.ms);
-        }
-      }
+      for (const auto& [bucket, items] : diagnosis_groups(in.set, all, scale))
+        if (!items.empty())
+          diagnose_group(in, shooter, {condition, cp, cam, bare}, bucket, items, tables, out);
     }
   }
   return out;
 }
 
-nlohmann::json calibrate_tables_in_context(const QualityContextInput& in,
-                                           std::vector<QualityTable>& tables) {
+std::vector<ContextCalibration> calibrate_tables_in_context(const QualityContextInput& in,
+                                                            std::vector<QualityTable>& tables) {
   ObjectSet& set = in.set;
   const auto interp = interpolators(tables);
   // Observations per model and representation (the table's row index).
@@ -408,7 +474,7 @@ nlohmann::json calibrate_tables_in_context(const QualityContextInput& in,
       }
     }
   }
-  nlohmann::json report = nlohmann::json::array();
+  std::vector<ContextCalibration> report;
   for (std::size_t m = 0; m < tables.size(); ++m)
     for (std::size_t k = 0; k < tables[m].representations.size(); ++k) {
       RepresentationQuality& rq = tables[m].representations[k];
@@ -421,14 +487,8 @@ nlohmann::json calibrate_tables_in_context(const QualityContextInput& in,
         w += o.weight;
       }
       apply_error_scale(rq, scale);
-      report.push_back({{"model", set.scene_model(m).name},
-                        {"kind", object_kind_name(rq.rep.kind)},
-                        {"level", rq.rep.level},
-                        {"resolution", rq.rep.resolution},
-                        {"error_scale", scale},
-                        {"predicted", w > 0 ? p / w : 1.0},
-                        {"measured", w > 0 ? q / w : 1.0},
-                        {"pixels", w}});
+      report.push_back({set.scene_model(m).name, rq.rep.kind, rq.rep.level, rq.rep.resolution,
+                        scale, w > 0 ? p / w : 1.0, w > 0 ? q / w : 1.0, w});
     }
   return report;
 }
@@ -437,9 +497,10 @@ nlohmann::json quality_budget_sweep(const BudgetSweepInput& in) {
   nlohmann::json out = nlohmann::json::array();
   Shooter shooter(in.ground, in.width, in.height, in.terrain_quads, false, in.samples);
   // The budget fractions are of full geometry's predicted time.
-  const HybridScenario full_scenario = full_geometry_scenario();
+  const HybridScenario full_scenario = walk_scenario(WalkScenario::kFull, false);
   HybridOptions o = in.options;
   o.use_hysteresis = false;
+  const std::vector<SweepRun> runs = sweep_runs(in);
   for (const PathCheckpoint& cp : in.checkpoints) {
     const Camera& cam = in.path[std::size_t(cp.frame)];
     const std::vector<Item> none;
@@ -448,22 +509,6 @@ nlohmann::json quality_budget_sweep(const BudgetSweepInput& in) {
     HybridObjects full(in.set, in.tables, in.cost, full_scenario, o);
     const Shot ref = shooter.shoot(full, cam, 3);
     const double full_predicted = full.last().predicted_ms;
-    // Each scenario as configured; from the tables as measured too; and,
-    // when small instances may be left out, with every instance drawn.
-    std::vector<std::tuple<HybridScenario, const std::vector<QualityTable>*, double>> runs;
-    for (HybridScenario sc : in.scenarios) {
-      sc.control = HybridScenario::Control::kFixed;
-      runs.push_back({sc, &in.tables, in.options.cull_px});
-      if (in.options.cull_px > 0) {
-        HybridScenario all_drawn = sc;
-        all_drawn.name += " (all drawn)";
-        runs.push_back({all_drawn, &in.tables, 0.0});
-      }
-      if (in.raw_tables) {
-        sc.name += " (tables as measured)";
-        runs.push_back({sc, in.raw_tables, in.options.cull_px});
-      }
-    }
     for (double f : in.fractions)
       for (const auto& [sc, tables, cull_px] : runs) {
         o.target_ms = f * full_predicted;
@@ -516,4 +561,4 @@ nlohmann::json quality_budget_sweep(const BudgetSweepInput& in) {
   return out;
 }
 
-}  // namespace terrasprite::cli
+}  // namespace terrasprite::hybrid_bench

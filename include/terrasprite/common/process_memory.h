@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-namespace terrasprite::cli {
+namespace terrasprite {
 
 /// Resident set size now, MiB (/proc/self/statm); 0 where it cannot be read.
 double resident_mb();
@@ -29,4 +29,4 @@ struct MemoryCurve {
   double growth_per_10k(int after) const;
 };
 
-}  // namespace terrasprite::cli
+}  // namespace terrasprite

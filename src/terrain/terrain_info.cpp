@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "terrasprite/experiment/terrain_info.h"
+#include "terrasprite/terrain/terrain_info.h"
 
 namespace terrasprite {
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// bench stream's in-memory peer (see bench_stream_peer.h): the child process
-// and the parent's pipe protocol.
-#include "bench_stream_peer.h"
+// The streaming study's in-memory peer (see in_memory_peer.h): the child
+// process and the parent's pipe protocol.
+#include "in_memory_peer.h"
 
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -14,21 +14,18 @@
 #include <cstdlib>
 #include <optional>
 
-#include "process_memory.h"
+#include "stream/tile_file.h"
+#include "terrasprite/common/error.h"
+#include "terrasprite/common/process_memory.h"
 #include "terrasprite/experiment/experiment.h"
 #include "terrasprite/stream/streaming_tiles.h"
 #include "terrasprite/voxel/voxel_renderer.h"
 
 extern char** environ;
 
-namespace terrasprite::cli {
+namespace terrasprite::stream_bench {
 namespace {
 
-// ---- The in-memory half, in its own process (so its memory is not the
-// streamed run's), run in lockstep with the streamed frames: the parent
-// draws frame i, then asks the child for frame i and waits for it. So each
-// pair is timed seconds apart under the same machine load, and the ratio and
-// the stall count compare like with like. ----
 constexpr int kChildIn = 3, kChildOut = 4;  // the child's ends of the two pipes
 
 bool write_all(int fd, const void* data, std::size_t n) {
@@ -84,15 +81,30 @@ std::uint64_t image_hash(const Image& im) {
   return h;
 }
 
-void run_in_memory_child(const BenchStreamOpts& o, const TileSetInfo& set, int w, int h,
+Heightfield path_proxy(const TileSetInfo& set) {
+  int L = 0;
+  while (L < set.grid.coarsest_level && std::max(set.level_w(L), set.level_h(L)) > 1025) ++L;
+  Heightfield h;
+  std::string error;
+  if (!TileFile(set).read_level_heights(L, h.heights, error))
+    throw InputError(fmt::format("{}: {}", set.dir, error));
+  h.width = set.level_w(L);
+  h.height = set.level_h(L);
+  h.spacing_x = set.grid.spacing_x * (set.grid.width - 1) / double(h.width - 1);
+  h.spacing_y = set.grid.spacing_y * (set.grid.height - 1) / double(h.height - 1);
+  h.name = set.dir;
+  return h;
+}
+
+void run_in_memory_child(const TileSetInfo& set, int w, int h, int threads, bool first_view,
                          const std::vector<Camera>& path) {
   ResidentTiles tiles(set);
   VoxelOptions vo;
-  vo.threads = o.threads;
+  vo.threads = threads;
   VoxelRenderer r(tiles, w, h, vo);
   // One unshown draw before the run, as the streamed side's first-view draw:
   // frame 0 is warm on both sides.
-  if (o.first_view_ms > 0 && !path.empty()) r.draw(path.front());
+  if (first_view && !path.empty()) r.draw(path.front());
   ChildReply ready;
   if (!write_all(kChildOut, &ready, sizeof ready)) return;
   LockstepSource cameras(path);
@@ -107,7 +119,7 @@ void run_in_memory_child(const BenchStreamOpts& o, const TileSetInfo& set, int w
   ex.run(cameras, eo);
 }
 
-InMemoryPeer::InMemoryPeer(const BenchStreamOpts& o) {
+InMemoryPeer::InMemoryPeer(const std::vector<std::string>& command) {
   int to_child[2], from_child[2];
   if (pipe2(to_child, O_CLOEXEC) != 0) return;
   if (pipe2(from_child, O_CLOEXEC) != 0) {
@@ -115,23 +127,7 @@ InMemoryPeer::InMemoryPeer(const BenchStreamOpts& o) {
     ::close(to_child[1]);
     return;
   }
-  std::vector<std::string> args = {"/proc/self/exe",
-                                   "bench",
-                                   "stream",
-                                   o.cog.empty() ? "--tiles" : "--cog",
-                                   o.cog.empty() ? o.tiles : o.cog,
-                                   "--size",
-                                   o.size,
-                                   "--path",
-                                   o.path,
-                                   "--frames",
-                                   std::to_string(o.frames),
-                                   "--threads",
-                                   std::to_string(o.threads),
-                                   "--first-view-ms",
-                                   std::to_string(o.first_view_ms),
-                                   "--in-memory-child"};
-  if (!o.texture.empty()) args.insert(args.end(), {"--texture", o.texture});
+  std::vector<std::string> args = command;
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -140,7 +136,7 @@ InMemoryPeer::InMemoryPeer(const BenchStreamOpts& o) {
   posix_spawn_file_actions_adddup2(&fa, to_child[0], kChildIn);  // dup2 clears O_CLOEXEC
   posix_spawn_file_actions_adddup2(&fa, from_child[1], kChildOut);
   const bool spawned =
-      posix_spawn(&pid_, "/proc/self/exe", &fa, nullptr, argv.data(), environ) == 0;
+      posix_spawn(&pid_, args[0].c_str(), &fa, nullptr, argv.data(), environ) == 0;
   posix_spawn_file_actions_destroy(&fa);
   ::close(to_child[0]);
   ::close(from_child[1]);
@@ -179,4 +175,4 @@ void InMemoryPeer::fail() {
   warned_ = true;
 }
 
-}  // namespace terrasprite::cli
+}  // namespace terrasprite::stream_bench

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "process_memory.h"
+#include "terrasprite/common/process_memory.h"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -10,7 +10,7 @@
 #include <malloc.h>
 #endif
 
-namespace terrasprite::cli {
+namespace terrasprite {
 
 double resident_mb() {
   std::FILE* f = std::fopen("/proc/self/statm", "r");
@@ -53,4 +53,4 @@ double MemoryCurve::growth_per_10k(int after) const {
   return (n * sxy - sx * sy) / den * 10000.0;
 }
 
-}  // namespace terrasprite::cli
+}  // namespace terrasprite

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
 // The walkthrough's scores against full geometry: SSIM, PSNR and FLIP over
-// the whole frame, and SSIM over the pixels objects cover (hybrid_bench.h).
+// the whole frame, and SSIM over the pixels objects cover.
 #include <algorithm>
 #include <cmath>
 
-#include "hybrid_bench.h"
+#include "hybrid_stages.h"
 #include "terrasprite/quality/quality.h"
 
-namespace terrasprite::cli {
+namespace terrasprite::hybrid_bench {
 
 std::vector<std::uint8_t> object_mask(const std::vector<float>& ref_depth,
                                       const std::vector<float>& test_depth,
@@ -23,7 +23,7 @@ std::vector<std::uint8_t> object_mask(const std::vector<float>& ref_depth,
 Scorer hybrid_scorer(std::shared_ptr<ScoringState> state) {
   return [state](const Frame& ref, const Frame& test) {
     QualityScore s;
-    s.figures["ssim_objects"] = 1.0;
+    s.figures[kSsimObjects] = 1.0;
     const bool flip = std::find(state->flip_frames.begin(), state->flip_frames.end(),
                                 state->frame) != state->flip_frames.end();
     if (ref.color.rgba == test.color.rgba) {
@@ -37,7 +37,7 @@ Scorer hybrid_scorer(std::shared_ptr<ScoringState> state) {
     if (state->terrain_depth.size() == std::size_t(ref.width()) * ref.height()) {
       const auto mask = object_mask(ref.depth, test.depth, state->terrain_depth);
       if (std::find(mask.begin(), mask.end(), 1) != mask.end())
-        s.figures["ssim_objects"] =
+        s.figures[kSsimObjects] =
             quality::ssim(ref.color.view(), test.color.view(), so, mask).ssim;
     }
     s.flip = flip ? quality::flip(ref.color.view(), test.color.view()).mean : -1.0;
@@ -45,4 +45,4 @@ Scorer hybrid_scorer(std::shared_ptr<ScoringState> state) {
   };
 }
 
-}  // namespace terrasprite::cli
+}  // namespace terrasprite::hybrid_bench

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// What a study's result says of the terrain it ran on: a copy of the figures
-// a report prints, so the result outlives the Terrain.
+// What a report says of a terrain: a copy of its name, grid and height range
+// that outlives the Terrain (a study's result carries it to the report).
 #pragma once
 #include <string>
 
@@ -15,7 +15,6 @@ struct TerrainInfo {
   double height_min = 0, height_max = 0;  ///< metres
 };
 
-/// The terrain's name, texture name, sample counts, spacing and height range.
 TerrainInfo terrain_info(const Terrain& t);
 
 }  // namespace terrasprite

@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: MIT
+// bench stream's report: the streaming study's typed result in, JSON and a
+// frame-time plot out.
+#pragma once
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+
+#include "terrasprite/experiment/stream.h"
+
+namespace terrasprite::report {
+
+/// The bench's summary JSON: terrain, tiles, cog, cache_mb, io_threads,
+/// size, path, frames, stream, in_memory, ratio_median,
+/// images_equal_when_resident, faults_injected, faults_survived. Figures not
+/// measured (no in-memory half) are null.
+nlohmann::json stream_bench_json(const StreamBenchResult& r);
+
+/// One entry a frame: frame, ms, update_ms, in_memory_ms, degraded_samples,
+/// tiles_requested/loaded/evicted/failed, bytes_read, resident_mb.
+nlohmann::json stream_per_frame_json(const StreamBenchResult& r);
+
+/// stream_frames.dat (per frame: streamed ms, in-memory ms, degraded reads)
+/// and stream_frames.gp in `dir`, then gnuplot on it (stream_frames.png).
+/// Returns "" or the run_gnuplot failure line (the .dat is kept). Throws
+/// InputError when a file cannot be written.
+std::string write_stream_plot(const StreamBenchResult& r, const std::string& dir);
+
+}  // namespace terrasprite::report

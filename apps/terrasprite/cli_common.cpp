@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string_view>
 
@@ -168,6 +169,22 @@ void Progress::operator()(int done, int total) {
 
 Progress::~Progress() {
   if (drawn_) fmt::print(stderr, "\n");
+}
+
+std::function<void(const char*, int, int)> stage_progress(std::string label) {
+  struct Bar {
+    std::string stage;
+    std::unique_ptr<Progress> bar;
+  };
+  auto state = std::make_shared<Bar>();
+  return [label = std::move(label), state](const char* stage, int done, int total) {
+    if (!state->bar || state->stage != stage) {
+      state->bar.reset();  // ends the previous stage's line
+      state->stage = stage;
+      state->bar = std::make_unique<Progress>(label + " " + stage);
+    }
+    (*state->bar)(done, total);
+  };
 }
 
 }  // namespace terrasprite::cli

@@ -3,6 +3,7 @@
 #pragma once
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <functional>
 #include <string>
 #include <utility>
 
@@ -58,6 +59,10 @@ using report::run_gnuplot;
 using report::write_text;
 
 using report::terrain_json;
+
+/// A progress callback for a study that runs in stages: one Progress bar per
+/// stage, labelled "`label` STAGE", ended when the next stage starts.
+std::function<void(const char* stage, int done, int total)> stage_progress(std::string label);
 
 /// A one-line progress bar on stderr, drawn only when stderr is a terminal.
 class Progress {

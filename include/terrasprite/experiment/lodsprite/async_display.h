@@ -1,21 +1,20 @@
 // SPDX-License-Identifier: MIT
-// `bench lodsprite --async`: a simulated display of the LOD-sprite renderer
+// A simulated display of the LOD-sprite renderer
 // with keyframes on a second thread, beside the same display drawn
 // synchronously; frame time is the interval between successive presentations.
 #pragma once
 #include <algorithm>
 #include <cmath>
-#include <nlohmann/json.hpp>
 #include <span>
 #include <vector>
 
 #include "terrasprite/camera/camera.h"
-#include "terrasprite/gl/gl_context.h"
 #include "terrasprite/common/image.h"
+#include "terrasprite/gl/gl_context.h"
 #include "terrasprite/raster/scene.h"
 #include "terrasprite/sprite/sprite_renderer.h"
 
-namespace terrasprite::cli {
+namespace terrasprite::lodsprite {
 
 /// One simulated display. Paced (a refresh period > 0): a frame is presented
 /// at the first refresh slot at or after its draw ends (its own slot when it
@@ -55,15 +54,13 @@ struct AsyncComparison {
 
 /// Flies `path` as a display twice, synchronously and with asynchronous
 /// keyframes (`o` otherwise), through the experiment driver with nothing
-/// read back, both paced at `display_hz` (0: flat out). The async frames are then scored against
-/// `refs` (the full-resolution frames i with i % every == 0) by replaying them: each frame's
-/// keyframe camera is recorded, and a synchronous renderer draws the same keyframe and sprite again
-/// (the same pixels: same driver and shaders).
+/// read back, both paced at `display_hz` (0: flat out). The async frames are
+/// then scored against `refs` (the full-resolution frames i with
+/// i % every == 0) by replaying them: each frame's keyframe camera is
+/// recorded, and a synchronous renderer draws the same keyframe and sprite
+/// again (the same pixels: same driver and shaders). `gl` must be current.
 AsyncComparison run_async_display(const GlContext& gl, Scene& scene, std::span<const Camera> path,
                                   int width, int height, SpriteOptions o,
                                   const std::vector<Image>& refs, int every, double display_hz);
 
-/// The `async_run` JSON object: figures of both displays, the targets, the method.
-nlohmann::json async_json(const AsyncComparison& c);
-
-}  // namespace terrasprite::cli
+}  // namespace terrasprite::lodsprite

@@ -8,17 +8,19 @@
 #include <string>
 #include <vector>
 
-#include "lodsprite_result.h"
 #include "terrasprite/camera/frame.h"
-#include "terrasprite/output/output_dir.h"
+#include "terrasprite/experiment/lodsprite/lodsprite_result.h"
 #include "terrasprite/raster/scene.h"
 #include "terrasprite/sprite/error_metric.h"
 #include "terrasprite/sprite/sprite_renderer.h"
 #include "terrasprite/terrain/terrain.h"
 
-namespace terrasprite::cli {
+namespace terrasprite::lodsprite {
 
-struct LodspriteConfig {
+/// What run_lodsprite() runs. Sizes in pixels, thresholds in the metric's
+/// unit (threshold_unit()). Out-of-range values: InputError naming the
+/// option that sets it (validated by run_lodsprite()).
+struct LodspriteOptions {
   std::string path = "paper";
   int frames = 460;
   int width = 512, height = 512;
@@ -33,6 +35,8 @@ struct LodspriteConfig {
   double scale_per_drape_px = SpriteOptions{}.scale_per_drape_px;
   double sharp_px = 0.5;
   double key_margin = 0, key_supersample = 1;  ///< SpriteOptions::key_margin, key_supersample
+  /// The sweeps (paper Figs. 10-12): keyframe thresholds, frame counts along
+  /// the same path, coarse quads per side. An empty list skips that sweep.
   std::vector<double> thresholds = {0.25, 0.5, 1, 2, 4, 8};
   std::vector<int> frame_counts = {115, 230, 460, 920, 1840};
   std::vector<int> lod_sweep = {8, 16, 32, 64};
@@ -66,21 +70,27 @@ struct LodspriteConfig {
   bool flip = true;  ///< FLIP per frame in the main run
   /// Called with (frame, sprite frame) after scoring, e.g. to save it.
   std::function<void(int, const Frame&)> on_sprite_frame;
-  /// A video of the sprite frames beside the report (file name inside `out`),
-  /// embedded next to the figures; empty: none.
+  /// A video of the sprite frames beside the report (file name inside the
+  /// report's directory), embedded next to the figures; empty: none. The
+  /// caller writes it (e.g. from on_sprite_frame).
   std::string video;
+  /// Progress of a stage ("main", "sweeps"): `done` of `total` steps.
+  std::function<void(const char* stage, int done, int total)> progress;
 };
 
-/// Runs everything and writes the figure PNGs (Figs. 13-14) into `out`;
-/// returns what it measured (to_json() and write_lodsprite_report() write it
-/// out). `label` prefixes the progress bar. Bad settings: InputError.
-LodspriteResult run_lodsprite(const LodspriteConfig& config, const Terrain& terrain, OutputDir& out,
-                              const std::string& label);
+/// Flies full resolution, plain LOD and LOD-sprite interleaved along the
+/// path (GL context of its own), scores each frame against full resolution
+/// after its timed spans, then runs the sweeps, the optional cache, trigger
+/// and async comparisons and the same-frame figures; returns what it
+/// measured (report/lodsprite_report.h writes it out). Bad settings:
+/// InputError; no GL device: DeviceError.
+LodspriteResult run_lodsprite(const LodspriteOptions& options, const Terrain& terrain);
 
-/// "paper" | "exact" -> metric; throws InputError naming --metric.
+/// "paper" | "exact" | "contrast" -> metric; throws InputError naming --metric.
 ErrorMetric parse_metric(const std::string& text);
-const char* metric_name(ErrorMetric m);
+/// "plain" | "rich" -> shading; throws InputError naming --shading.
+TerrainShading parse_shading(const std::string& text);
 /// "lru" | "farthest" -> policy; throws InputError naming --cache-policy.
 CachePolicy parse_cache_policy(const std::string& text);
 
-}  // namespace terrasprite::cli
+}  // namespace terrasprite::lodsprite

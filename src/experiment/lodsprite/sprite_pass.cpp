@@ -1,17 +1,16 @@
 // SPDX-License-Identifier: MIT
-#include "lodsprite_passes.h"
+#include "experiment/lodsprite/sprite_pass.h"
 
 #include <algorithm>
 #include <string>
 
+#include "experiment/lodsprite/frame_class.h"
+#include "terrasprite/common/stats.h"
 #include "terrasprite/experiment/experiment.h"
 #include "terrasprite/quality/quality.h"
-#include "terrasprite/common/stats.h"
 
-namespace terrasprite::cli {
+namespace terrasprite::lodsprite {
 namespace {
-
-constexpr double kPsnrCapDb = 100.0;  // identical frames: the report's cap
 
 double ssim_only(const Image& reference, const Image& test) {
   if (reference.rgba == test.rgba) return 1.0;
@@ -32,23 +31,31 @@ PassResult sprite_pass(Scene& scene, std::span<const Camera> path, int w, int h,
   SpriteRenderer r(scene, w, h, o);
   PassResult p;
   std::vector<Image> kept;
+  std::vector<double> all_ms, key_ms, sprite_ms;  // draw times, frame order
   Experiment pass;
   pass.add({.renderer = &r,
             .name = "sprite",
             .warmup_draws = 2,  // a keyframe, then a sprite frame; then start afresh
             .read = ReadBack::kColor,
             .after_warmup = [&] { r.reset(); },
-            .annotate = [&](const Frame&, FrameResult&) { p.cache_hits += r.last_cache_hit(); }});
+            .annotate =
+                [&](const Frame& f, FrameResult&) {
+                  p.cache_hits += r.last_cache_hit();
+                  const bool key = last_frame_class(r) == FrameClass::kKey;
+                  p.keyframes += key;
+                  all_ms.push_back(f.ms);
+                  (key ? key_ms : sprite_ms).push_back(f.ms);
+                }});
   ExperimentOptions eo;
   eo.on_frame = [&](int i, const std::string&, const Frame& f) {
     if (i % every == 0) kept.push_back(f.color);
   };
   PathSource cameras(std::vector<Camera>(path.begin(), path.end()));
-  const RendererRun run = pass.run(cameras, eo).run("sprite");
-  p.total_ms = run.ms().total;
-  p.keyframes = run.count("key");
-  p.key_median_ms = run.ms("key").median;
-  p.sprite_median_ms = run.ms("sprite").median;
+  eo.keep_frames = false;
+  pass.run(cameras, eo);
+  p.total_ms = summarize(all_ms).total;
+  p.key_median_ms = summarize(key_ms).median;
+  p.sprite_median_ms = summarize(sprite_ms).median;
   std::vector<double> ssims, psnrs;
   for (std::size_t k = 0; k < kept.size(); ++k) {
     ssims.push_back(ssim_only(refs[k], kept[k]));
@@ -73,4 +80,4 @@ int simulate_keyframes(Scene& scene, std::span<const Camera> path, int w, int h,
   return keys;
 }
 
-}  // namespace terrasprite::cli
+}  // namespace terrasprite::lodsprite

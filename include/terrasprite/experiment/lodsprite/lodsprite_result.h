@@ -1,28 +1,58 @@
 // SPDX-License-Identifier: MIT
-// What one `bench lodsprite` / `demo` run measured, as typed values: the
+// What one LOD-sprite run (run_lodsprite) measured, as typed values: the
 // per-frame rows, the per-renderer summaries, the sweeps, the cache pass and
-// the same-frame figures. run_lodsprite() fills it; to_json() (the contract
-// DESIGN.md names) and write_lodsprite_report() (plots and index.html) are its
-// two edge writers, so the report never reads numbers back out of JSON.
+// the same-frame figures. The report module writes it out (JSON, plots,
+// index.html), so nothing is ever read back out of JSON.
 #pragma once
-#include <array>
 #include <cstddef>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "cli_common.h"
-#include "lodsprite_async.h"
+#include "terrasprite/common/image.h"
 #include "terrasprite/experiment/experiment.h"
+#include "terrasprite/experiment/lodsprite/async_display.h"
+#include "terrasprite/terrain/terrain_info.h"
+#include "terrasprite/raster/scene.h"
+#include "terrasprite/sprite/error_metric.h"
+#include "terrasprite/sprite/sprite_renderer.h"
 
-namespace terrasprite::cli {
+namespace terrasprite::lodsprite {
+
+/// A displayed frame's class: a keyframe (the full-resolution mesh) or a
+/// sprite frame (the coarse mesh textured from the keyframe).
+enum class FrameClass { kKey, kSprite };
+/// "key", "sprite".
+const char* to_string(FrameClass c);
+
+/// Where a sweep point's sprite figures come from.
+enum class SweepMethod {
+  kMainRun,       ///< the main run's, at the main setting
+  kSeparatePass,  ///< a separate timed pass at the point's setting
+};
+/// "main run", "separate timed pass".
+const char* to_string(SweepMethod m);
+
+/// The paper's same-frame comparisons.
+enum class SameFrameFigure {
+  kFig13,  ///< checkerboard texture
+  kFig14,  ///< the terrain's own texture
+};
+/// "fig13", "fig14": the JSON key and the stem of its PNG files.
+const char* to_string(SameFrameFigure f);
+
+/// "paper", "exact", "contrast".
+const char* to_string(ErrorMetric m);
+/// The unit of a metric's threshold: "px", or "grey levels" for kContrast.
+const char* threshold_unit(ErrorMetric m);
+/// "plain", "rich".
+const char* to_string(TerrainShading s);
 
 /// One displayed frame of the main run: the sprite renderer's frame and the
 /// full-resolution and plain-LOD frames of the same camera. Times in ms.
 struct LodspriteFrame {
   int frame = 0;
-  bool key = false;  ///< a keyframe (class "key"), else a sprite frame
+  FrameClass cls = FrameClass::kSprite;
   /// Full resolution drawn, timed and scored on this frame (every frame unless
   /// --reference-every); when false full_ms and the scores are NaN.
   bool reference = true;
@@ -30,10 +60,12 @@ struct LodspriteFrame {
   double error_px = 0, error_px_exact = 0;  ///< paper metric / exact reprojection, pixels
   int error_samples = 0;
   double fallback_fraction = 0, resample_scale = 1, resample_aniso = 1, decision_cpu_ms = 0;
-  double drape_px = 0;  ///< SpriteError::drape_px: how far plain LOD is off, pixels
-  std::string trigger;  ///< what made this a keyframe ("" for sprite frames, "cache" for a reuse)
-  int keyframe = 0;     ///< the frame whose keyframe is in use
-  QualityScore sprite, lod;  ///< each against the full-resolution frame
+  double drape_px = 0;             ///< SpriteError::drape_px: how far plain LOD is off, pixels
+  std::optional<Trigger> trigger;  ///< what made this a keyframe; none for sprite frames
+  bool cache_hit = false;          ///< a cached keyframe was reused (a sprite frame)
+  int keyframe = 0;                ///< the frame whose keyframe is in use
+  QualityScore sprite, lod;        ///< each against the full-resolution frame
+  bool key() const { return cls == FrameClass::kKey; }
 };
 
 /// One sweep setting's sprite pass (the main run's, or a separate timed pass).
@@ -44,7 +76,7 @@ struct SweepPass {
   double speedup_from_medians = 0;  ///< n x median full / (k x median key + (n-k) x median sprite)
   double total_ms = 0, key_median_ms = 0, sprite_median_ms = 0;
   double mean_ssim = 0;
-  std::string measured_in;  ///< "main run" | "separate timed pass"
+  SweepMethod measured_in = SweepMethod::kSeparatePass;
 };
 
 struct ThresholdPoint {
@@ -65,7 +97,7 @@ struct FrameCountPoint {
 /// The keyframe cache against a separate timed pass without it (same path).
 struct CacheSummary {
   std::size_t size_bytes = 0;
-  std::string policy;
+  CachePolicy policy = CachePolicy::kLeastRecentlyUsed;
   double accept = 0;
   int capacity_keyframes = 0;
   int keyframes = 0, keyframes_without_cache = 0, hits = 0;
@@ -76,9 +108,8 @@ struct CacheSummary {
 
 /// One keyframe trigger's separate scored pass (TriggerComparison).
 struct TriggerSide {
-  std::string metric;  ///< "paper" | "exact" | "contrast"
-  double threshold = 0;
-  std::string unit;  ///< "px" | "grey levels"
+  ErrorMetric metric = ErrorMetric::kPaper;
+  double threshold = 0;  ///< in threshold_unit(metric)
   int keyframes = 0;
   double mean_ssim = 0, mean_psnr = 0, min_ssim = 0;
 };
@@ -91,12 +122,14 @@ struct TriggerComparison {
   int simulations = 0;  ///< keyframe-only simulations the bisection ran
 };
 
-/// The paper's Figs. 13-14: one frame full / LOD / sprite (PNGs in `out`).
+/// The paper's Figs. 13-14: one frame full / LOD / sprite, and the sprite's
+/// and LOD's difference images against full resolution (|full - x| x 4).
 struct FigureCompare {
-  std::string name;  ///< "fig13" (checker texture) | "fig14" (the terrain's own)
+  SameFrameFigure name = SameFrameFigure::kFig13;
   std::string texture;
   int frame = 0, keyframe = 0;
   QualityScore lod, sprite;
+  Image full_image, lod_image, sprite_image, diff_lod_image, diff_sprite_image;
 };
 
 struct LodSummary {
@@ -143,13 +176,13 @@ struct LodspriteResult {
   int frames = 0;  ///< displayed frames (2 x the path's with there_and_back)
   std::string path;
   int lod_quads = 0;
-  std::string mesh = "uniform";  ///< the sprite's coarse mesh: "uniform" | "adaptive"
+  CoarseMesh mesh = CoarseMesh::kUniform;  ///< the sprite's coarse mesh
   long long mesh_triangles = 0;  ///< its triangle budget (uniform: 2 x lod_quads^2, plain LOD's)
   double threshold_px = 0;
-  std::string metric;  ///< "paper" | "exact"
+  ErrorMetric metric = ErrorMetric::kPaper;
   double max_fallback_fraction = 0, sharp_px = 0;
   double key_margin = 0, key_supersample = 1;
-  std::string shading = "plain";   ///< terrain shading: "plain" | "rich"
+  TerrainShading shading = TerrainShading::kPlain;
   double max_resample_scale = 0;   ///< may be +inf (the trigger off): JSON null
   bool anisotropic_scale = false;  ///< the scale trigger reads the worst axis
   double scale_per_drape_px = 0;   ///< SpriteOptions::scale_per_drape_px
@@ -176,14 +209,7 @@ struct LodspriteResult {
   std::vector<FigureCompare> figures;
   std::vector<LodspriteFrame> per_frame;
 
-  LodspriteTargets targets() const {
-    return {.keyframes_at_most_28 = sprite.keyframes <= 28,
-            .efficiency_at_least_0_9 = bound.efficiency >= 0.9,
-            .ssim_above_lod_on_95pct = sprite.ssim_above_lod_fraction >= 0.95,
-            .mean_psnr_above_lod = sprite.mean_psnr > lod.mean_psnr,
-            .mean_psnr_above_lod_on_sprite_frames =
-                sprite.mean_psnr_sprite_frames > lod.mean_psnr_sprite_frames};
-  }
+  LodspriteTargets targets() const;
 };
 
 /// How the sweeps' speed-ups are measured: the JSON and the page both say it.
@@ -193,8 +219,4 @@ inline constexpr const char* kSweepSpeedupMethod =
     "full-resolution total; speedup_from_medians: derived, n x median full / (k x median "
     "key + (n - k) x median sprite) with that pass's medians";
 
-/// The `bench lodsprite` JSON document (DESIGN.md's contract), the targets
-/// derived from the summaries.
-nlohmann::json to_json(const LodspriteResult& r);
-
-}  // namespace terrasprite::cli
+}  // namespace terrasprite::lodsprite

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Separate LOD-sprite passes of `bench lodsprite`, beside its interleaved
+// Separate LOD-sprite passes of run_lodsprite(), beside its interleaved
 // main run: a timed, scored pass at other settings (the sweeps, the cache
 // comparison, the trigger comparison) and a keyframe-count simulation.
 #pragma once
@@ -11,7 +11,7 @@
 #include "terrasprite/raster/scene.h"
 #include "terrasprite/sprite/sprite_renderer.h"
 
-namespace terrasprite::cli {
+namespace terrasprite::lodsprite {
 
 struct PassResult {
   int keyframes = 0;
@@ -35,4 +35,4 @@ PassResult sprite_pass(Scene& scene, std::span<const Camera> path, int width, in
 int simulate_keyframes(Scene& scene, std::span<const Camera> path, int width, int height,
                        const SpriteOptions& options);
 
-}  // namespace terrasprite::cli
+}  // namespace terrasprite::lodsprite

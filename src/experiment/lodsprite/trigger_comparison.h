@@ -6,13 +6,13 @@
 #include <span>
 #include <vector>
 
-#include "lodsprite_result.h"
 #include "terrasprite/camera/camera.h"
 #include "terrasprite/common/image.h"
+#include "terrasprite/experiment/lodsprite/lodsprite_result.h"
 #include "terrasprite/raster/scene.h"
 #include "terrasprite/sprite/sprite_renderer.h"
 
-namespace terrasprite::cli {
+namespace terrasprite::lodsprite {
 
 /// The error triggers alone (the scale and fallback triggers off on both
 /// sides, so neither spends keyframes the metrics did not ask for):
@@ -26,4 +26,4 @@ TriggerComparison compare_triggers(Scene& scene, std::span<const Camera> path, i
                                    int height, const SpriteOptions& main,
                                    const std::vector<Image>& refs, int every);
 
-}  // namespace terrasprite::cli
+}  // namespace terrasprite::lodsprite

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Plots (gnuplot, pngcairo) and index.html for `bench lodsprite` and `demo`.
-#include "lodsprite_report.h"
+#include "terrasprite/report/lodsprite_report.h"
 
 #include <fmt/format.h>
 
@@ -8,11 +8,14 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
-#include "terrasprite/report/plot.h"
 #include "terrasprite/common/error.h"
+#include "terrasprite/report/plot.h"
+#include "terrasprite/terrain/image_io.h"
 
-namespace terrasprite::cli {
+namespace terrasprite::report {
+using namespace lodsprite;
 namespace {
 
 // FLIP is -1 when the run skipped it.
@@ -20,7 +23,8 @@ std::string flip_text(double flip) {
   return flip < 0 ? "n/a" : fmt::format("{:.4f}", flip);
 }
 
-const char* kPlots = R"GP(set terminal pngcairo size 900,420 font "sans,10"
+// The plots of every run: error, time and quality per frame (Figs. 8-9).
+const char* kFramePlots = R"GP(set terminal pngcairo size 900,420 font "sans,10"
 # Columns by the names in each .dat file's header row, never by number.
 set datafile columnheaders
 set grid
@@ -40,23 +44,6 @@ plot 'per_frame.dat' u "frame":"full_ms" w QSTYLE lc rgb '#888888' t 'full resol
      '' u "frame":(column("is_key")==1 ? column("ms") : 1/0) w p pt 7 ps 0.8 lc rgb 'red' t 'LOD-sprite: key', \
      '' u "frame":(column("is_key")==0 ? column("ms") : 1/0) w p pt 7 ps 0.4 lc rgb 'blue' t 'LOD-sprite: sprite'
 unset logscale y
-set output 'fig10_keyframes_vs_frames.png'
-set title "Keyframe fraction against frame count (paper Fig. 10)"
-set xlabel "frames along the same path (log)"; set ylabel "keyframe fraction"; set logscale x
-plot 'frames.dat' u "frames":"keyframe_fraction" w lp pt 7 lw 1.5 t 'keyframes / frames'
-set output 'fig11_keyframes_vs_threshold.png'
-set title "Keyframe fraction against threshold (paper Fig. 11)"
-set xlabel "threshold (pixels, log)"
-plot 'threshold.dat' u "threshold_px":"keyframe_fraction" w lp pt 7 lw 1.5 t 'keyframes / frames'
-set output 'fig12_speedup_vs_threshold.png'
-set title "Speed-up over full resolution against threshold (paper Fig. 12)"
-set ylabel "speed-up (total full / total LOD-sprite)"
-plot 'threshold.dat' u "threshold_px":"speedup" w lp pt 7 lw 1.5 t 'measured (totals)', '' u "threshold_px":"speedup_from_medians" w lp pt 5 lw 1.5 t 'from per-class medians'
-set output 'lod_sweep.png'
-set title "Coarse mesh size at the chosen threshold"
-set xlabel "coarse quads per side (log)"; set ylabel "speed-up"; set y2label "mean SSIM"; set y2tics; set ytics nomirror
-plot 'lod.dat' u "lod_quads":"speedup" w lp pt 7 lw 1.5 t 'speed-up (totals)', '' u "lod_quads":"speedup_from_medians" w lp pt 6 lw 1.5 t 'speed-up (medians)', '' u "lod_quads":"mean_ssim" axes x1y2 w lp pt 5 lw 1.5 t 'mean SSIM'
-unset logscale x; unset y2tics; unset y2label; set ytics mirror
 set output 'quality_ssim.png'
 set title "SSIM per frame against full resolution"
 set xlabel "frame"; set ylabel "SSIM"
@@ -70,6 +57,48 @@ set title "Mean FLIP per frame against full resolution"
 set ylabel "FLIP"
 plot 'per_frame.dat' u "frame":"flip" w QSTYLE lw 1.5 t 'LOD-sprite', '' u "frame":"lod_flip" w QSTYLE lw 1.5 t 'plain LOD'
 )GP";
+
+// The frame-count sweep (Fig. 10).
+const char* kFrameCountPlot = R"GP(set output 'fig10_keyframes_vs_frames.png'
+set title "Keyframe fraction against frame count (paper Fig. 10)"
+set xlabel "frames along the same path (log)"; set ylabel "keyframe fraction"; set logscale x
+plot 'frames.dat' u "frames":"keyframe_fraction" w lp pt 7 lw 1.5 t 'keyframes / frames'
+unset logscale x
+)GP";
+
+// The threshold sweep (Figs. 11-12).
+const char* kThresholdPlots = R"GP(set output 'fig11_keyframes_vs_threshold.png'
+set title "Keyframe fraction against threshold (paper Fig. 11)"
+set xlabel "threshold (pixels, log)"; set ylabel "keyframe fraction"; set logscale x
+plot 'threshold.dat' u "threshold_px":"keyframe_fraction" w lp pt 7 lw 1.5 t 'keyframes / frames'
+set output 'fig12_speedup_vs_threshold.png'
+set title "Speed-up over full resolution against threshold (paper Fig. 12)"
+set ylabel "speed-up (total full / total LOD-sprite)"
+plot 'threshold.dat' u "threshold_px":"speedup" w lp pt 7 lw 1.5 t 'measured (totals)', '' u "threshold_px":"speedup_from_medians" w lp pt 5 lw 1.5 t 'from per-class medians'
+unset logscale x
+)GP";
+
+// The coarse-mesh sweep.
+const char* kLodSweepPlot = R"GP(set output 'lod_sweep.png'
+set title "Coarse mesh size at the chosen threshold"
+set xlabel "coarse quads per side (log)"; set ylabel "speed-up"; set y2label "mean SSIM"; set y2tics; set ytics nomirror; set logscale x
+plot 'lod.dat' u "lod_quads":"speedup" w lp pt 7 lw 1.5 t 'speed-up (totals)', '' u "lod_quads":"speedup_from_medians" w lp pt 6 lw 1.5 t 'speed-up (medians)', '' u "lod_quads":"mean_ssim" axes x1y2 w lp pt 5 lw 1.5 t 'mean SSIM'
+unset logscale x; unset y2tics; unset y2label; set ytics mirror
+)GP";
+
+// The plots a run has data for, in the page's order.
+std::vector<const char*> plot_files(const LodspriteResult& j) {
+  std::vector<const char*> files = {"fig08_error.png", "fig09_time.png"};
+  if (!j.frame_count_sweep.empty()) files.push_back("fig10_keyframes_vs_frames.png");
+  if (!j.threshold_sweep.empty()) {
+    files.push_back("fig11_keyframes_vs_threshold.png");
+    files.push_back("fig12_speedup_vs_threshold.png");
+  }
+  for (const char* q : {"quality_ssim.png", "quality_psnr.png", "quality_flip.png"})
+    files.push_back(q);
+  if (!j.lod_sweep.empty()) files.push_back("lod_sweep.png");
+  return files;
+}
 
 std::string row(const std::string& name, const std::string& value) {
   return fmt::format("<tr><th>{}</th><td>{}</td></tr>\n", name, value);
@@ -87,7 +116,7 @@ std::string async_plot(const AsyncComparison& a, OutputDir& out) {
   for (std::size_t i = 0; i < n; ++i)
     d << fmt::format("{} {:.3f} {:.3f} {:.3f} {:.3f}\n", i, a.sync.frame_ms[i], a.async.frame_ms[i],
                      a.sync.draw_ms[i], a.async.draw_ms[i]);
-  report::write_text(out.file("async.dat"),
+  write_text(out.file("async.dat"),
              "frame sync_ms async_ms sync_draw_ms async_draw_ms\n" + d.str());
   const double median = a.async.median_ms, p99 = a.async.p99_ms;
   return fmt::format(
@@ -103,15 +132,14 @@ std::string async_plot(const AsyncComparison& a, OutputDir& out) {
       a.display_hz > 0 ? fmt::format(" at {:g} Hz", a.display_hz) : "", median, median, p99, p99);
 }
 
-}  // namespace
-
-void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
+// The per-frame and sweep data for gnuplot, one header row of column names each.
+void write_data(const LodspriteResult& j, OutputDir& out) {
   std::ostringstream pf, th, fr, ld;
   for (const LodspriteFrame& p : j.per_frame)
     pf << fmt::format(
         "{} {} {:.4f} {:.4f} {:.4f} {:.5f} {:.5f} {:.3f} {:.5f} {:.5f} {:.3f} {:.5f} {:.5f} "
         "{:.4f}\n",
-        p.frame, p.key ? 1 : 0, p.ms, p.full_ms, p.lod_ms, p.error_px, p.error_px_exact,
+        p.frame, p.key() ? 1 : 0, p.ms, p.full_ms, p.lod_ms, p.error_px, p.error_px_exact,
         p.sprite.psnr, p.sprite.ssim, p.sprite.flip, p.lod.psnr, p.lod.ssim, p.lod.flip,
         p.fallback_fraction);
   for (const ThresholdPoint& t : j.threshold_sweep)
@@ -123,39 +151,56 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
   for (const LodQuadsPoint& t : j.lod_sweep)
     ld << fmt::format("{} {} {} {} {}\n", t.lod_quads, t.pass.keyframes, t.pass.speedup,
                       t.pass.mean_ssim, t.pass.speedup_from_medians);
-  report::write_text(out.file("per_frame.dat"),
+  write_text(out.file("per_frame.dat"),
              "frame is_key ms full_ms lod_ms error_px error_px_exact psnr ssim flip lod_psnr "
              "lod_ssim lod_flip fallback_fraction\n" +
                  pf.str());
-  report::write_text(out.file("threshold.dat"),
+  write_text(out.file("threshold.dat"),
              "threshold_px keyframes keyframe_fraction speedup mean_ssim speedup_from_medians\n" +
                  th.str());
-  report::write_text(out.file("frames.dat"), "frames keyframes keyframe_fraction\n" + fr.str());
-  report::write_text(out.file("lod.dat"),
+  write_text(out.file("frames.dat"), "frames keyframes keyframe_fraction\n" + fr.str());
+  write_text(out.file("lod.dat"),
              "lod_quads keyframes speedup mean_ssim speedup_from_medians\n" + ld.str());
-  std::string gp = kPlots;
-  const bool paper = j.metric == "paper";
+}
+
+// Writes plots.gp and runs gnuplot; returns its error line, empty on success.
+std::string draw_plots(const LodspriteResult& j, OutputDir& out) {
+  std::string gp = kFramePlots;
+  if (!j.frame_count_sweep.empty()) gp += kFrameCountPlot;
+  if (!j.threshold_sweep.empty()) gp += kThresholdPlots;
+  if (!j.lod_sweep.empty()) gp += kLodSweepPlot;
   auto replace_all = [&](const std::string& from, const std::string& to) {
     for (std::size_t at = gp.find(from); at != std::string::npos;
          at = gp.find(from, at + to.size()))
       gp.replace(at, from.size(), to);
   };
-  replace_all("THRESHOLD_COL", paper ? "error_px" : "error_px_exact");
+  replace_all("THRESHOLD_COL", j.metric == ErrorMetric::kPaper ? "error_px" : "error_px_exact");
   // Reference figures on every n-th frame only (NaN between): points, since
   // gnuplot breaks a line at each NaN.
   replace_all("QSTYLE", j.reference_every > 1 ? "lp pt 7 ps 0.4" : "l");
   replace_all("THRESHOLD", fmt::format("{}", j.threshold_px));
   if (j.async) gp += async_plot(*j.async, out);
-  report::write_text(out.file("plots.gp"), gp);
-  const std::string plot_error = report::run_gnuplot(out.partial().string(), "plots.gp");
-  const bool plotted = plot_error.empty();
-  if (!plotted)
+  write_text(out.file("plots.gp"), gp);
+  const std::string plot_error = run_gnuplot(out.partial().string(), "plots.gp");
+  if (!plot_error.empty())
     fmt::print(stderr, "warning: {}; the .dat and plots.gp files are kept\n", plot_error);
+  return plot_error;
+}
 
-  const SpriteSummary& s = j.sprite;
-  const LodSummary& l = j.lod;
-  const SpeedupBound& b = j.bound;
-  std::ostringstream h;
+// The same-frame figures' images: full, LOD, sprite and both differences.
+void save_figures(const LodspriteResult& j, OutputDir& out) {
+  for (const FigureCompare& f : j.figures) {
+    const std::string base = to_string(f.name);
+    save_png(f.full_image, out.file(base + "_full.png"));
+    save_png(f.lod_image, out.file(base + "_lod.png"));
+    save_png(f.sprite_image, out.file(base + "_sprite.png"));
+    save_png(f.diff_lod_image, out.file(base + "_diff_lod.png"));
+    save_png(f.diff_sprite_image, out.file(base + "_diff_sprite.png"));
+  }
+}
+
+// The page's head, title, the flight's video (first) and what ran.
+void html_intro(const LodspriteResult& j, std::ostringstream& h) {
   h << "<!doctype html><html><head><meta charset='utf-8'><title>LOD-sprite reproduction</title>\n"
        "<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
        "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:4px "
@@ -165,6 +210,11 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
        "</head><body>\n";
   h << "<h1>LOD-sprite terrain rendering: reproduction of Chen, Swan, Kuo, Kaufman (IEEE "
        "Visualization 1999)</h1>\n";
+  if (!j.video.empty())
+    h << fmt::format(
+        "<p><video src='{0}' controls loop muted width='{1}'></video><br>"
+        "The flight: LOD-sprite frames, H.264 (<a href='{0}'>{0}</a>)</p>\n",
+        j.video, std::min(j.width, 1024));
   h << fmt::format(
       "<p>Terrain <b>{}</b> ({} x {} samples, texture {}), {} frames at {} x {} along the paper "
       "path, "
@@ -174,13 +224,14 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
       "process; "
       "quality scored after each frame's timed spans.</p>\n",
       j.terrain.name, j.terrain.samples_x, j.terrain.samples_y, j.terrain.texture, j.frames,
-      j.width, j.height, j.lod_quads, j.lod_quads, j.threshold_px,
-      j.metric == "contrast" ? "grey levels" : "px", j.metric, j.shading, j.gl_renderer);
-  if (!j.video.empty())
-    h << fmt::format(
-        "<h2>The flight</h2><p><video src='{0}' controls loop muted width='{1}'></video><br>"
-        "LOD-sprite frames, H.264 (<a href='{0}'>{0}</a>)</p>\n",
-        j.video, std::min(j.width, 1024));
+      j.width, j.height, j.lod_quads, j.lod_quads, j.threshold_px, threshold_unit(j.metric),
+      to_string(j.metric), to_string(j.shading), j.gl_renderer);
+}
+
+void html_summary(const LodspriteResult& j, std::ostringstream& h) {
+  const SpriteSummary& s = j.sprite;
+  const LodSummary& l = j.lod;
+  const SpeedupBound& b = j.bound;
   h << "<h2>Summary</h2><table>\n";
   h << row("speed-up (total full / total LOD-sprite)",
            fmt::format("<b>{:.2f}x</b> (paper: 12.32x)", j.speedup));
@@ -217,6 +268,10 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
       "<p>Keyframes are the full-resolution frame itself (PSNR capped at {} dB, SSIM 1, FLIP "
       "0).</p>\n",
       kPsnrCapDb);
+}
+
+void html_against_paper(const LodspriteResult& j, std::ostringstream& h) {
+  const SpriteSummary& s = j.sprite;
   h << "<h2>Ours vs the paper (this run)</h2>"
        "<table><tr><th></th><th>ours</th><th>paper</th></tr>\n";
   h << fmt::format(
@@ -226,97 +281,107 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
                    j.frames);
   h << fmt::format(
       "<tr><th>r = median full / median sprite frame</th><td>{:.1f}</td><td>about 55</td></tr>\n",
-      b.r);
+      j.bound.r);
   h << fmt::format(
       "<tr><th>p99 frame time / median sprite frame</th><td>{:.1f} ({:.2f} / {:.2f} ms)</td>"
       "<td>-</td></tr>\n",
       s.p99_ms / std::max(s.sprite_median_ms, 1e-9), s.p99_ms, s.sprite_median_ms);
   h << "</table>\n";
-  if (j.cache) {
-    const CacheSummary& c = *j.cache;
-    h << "<h2>Keyframe cache</h2><table>\n";
-    h << row("budget", fmt::format("{:.0f} MB ({} keyframes), eviction {}, reuse while error &le; "
-                                   "{} x threshold",
-                                   double(c.size_bytes) / (1 << 20), c.capacity_keyframes, c.policy,
-                                   c.accept));
-    h << row("keyframes with / without the cache",
-             fmt::format("{} / {} ({:.1f}% fewer; {} reused)", c.keyframes,
-                         c.keyframes_without_cache, 100 * c.saving, c.hits));
-    h << row("mean SSIM with / without the cache",
-             fmt::format("{:.4f} / {:.4f}", c.mean_ssim, c.mean_ssim_without_cache));
-    h << row("sprite total with / without the cache",
-             fmt::format("{:.0f} / {:.0f} ms", c.total_ms, c.total_ms_without_cache));
-    h << "</table>\n";
-  }
-  if (j.trigger_comparison) {
-    const TriggerComparison& t = *j.trigger_comparison;
-    h << "<h2>Keyframe trigger: geometric error vs predicted image error, same keyframe "
-         "count</h2><table>\n<tr><th>metric</th><th>threshold</th><th>keyframes</th><th>mean "
-         "SSIM</th><th>min SSIM</th><th>mean PSNR</th></tr>\n";
-    for (const TriggerSide* s : {&t.main, &t.other})
-      h << fmt::format(
-          "<tr><td>{}</td><td>{:.3g} {}</td><td>{}</td><td>{:.4f}</td><td>{:.4f}</td><td>{:.2f} "
-          "dB</td></tr>\n",
-          s->metric, s->threshold, s->unit, s->keyframes, s->mean_ssim, s->min_ssim, s->mean_psnr);
+}
+
+void html_cache(const CacheSummary& c, std::ostringstream& h) {
+  h << "<h2>Keyframe cache</h2><table>\n";
+  h << row("budget", fmt::format("{:.0f} MB ({} keyframes), eviction {}, reuse while error &le; "
+                                 "{} x threshold",
+                                 double(c.size_bytes) / (1 << 20), c.capacity_keyframes,
+                                 to_string(c.policy), c.accept));
+  h << row("keyframes with / without the cache",
+           fmt::format("{} / {} ({:.1f}% fewer; {} reused)", c.keyframes, c.keyframes_without_cache,
+                       100 * c.saving, c.hits));
+  h << row("mean SSIM with / without the cache",
+           fmt::format("{:.4f} / {:.4f}", c.mean_ssim, c.mean_ssim_without_cache));
+  h << row("sprite total with / without the cache",
+           fmt::format("{:.0f} / {:.0f} ms", c.total_ms, c.total_ms_without_cache));
+  h << "</table>\n";
+}
+
+void html_trigger(const TriggerComparison& t, std::ostringstream& h) {
+  h << "<h2>Keyframe trigger: geometric error vs predicted image error, same keyframe "
+       "count</h2><table>\n<tr><th>metric</th><th>threshold</th><th>keyframes</th><th>mean "
+       "SSIM</th><th>min SSIM</th><th>mean PSNR</th></tr>\n";
+  for (const TriggerSide* s : {&t.main, &t.other})
     h << fmt::format(
-        "</table><p>The error triggers alone (scale and fallback triggers off on both sides), "
-        "each a separate timed pass scored on the same frames; the second "
-        "trigger's threshold was found by {} keyframe-only simulations.</p>\n",
-        t.simulations);
+        "<tr><td>{}</td><td>{:.3g} {}</td><td>{}</td><td>{:.4f}</td><td>{:.4f}</td><td>{:.2f} "
+        "dB</td></tr>\n",
+        to_string(s->metric), s->threshold, threshold_unit(s->metric), s->keyframes, s->mean_ssim,
+        s->min_ssim, s->mean_psnr);
+  h << fmt::format(
+      "</table><p>The error triggers alone (scale and fallback triggers off on both sides), "
+      "each a separate timed pass scored on the same frames; the second "
+      "trigger's threshold was found by {} keyframe-only simulations.</p>\n",
+      t.simulations);
+}
+
+void html_async(const AsyncComparison& a, bool plotted, std::ostringstream& h) {
+  const AsyncKeyframeStats& st = a.async.stats;
+  h << "<h2>Asynchronous keyframes (simulated display, frame time = interval between "
+       "presentations)</h2><table>\n";
+  h << row("display", a.display_hz > 0
+                          ? fmt::format("paced at {:g} Hz (a frame not ready by its slot is late "
+                                        "and waits for the next)",
+                                        a.display_hz)
+                          : std::string("flat out (each frame presented as soon as drawn)"));
+  for (auto [name, d] : {std::pair{"synchronous", &a.sync}, {"async", &a.async}}) {
+    h << row(fmt::format("{} display: median / p99 / max frame", name),
+             fmt::format("{:.2f} / {:.2f} / {:.1f} ms (p99 / median {:.2f})", d->median_ms,
+                         d->p99_ms, d->max_ms, d->p99_over_median()));
+    h << row(fmt::format("{} display: draw median / p99; late frames", name),
+             fmt::format("{:.2f} / {:.2f} ms; {} of {}", d->draw_median_ms, d->draw_p99_ms,
+                         d->late_frames, d->frame_ms.size()));
   }
-  if (j.async) {
-    const AsyncComparison& a = *j.async;
-    const AsyncKeyframeStats& st = a.async.stats;
-    h << "<h2>Asynchronous keyframes (simulated display, frame time = interval between "
-         "presentations)</h2><table>\n";
-    h << row("display",
-             a.display_hz > 0
-                 ? fmt::format("paced at {:g} Hz (a frame not ready by its slot is late and "
-                               "waits for the next)",
-                               a.display_hz)
-                 : std::string("flat out (each frame presented as soon as drawn)"));
-    for (auto [name, d] : {std::pair{"synchronous", &a.sync}, {"async", &a.async}}) {
-      h << row(fmt::format("{} display: median / p99 / max frame", name),
-               fmt::format("{:.2f} / {:.2f} / {:.1f} ms (p99 / median {:.2f})", d->median_ms,
-                           d->p99_ms, d->max_ms, d->p99_over_median()));
-      h << row(fmt::format("{} display: draw median / p99; late frames", name),
-               fmt::format("{:.2f} / {:.2f} ms; {} of {}", d->draw_median_ms, d->draw_p99_ms,
-                           d->late_frames, d->frame_ms.size()));
-    }
-    h << row("async keyframes: requested / used / late (used anyway); mean latency",
-             fmt::format("{} / {} / {} ({}); {:.1f} frames", st.requested, st.used, st.late,
-                         st.late_used, st.mean_latency_frames));
-    h << row("mean SSIM async / synchronous main run",
-             fmt::format("{:.4f} / {:.4f} ({:+.4f})", a.async.mean_ssim, a.main_run_mean_ssim,
-                         a.ssim_change()));
-    h << row("p99 at most 2x the median frame", pass(a.p99_target_met()));
-    h << row("mean SSIM within 0.005 of the synchronous run", pass(a.ssim_target_met()));
-    h << "</table>\n";
-    if (plotted) h << "<p><img src='async_frame_time.png' alt='async frame times'></p>\n";
-  }
+  h << row("async keyframes: requested / used / late (used anyway); mean latency",
+           fmt::format("{} / {} / {} ({}); {:.1f} frames", st.requested, st.used, st.late,
+                       st.late_used, st.mean_latency_frames));
+  h << row("mean SSIM async / synchronous main run",
+           fmt::format("{:.4f} / {:.4f} ({:+.4f})", a.async.mean_ssim, a.main_run_mean_ssim,
+                       a.ssim_change()));
+  h << row("p99 at most 2x the median frame", pass(a.p99_target_met()));
+  h << row("mean SSIM within 0.005 of the synchronous run", pass(a.ssim_target_met()));
+  h << "</table>\n";
+  if (plotted) h << "<p><img src='async_frame_time.png' alt='async frame times'></p>\n";
+}
+
+void html_targets(const LodspriteResult& j, std::ostringstream& h) {
   h << "<h2>Targets: the paper's keyframe budget, speed-up and quality against plain "
        "LOD</h2><table>\n";
   const LodspriteTargets t = j.targets();
   h << row("keyframes at most 28", pass(t.keyframes_at_most_28));
   h << row("speed-up at least 90% of the bound", pass(t.efficiency_at_least_0_9));
   h << row(fmt::format("SSIM above plain LOD on at least 95% of frames ({:.1f}%)",
-                       100 * s.ssim_above_lod_fraction),
+                       100 * j.sprite.ssim_above_lod_fraction),
            pass(t.ssim_above_lod_on_95pct));
   h << row("mean PSNR above plain LOD (all frames / sprite frames only)",
            pass(t.mean_psnr_above_lod) + " / " + pass(t.mean_psnr_above_lod_on_sprite_frames));
   h << "</table>\n";
-  if (plotted) {
-    h << "<h2>Plots (the paper's Figs. 8-12 from our data)</h2>\n";
-    for (const char* p :
-         {"fig08_error.png", "fig09_time.png", "fig10_keyframes_vs_frames.png",
-          "fig11_keyframes_vs_threshold.png", "fig12_speedup_vs_threshold.png", "quality_ssim.png",
-          "quality_psnr.png", "quality_flip.png", "lod_sweep.png"})
-      h << fmt::format("<p><img src='{}' alt='{}'></p>\n", p, p);
-  } else {
+}
+
+void html_plots(const LodspriteResult& j, const std::string& plot_error, std::ostringstream& h) {
+  if (!plot_error.empty()) {
     h << fmt::format(
         "<p><b>Plots not drawn:</b> {} (see gnuplot.log); the .dat and plots.gp "
         "files are here.</p>\n",
         plot_error);
+    return;
+  }
+  h << "<h2>Plots (the paper's Figs. 8-12 from our data)</h2>\n";
+  for (const char* p : plot_files(j)) h << fmt::format("<p><img src='{}' alt='{}'></p>\n", p, p);
+}
+
+void html_sweeps(const LodspriteResult& j, std::ostringstream& h) {
+  if (j.threshold_sweep.empty() && j.frame_count_sweep.empty() && j.lod_sweep.empty()) {
+    h << "<h2>Sweeps</h2><p>Not run (the paper's Figs. 10-12): <code>terrasprite demo "
+         "--sweeps</code> or <code>terrasprite bench lodsprite</code> runs them.</p>\n";
+    return;
   }
   h << "<h2>Sweeps</h2><table><tr><th>threshold "
        "(px)</th><th>keyframes</th><th>fraction</th><th>speed-up (totals)</th><th>speed-up "
@@ -327,7 +392,7 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
         "<tr><td>{}</td><td>{}</td><td>{:.3f}</td><td>{:.2f}</td><td>{:.2f}</td><td>{:.4f}</"
         "td><td>{}</td></tr>\n",
         t.threshold_px, x.keyframes, x.keyframe_fraction, x.speedup, x.speedup_from_medians,
-        x.mean_ssim, x.measured_in);
+        x.mean_ssim, to_string(x.measured_in));
   }
   h << "</table><table><tr><th>frames</th><th>keyframes</th><th>fraction</th></tr>\n";
   for (const FrameCountPoint& x : j.frame_count_sweep)
@@ -339,13 +404,17 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
     const SweepPass& x = q.pass;
     h << fmt::format(
         "<tr><td>{}</td><td>{}</td><td>{:.2f}</td><td>{:.2f}</td><td>{:.4f}</td><td>{}</td></tr>\n",
-        q.lod_quads, x.keyframes, x.speedup, x.speedup_from_medians, x.mean_ssim, x.measured_in);
+        q.lod_quads, x.keyframes, x.speedup, x.speedup_from_medians, x.mean_ssim,
+        to_string(x.measured_in));
   }
   h << fmt::format("</table><p>{} SSIM in the sweeps on every {} frame(s).</p>\n",
                    kSweepSpeedupMethod, j.sweep_score_every);
+}
+
+void html_figures(const LodspriteResult& j, std::ostringstream& h) {
   for (const FigureCompare& f : j.figures) {
-    const char* title =
-        f.name == "fig13" ? "checkerboard texture (paper Fig. 13)" : "real texture (paper Fig. 14)";
+    const char* title = f.name == SameFrameFigure::kFig13 ? "checkerboard texture (paper Fig. 13)"
+                                                          : "real texture (paper Fig. 14)";
     h << fmt::format(
         "<h2>Same frame, {}: frame {} (keyframe {}), the sprite frame with the largest exact "
         "error</h2>\n",
@@ -359,11 +428,30 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
           {"_diff_sprite.png", "|full - sprite| x4"}})
       h << fmt::format(
           "<figure><a href='{0}{1}'><img src='{0}{1}'></a><figcaption>{2}</figcaption></figure>\n",
-          f.name, suffix, caption);
+          to_string(f.name), suffix, caption);
   }
-  h << "<p>All numbers: <code>lodsprite.json</code>; per-frame data: "
-       "<code>per_frame.dat</code>.</p></body></html>\n";
-  report::write_text(out.file("index.html"), h.str());
 }
 
-}  // namespace terrasprite::cli
+}  // namespace
+
+void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
+  save_figures(j, out);
+  write_data(j, out);
+  const std::string plot_error = draw_plots(j, out);
+  std::ostringstream h;
+  html_intro(j, h);
+  html_summary(j, h);
+  html_against_paper(j, h);
+  if (j.cache) html_cache(*j.cache, h);
+  if (j.trigger_comparison) html_trigger(*j.trigger_comparison, h);
+  if (j.async) html_async(*j.async, plot_error.empty(), h);
+  html_targets(j, h);
+  html_plots(j, plot_error, h);
+  html_sweeps(j, h);
+  html_figures(j, h);
+  h << "<p>All numbers: <code>lodsprite.json</code>; per-frame data: "
+       "<code>per_frame.dat</code>.</p></body></html>\n";
+  write_text(out.file("index.html"), h.str());
+}
+
+}  // namespace terrasprite::report

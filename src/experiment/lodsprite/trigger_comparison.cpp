@@ -1,19 +1,17 @@
 // SPDX-License-Identifier: MIT
-#include "lodsprite_trigger.h"
+#include "experiment/lodsprite/trigger_comparison.h"
 
 #include <cmath>
 #include <cstdlib>
 
-#include "lodsprite_passes.h"
-#include "lodsprite_run.h"
+#include "experiment/lodsprite/sprite_pass.h"
 
-namespace terrasprite::cli {
+namespace terrasprite::lodsprite {
 namespace {
 
 TriggerSide side(const SpriteOptions& o, const PassResult& p) {
-  return {.metric = metric_name(o.metric),
+  return {.metric = o.metric,
           .threshold = o.threshold_px,
-          .unit = o.metric == ErrorMetric::kContrast ? "grey levels" : "px",
           .keyframes = p.keyframes,
           .mean_ssim = p.mean_ssim,
           .mean_psnr = p.mean_psnr,
@@ -59,4 +57,4 @@ TriggerComparison compare_triggers(Scene& scene, std::span<const Camera> path, i
   return t;
 }
 
-}  // namespace terrasprite::cli
+}  // namespace terrasprite::lodsprite

@@ -5,13 +5,6 @@
 # nowhere else (SIMD clone macros and vector types: src/common/simd.h).
 set(TS_MODULES "")
 set(TS_MODULE_DIRS "")
-# The heavy third-party and standard headers most sources include, compiled
-# once per build (TERRASPRITE_PCH): the first module holds the precompiled
-# header, the others reuse it. Build figures: docs/testing.md, Build time.
-set(TS_PCH_HEADERS <algorithm> <array> <chrono> <cmath> <cstdint> <filesystem> <fstream>
-  <functional> <map> <memory> <optional> <span> <string> <vector>
-  <fmt/format.h> <glm/glm.hpp> <nlohmann/json.hpp> <tbb/parallel_for.h>)
-set(TS_PCH_HOLDER "")
 function(ts_module name)
   cmake_parse_arguments(M "" "" "DIRS;PUBLIC;PRIVATE" ${ARGN})
   set(srcs "")
@@ -28,26 +21,8 @@ function(ts_module name)
     PRIVATE ${PROJECT_SOURCE_DIR}/src)
   target_compile_options(${t} PRIVATE ${TS_WARNINGS})
   target_link_libraries(${t} PUBLIC ${M_PUBLIC} PRIVATE ${M_PRIVATE})
-  ts_use_pch(${t} TS_PCH_HOLDER ${TS_PCH_HEADERS})
-  set(TS_PCH_HOLDER ${TS_PCH_HOLDER} PARENT_SCOPE)
   set(TS_MODULES ${TS_MODULES} ${t} PARENT_SCOPE)
   set(TS_MODULE_DIRS ${TS_MODULE_DIRS} ${M_DIRS} PARENT_SCOPE)
-endfunction()
-
-# ts_use_pch(TARGET HOLDER_VAR header...): with TERRASPRITE_PCH, the first
-# target passed with a given HOLDER_VAR precompiles `header...` and the later
-# ones reuse its PCH (same compile flags: GCC falls back to the plain headers
-# otherwise). The code never relies on it: every source includes what it uses.
-function(ts_use_pch target holder_var)
-  if(NOT TERRASPRITE_PCH)
-    return()
-  endif()
-  if(${holder_var})
-    target_precompile_headers(${target} REUSE_FROM ${${holder_var}})
-  else()
-    target_precompile_headers(${target} PRIVATE ${ARGN})
-    set(${holder_var} ${target} PARENT_SCOPE)
-  endif()
 endfunction()
 
 # A per-pixel loop whose sqrt should compile to the exact vector instruction:
@@ -55,8 +30,7 @@ endfunction()
 # it). Not -ffast-math: values stay IEEE (the ray caster relies on inf/NaN).
 function(ts_fast_sqrt source)
   if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
-    set_source_files_properties(${PROJECT_SOURCE_DIR}/${source} PROPERTIES COMPILE_OPTIONS -fno-math-errno
-      SKIP_PRECOMPILE_HEADERS ON)
+    set_source_files_properties(${PROJECT_SOURCE_DIR}/${source} PROPERTIES COMPILE_OPTIONS -fno-math-errno)
   endif()
 endfunction()
 
@@ -66,8 +40,7 @@ endfunction()
 # Values stay IEEE.
 function(ts_no_fp_traps source)
   if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
-    set_source_files_properties(${PROJECT_SOURCE_DIR}/${source} PROPERTIES COMPILE_OPTIONS -fno-trapping-math
-      SKIP_PRECOMPILE_HEADERS ON)
+    set_source_files_properties(${PROJECT_SOURCE_DIR}/${source} PROPERTIES COMPILE_OPTIONS -fno-trapping-math)
   endif()
 endfunction()
 

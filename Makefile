@@ -13,7 +13,7 @@ PACKAGES := build-essential cmake pkg-config git \
   libmeshoptimizer-dev libtinyobjloader-dev libtinygltf-dev libglfw3-dev libimgui-dev \
   xvfb xauth clang-14 libclang-rt-14-dev libzstd-dev
 
-.PHONY: all deps build build-all demo test test-asan consumer fuzz fuzz-seeds fuzz-run clean
+.PHONY: all deps build build-all build-tests demo test test-asan consumer fuzz fuzz-seeds fuzz-run clean
 
 all: build
 
@@ -36,17 +36,22 @@ build: deps $(BUILD)/CMakeCache.txt
 build-all: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
+# What ctest runs (the CLI, the test executables, the fuzz corpora replays):
+# all targets but the micro-benchmarks.
+build-tests: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) --target ts_tests -j $(JOBS)
+
 demo: build
 	$(BUILD)/terrasprite demo --out out/demo
 
-test: build-all
+test: build-tests
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	$(MAKE) consumer
 
 # The installed package must stay usable from another project: the whole
 # library, and the quality module alone with no GL, EGL, epoxy or GDAL in its
 # binary's NEEDED entries.
-consumer: build-all
+consumer: build-tests
 	rm -rf $(BUILD)/_install $(BUILD)/_consumer $(BUILD)/_consumer_quality
 	cmake --install $(BUILD) --prefix $(BUILD)/_install >/dev/null
 	cmake -S tests/consumer -B $(BUILD)/_consumer -DCMAKE_PREFIX_PATH=$(CURDIR)/$(BUILD)/_install >/dev/null

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Helpers shared by the test executables: temp dirs, running the CLI, data paths.
+// What every test executable shares: the one temporary directory type, the one
+// process runner (shell commands and the built CLI), data paths.
 #pragma once
 #include <sys/wait.h>
 
@@ -33,7 +34,9 @@ struct CliResult {
   std::string output;  ///< stdout and stderr together
 };
 
-/// Runs a shell command line and captures its output (stdout and stderr).
+/// Runs a shell command line and captures its output (stdout and stderr; end
+/// the command with `2>/dev/null` for stdout alone). status: the exit code, or
+/// -1 when the shell could not start or the command died from a signal.
 inline CliResult run_shell(const std::string& command) {
   std::string cmd = "{ " + command + "\n} 2>&1";
   CliResult r;
@@ -45,6 +48,11 @@ inline CliResult run_shell(const std::string& command) {
   int st = pclose(p);
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   return r;
+}
+
+/// Whether `tool` is a command on the PATH.
+inline bool have_tool(const std::string& tool) {
+  return run_shell("command -v '" + tool + "' >/dev/null").status == 0;
 }
 
 /// Runs the built CLI (TS_CLI) with `args` (shell syntax) and captures its output.

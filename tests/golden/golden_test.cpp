@@ -89,21 +89,21 @@ GlContext& gl_ctx() {
   return context;
 }
 
-TEST(golden, full) {
+TEST(Golden, FullResolution) {
   gl_ctx();
   Scene scene(terrain());
   MeshRenderer r(scene, kW, kH, 0);
   for (int k : {0, 1}) check_golden("full_" + std::to_string(k), r.render(view(k)).color);
 }
 
-TEST(golden, lod) {
+TEST(Golden, Lod) {
   gl_ctx();
   Scene scene(terrain());
   MeshRenderer r(scene, kW, kH, 16);
   for (int k : {0, 1}) check_golden("lod_" + std::to_string(k), r.render(view(k)).color);
 }
 
-TEST(golden, sprite) {
+TEST(Golden, Sprite) {
   gl_ctx();
   Scene scene(terrain());
   SpriteRenderer r(scene, kW, kH);
@@ -119,7 +119,7 @@ TEST(golden, sprite) {
   }
 }
 
-TEST(golden, voxel) {
+TEST(Golden, Voxel) {
   VoxelTerrain vt(terrain());
   VoxelRenderer r(vt, kW, kH);
   for (int k : {0, 1}) check_golden("voxel_" + std::to_string(k), r.render(view(k)).color);

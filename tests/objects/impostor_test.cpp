@@ -42,7 +42,7 @@ std::vector<std::uint8_t> coverage(const Shot& a, const Shot& b) {
   return m;
 }
 
-class ImpostorTest : public ::testing::Test {
+class Impostor : public ::testing::Test {
  protected:
   ts::GlContext ctx;
   ts::gl::RenderTarget target{kSize, kSize};
@@ -53,7 +53,7 @@ class ImpostorTest : public ::testing::Test {
 
 }  // namespace
 
-TEST_F(ImpostorTest, ReliefMatchesMeshThroughAFace) {
+TEST_F(Impostor, ReliefMatchesMeshThroughAFace) {
   const ts::Camera cam = tstest::orbit({0, 0, 0.5}, 4.0, 0, 0);  // looking north at the -y face
   const ts::Representation mesh{ts::ObjectKind::kMesh}, relief{ts::ObjectKind::kRelief, 0, 64};
   gl_box.prepare(relief);
@@ -74,7 +74,7 @@ TEST_F(ImpostorTest, ReliefMatchesMeshThroughAFace) {
   EXPECT_GT(both, kSize * kSize / 20);
 }
 
-TEST_F(ImpostorTest, ReliefBetweenTwoFaces) {
+TEST_F(Impostor, ReliefBetweenTwoFaces) {
   const ts::Camera cam = tstest::orbit({0, 0, 0.5}, 4.0, 45, 20);
   const ts::Representation mesh{ts::ObjectKind::kMesh}, relief{ts::ObjectKind::kRelief, 0, 64};
   gl_box.prepare(relief);
@@ -88,7 +88,7 @@ TEST_F(ImpostorTest, ReliefBetweenTwoFaces) {
   EXPECT_GT(s, 0.90);  // measured 0.93: silhouette and edge texels (nearest sampling)
 }
 
-TEST_F(ImpostorTest, OctahedralMatchesMesh) {
+TEST_F(Impostor, OctahedralMatchesMesh) {
   const ts::Camera cam = tstest::orbit({0, 0, 0.5}, 4.0, 30, 25);
   const ts::Representation mesh{ts::ObjectKind::kMesh}, oct{ts::ObjectKind::kOctahedral, 0, 64, 12};
   gl_box.prepare(oct);
@@ -103,7 +103,7 @@ TEST_F(ImpostorTest, OctahedralMatchesMesh) {
       s, 0.88);  // measured 0.92 (0.79 before the fixes of issue-10-s9): blended views soften edges
 }
 
-TEST_F(ImpostorTest, HalfHiddenBehindAWall) {
+TEST_F(Impostor, HalfHiddenBehindAWall) {
   // A wall standing 1.5 m in front of the box hides its lower half: the
   // impostor must write true depth for the wall to win there.
   ts::Model wall = tstest::colored_box(3.f, 0.1f, 0.5f);
@@ -123,7 +123,7 @@ TEST_F(ImpostorTest, HalfHiddenBehindAWall) {
   EXPECT_GT(ts::quality::ssim(a.color.view(), b.color.view()).ssim, 0.99);
 }
 
-TEST_F(ImpostorTest, GroupsDrawnAtOnceMatchGroupsDrawnOneByOne) {
+TEST_F(Impostor, GroupsDrawnAtOnceMatchGroupsDrawnOneByOne) {
   // Three boxes, each its own representation: one upload, three draws at
   // their offsets in the instance buffer, as three separate draws would.
   const ts::Camera cam = tstest::orbit({0, 0, 0.5}, 7.0, 20, 15);

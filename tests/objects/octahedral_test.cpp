@@ -41,7 +41,7 @@ glm::dvec3 capture_direction(int i, int j) {
   return glm::dvec3(glm::normalize(glm::dvec2(d)) * std::sqrt(1 - min_sin * min_sin), min_sin);
 }
 
-class OctahedralTest : public ::testing::Test {
+class Octahedral : public ::testing::Test {
  public:
   Shot shoot(const ts::Camera& cam, const ts::Representation& rep, const std::string& name) {
     target.bind_and_clear();
@@ -148,7 +148,7 @@ class OctahedralTest : public ::testing::Test {
 // quantised to texels, each of the three views carving); depth within one
 // texel at the 90th percentile (grazing faces step by up to a few texels).
 // Measured: SSIM 0.95 / 0.91 / 0.96, 50 / 64 / 66 coverage pixels.
-void expect_match(const char* what, int i, int j, OctahedralTest& t) {
+void expect_match(const char* what, int i, int j, Octahedral& t) {
   const auto m = t.compare(i, j, 128, what);
   EXPECT_EQ(m.interior_mismatches, 0) << what;
   EXPECT_LT(m.coverage_mismatches, kSize * kSize / 64) << what;
@@ -156,15 +156,15 @@ void expect_match(const char* what, int i, int j, OctahedralTest& t) {
   EXPECT_GT(m.ssim, 0.88) << what;
 }
 
-TEST_F(OctahedralTest, MatchesMeshFromACaptureDirection) {
+TEST_F(Octahedral, MatchesMeshFromACaptureDirection) {
   expect_match("oct_capture_oblique", 3, 5, *this);
 }
 
-TEST_F(OctahedralTest, MatchesMeshFromAHorizonDirection) {
+TEST_F(Octahedral, MatchesMeshFromAHorizonDirection) {
   expect_match("oct_capture_horizon", 0, 4, *this);  // grid edge: 4 degrees up
 }
 
-TEST_F(OctahedralTest, MatchesMeshFromNearlyAbove) {
+TEST_F(Octahedral, MatchesMeshFromNearlyAbove) {
   expect_match("oct_capture_top", 5, 5, *this);  // even views: no grid point straight above
 }
 
@@ -175,7 +175,7 @@ TEST_F(OctahedralTest, MatchesMeshFromNearlyAbove) {
 // quarter of a pixel's size (1.74 m / 16 px / 4) at the 90th percentile, and
 // coverage off on at most 8 pixels. Measured: 0.013 and 0.011 m, 0 pixels
 // (the full 24 + 8 steps: 0.011 and 0.009 m; one linear step: 0.064 m).
-TEST_F(OctahedralTest, SmallOnScreenFindsTheSurfaceWithFewerSteps) {
+TEST_F(Octahedral, SmallOnScreenFindsTheSurfaceWithFewerSteps) {
   for (auto [i, j] : {std::pair{3, 5}, std::pair{0, 4}}) {
     const auto m = compare(i, j, 128, "oct_small", 60.0 * 6.25);
     EXPECT_LT(m.depth_p90, 1.74 / 64) << i << "," << j;
@@ -190,7 +190,7 @@ TEST_F(OctahedralTest, SmallOnScreenFindsTheSurfaceWithFewerSteps) {
 // forest's ground tile vanished at theta 90); views raised to 4 degrees see
 // its top. The impostor must cover at least 80% of the mesh's sliver.
 // Measured: 208 of 209 pixels (views on the horizon: 0).
-TEST_F(OctahedralTest, AFlatPartSeenNearlyEdgeOnIsDrawn) {
+TEST_F(Octahedral, AFlatPartSeenNearlyEdgeOnIsDrawn) {
   const ts::Model plate = tstest::colored_box(2.f, 2.f, 0.002f);
   ts::GlModel gl_plate{plate, ts::build_lod_chain(plate)};
   const ts::Representation oct{ts::ObjectKind::kOctahedral, 0, 128, kViews};
@@ -212,7 +212,7 @@ TEST_F(OctahedralTest, AFlatPartSeenNearlyEdgeOnIsDrawn) {
 // but a few silhouette pixels, quantised to texels). Measured: 1349 of 1368,
 // 1174 of 1195 and 1020 of 1039 pixels, as with the sphere's whole square;
 // corners placed without the perspective (a wrong narrowing) 1333, 1117.
-TEST_F(OctahedralTest, TheNarrowedQuadDoesNotCutALongBar) {
+TEST_F(Octahedral, TheNarrowedQuadDoesNotCutALongBar) {
   const ts::Model bar = tstest::colored_box(4.f, 1.f, 1.f);
   ts::GlModel gl_bar{bar, ts::build_lod_chain(bar)};
   const ts::Representation oct{ts::ObjectKind::kOctahedral, 0, 128, kViews};

@@ -22,7 +22,7 @@ namespace {
 
 constexpr int kSize = 96;
 
-class RepresentationCacheTest : public ::testing::Test {
+class RepresentationCaching : public ::testing::Test {
  protected:
   void SetUp() override {
     dir = fs::path(::testing::TempDir()) /
@@ -60,7 +60,7 @@ class RepresentationCacheTest : public ::testing::Test {
   const ts::Representation oct{ts::ObjectKind::kOctahedral, 0, 32, 4};
 };
 
-TEST_F(RepresentationCacheTest, SecondModelReadsEverythingAndDrawsTheSamePixels) {
+TEST_F(RepresentationCaching, SecondModelReadsEverythingAndDrawsTheSamePixels) {
   const ts::RepresentationCache first = cache();
   const ts::Image relief_built = draw(first, relief), oct_built = draw(first, oct);
   // Two chains (one per draw: the second reads the first's) and two impostors.
@@ -93,7 +93,7 @@ TEST(LodChainKey, EveryOptionThatChangesTheLevelsChangesTheKey) {
   EXPECT_NE(ts::lod_chain_key({.crease_deg = 30}), base);
 }
 
-TEST_F(RepresentationCacheTest, DamagedEntryIsRebuiltAndReplaced) {
+TEST_F(RepresentationCaching, DamagedEntryIsRebuiltAndReplaced) {
   const ts::Image built = draw(cache(), relief);
   const fs::path file = cache().file("relief-32");
   ASSERT_TRUE(fs::is_regular_file(file));
@@ -123,7 +123,7 @@ TEST_F(RepresentationCacheTest, DamagedEntryIsRebuiltAndReplaced) {
   EXPECT_EQ(flipped.stats().rejected, 1);
 }
 
-TEST_F(RepresentationCacheTest, DisabledCacheWritesNothing) {
+TEST_F(RepresentationCaching, DisabledCacheWritesNothing) {
   const ts::RepresentationCache off;
   (void)draw(off, oct);
   EXPECT_FALSE(fs::exists(dir));

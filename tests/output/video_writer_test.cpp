@@ -21,21 +21,6 @@ using terrasprite::VideoWriter;
 
 namespace {
 
-std::string capture(const std::string& cmd) {
-  std::string out;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  pclose(p);
-  return out;
-}
-
-bool have(const char* tool) {
-  return std::system(("command -v " + std::string(tool) + " >/dev/null 2>&1").c_str()) == 0;
-}
-
 struct Probe {
   int frames = -1, width = -1, height = -1;
   std::string rate, pix_fmt, codec;
@@ -43,9 +28,11 @@ struct Probe {
 
 Probe probe(const std::string& file) {
   auto j = nlohmann::json::parse(
-      capture("ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-              "stream=nb_read_frames,width,height,r_frame_rate,pix_fmt,codec_name -of json '" +
-              file + "'"),
+      tstest::run_shell("ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                        "stream=nb_read_frames,width,height,r_frame_rate,pix_fmt,codec_name "
+                        "-of json '" +
+                        file + "' 2>/dev/null")
+          .output,
       nullptr, false);
   Probe p;
   if (j.is_discarded() || j["streams"].empty()) return p;
@@ -61,7 +48,8 @@ Probe probe(const std::string& file) {
 
 /// Decoded RGB bytes of every frame.
 std::string decode(const std::string& file) {
-  return capture("ffmpeg -v error -i '" + file + "' -f rawvideo -pix_fmt rgb24 -");
+  return tstest::run_shell("ffmpeg -v error -i '" + file + "' -f rawvideo -pix_fmt rgb24 - 2>/dev/null")
+      .output;
 }
 
 double psnr(const std::string& a, const std::string& b) {
@@ -88,7 +76,7 @@ Image gradient(int w, int h, int t) {
 }
 
 #define REQUIRE_FFMPEG() \
-  if (!have("ffmpeg") || !have("ffprobe")) GTEST_SKIP() << "no ffmpeg"
+  if (!tstest::have_tool("ffmpeg") || !tstest::have_tool("ffprobe")) GTEST_SKIP() << "no ffmpeg"
 
 }  // namespace
 
@@ -181,13 +169,12 @@ TEST(RenderVideo, CliFailuresExitTwoWithOneLine) {
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("--frame-range 1:5"), std::string::npos) << r.output;
   // ffmpeg missing: one line, exit 2, no video, no output directory.
-  std::string cmd = "env TERRASPRITE_FFMPEG=/nonexistent/ffmpeg " + std::string(TS_CLI) +
-                    " render --mode full --frames 2 --size 32x32 --video " + (tmp / "n.mp4") +
-                    " --out " + (tmp / "o4") + " 2>&1; echo \"rc=$?\"";
-  std::string out = capture(cmd);
-  EXPECT_NE(out.find("rc=2"), std::string::npos) << out;
-  EXPECT_NE(out.find("cannot run /nonexistent/ffmpeg"), std::string::npos) << out;
-  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 2) << out;  // the error + rc line
+  r = tstest::run_cli_prefixed("env TERRASPRITE_FFMPEG=/nonexistent/ffmpeg",
+                               "render --mode full --frames 2 --size 32x32 --video " +
+                                   (tmp / "n.mp4") + " --out " + (tmp / "o4"));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("cannot run /nonexistent/ffmpeg"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_FALSE(fs::exists(tmp / "n.mp4"));
   EXPECT_FALSE(fs::exists(tmp / "o4"));
 }
@@ -211,10 +198,10 @@ TEST(RenderVideo, SplitByFrameRangeJoinsToTheSingleRun) {
   EXPECT_EQ(j["frames"][0]["frame"], 5);
   std::ofstream(tmp / "list.txt") << "file '" << (tmp / "a.mp4") << "'\nfile '" << (tmp / "b.mp4")
                                   << "'\n";
-  ASSERT_EQ(std::system(("ffmpeg -v error -f concat -safe 0 -i '" + (tmp / "list.txt") +
-                         "' -c copy '" + (tmp / "joined.mp4") + "'")
-                            .c_str()),
-            0);
+  const auto joined_run = tstest::run_shell("ffmpeg -v error -f concat -safe 0 -i '" +
+                                            (tmp / "list.txt") + "' -c copy '" +
+                                            (tmp / "joined.mp4") + "'");
+  ASSERT_EQ(joined_run.status, 0) << joined_run.output;
   Probe all = probe(tmp / "all.mp4"), joined = probe(tmp / "joined.mp4");
   EXPECT_EQ(all.frames, 12);
   EXPECT_EQ(joined.frames, 12);

@@ -8,6 +8,7 @@
 
 #include "quality_test_util.h"
 #include "terrasprite/terrain/image_io.h"
+#include "test_util.h"
 
 namespace terrasprite::quality {
 namespace {
@@ -15,25 +16,18 @@ namespace {
 using testing::noisy;
 using testing::scene;
 
-std::string cli() {
-  return TS_CLI;
-}
-
 int lines(const std::string& s) {
   return static_cast<int>(std::count(s.begin(), s.end(), '\n'));
 }
 
 TEST(CliCompare, JsonHasTheKeysAskedForAndInfAsAString) {
-  testing::TempDir dir;
+  tstest::TempDir dir;
   const Image a = scene(200, 180), b = noisy(a, 5);
   save_png(a, dir / "a.png");
   save_png(b, dir / "b.png");
-  std::string out;
-  ASSERT_EQ(testing::run(cli() + " compare " + (dir / "a.png") + " " + (dir / "a.png") +
-                             " --json " + (dir / "id.json"),
-                         out),
-            0)
-      << out;
+  auto r = tstest::run_cli("compare " + (dir / "a.png") + " " + (dir / "a.png") + " --json " +
+                           (dir / "id.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
   auto j = nlohmann::json::parse(std::ifstream(dir / "id.json"));
   EXPECT_EQ(j["psnr_rgb"], "inf");
   EXPECT_EQ(j["psnr_luma"], "inf");
@@ -43,13 +37,10 @@ TEST(CliCompare, JsonHasTheKeysAskedForAndInfAsAString) {
   EXPECT_EQ(j["flip_mean"], 0.0);
   EXPECT_TRUE(j.contains("msssim") && j.contains("flip_median") && j.contains("ppd"));
 
-  ASSERT_EQ(
-      testing::run(cli() + " compare " + (dir / "a.png") + " " + (dir / "b.png") +
-                       " --metrics ssim --ssim-mode ffmpeg --diff " + (dir / "d.png") +
-                       " --flip-map " + (dir / "f.png") + " --ppd 40 --json " + (dir / "s.json"),
-                   out),
-      0)
-      << out;
+  r = tstest::run_cli("compare " + (dir / "a.png") + " " + (dir / "b.png") +
+                      " --metrics ssim --ssim-mode ffmpeg --diff " + (dir / "d.png") +
+                      " --flip-map " + (dir / "f.png") + " --ppd 40 --json " + (dir / "s.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
   j = nlohmann::json::parse(std::ifstream(dir / "s.json"));
   EXPECT_EQ(j["ssim_mode"], "ffmpeg");
   EXPECT_LT(j["ssim"].get<double>(), 1.0);
@@ -59,14 +50,14 @@ TEST(CliCompare, JsonHasTheKeysAskedForAndInfAsAString) {
   EXPECT_EQ(load_image(dir / "f.png").height, 180);
 
   // Without --json: a small table on stdout.
-  ASSERT_EQ(testing::run(cli() + " compare " + (dir / "a.png") + " " + (dir / "b.png"), out), 0)
-      << out;
-  EXPECT_NE(out.find("psnr_rgb"), std::string::npos);
-  EXPECT_NE(out.find("flip_mean"), std::string::npos);
+  r = tstest::run_cli("compare " + (dir / "a.png") + " " + (dir / "b.png"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("psnr_rgb"), std::string::npos);
+  EXPECT_NE(r.output.find("flip_mean"), std::string::npos);
 }
 
 TEST(CliCompare, BadInputExitsTwoWithOneLine) {
-  testing::TempDir dir;
+  tstest::TempDir dir;
   save_png(scene(64, 48), dir / "a.png");
   save_png(scene(64, 50), dir / "taller.png");
   { std::ofstream(dir / "text.png") << "not an image\n"; }
@@ -87,22 +78,20 @@ TEST(CliCompare, BadInputExitsTwoWithOneLine) {
       {(dir / "a.png"), "test"},
   };
   for (const Case& c : cases) {
-    std::string out;
-    EXPECT_EQ(testing::run(cli() + " compare " + c.args, out), 2) << c.args << "\n" << out;
-    EXPECT_EQ(lines(out), 1) << out;
-    EXPECT_NE(out.find(c.needle), std::string::npos) << out;
+    const auto r = tstest::run_cli("compare " + c.args);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
+    EXPECT_EQ(lines(r.output), 1) << r.output;
+    EXPECT_NE(r.output.find(c.needle), std::string::npos) << r.output;
   }
 }
 
 TEST(CliCompare, DefaultMetricsSkipMsssimOnSmallImages) {
-  testing::TempDir dir;
+  tstest::TempDir dir;
   save_png(scene(64, 48), dir / "a.png");
-  std::string out;
-  EXPECT_EQ(testing::run(cli() + " compare " + (dir / "a.png") + " " + (dir / "a.png") +
-                             " --json " + (dir / "j.json"),
-                         out),
-            0);
-  EXPECT_NE(out.find("msssim skipped"), std::string::npos) << out;
+  const auto r = tstest::run_cli("compare " + (dir / "a.png") + " " + (dir / "a.png") +
+                                 " --json " + (dir / "j.json"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("msssim skipped"), std::string::npos) << r.output;
   const auto j = nlohmann::json::parse(std::ifstream(dir / "j.json"));
   EXPECT_TRUE(j["msssim"].is_null());
   EXPECT_EQ(j["ssim"], 1.0);

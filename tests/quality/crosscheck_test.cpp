@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "quality_test_util.h"
+#include "test_util.h"
 #include "terrasprite/terrain/image_io.h"
 #include "terrasprite/quality/quality.h"
 
@@ -55,19 +56,20 @@ double field(const std::string& text, const std::string& key) {
 TEST(CrossCheck, FfmpegSsimAndPsnrPerChannel) {
   if (!testing::executable(kFfmpeg))
     GTEST_SKIP() << kFfmpeg << " not installed (make deps installs ffmpeg)";
-  testing::TempDir dir;
+  tstest::TempDir dir;
   for (const Pair& p : pairs()) {
     save_png(p.a, dir / "a.png");
     save_png(p.b, dir / "b.png");
     for (const char* flags : {"-cpuflags 0", ""}) {
       if (!*flags && ffmpeg_simd_quirk(p.a.width)) continue;
-      std::string out;
       const std::string cmd =
           std::string(kFfmpeg) + " -hide_banner -nostats " + flags + " -i " + (dir / "a.png") +
           " -i " + (dir / "b.png") +
           " -lavfi \"[0:v]format=gbrp,split[a1][a2];[1:v]format=gbrp,split[b1][b2];"
           "[a1][b1]ssim;[a2][b2]psnr\" -f null -";
-      ASSERT_EQ(testing::run(cmd, out), 0) << out;
+      const auto r = tstest::run_shell(cmd);
+      ASSERT_EQ(r.status, 0) << r.output;
+      const std::string& out = r.output;
       SsimOptions ff;
       ff.mode = SsimMode::kFfmpeg;
       const SsimResult s = ssim(p.a.view(), p.b.view(), ff);
@@ -117,13 +119,14 @@ for i in range(0, len(args), 3):
 )";
 
 TEST(CrossCheck, SkimageStructuralSimilarity) {
-  std::string out;
-  if (!testing::executable(kPython) ||
-      testing::run(std::string(kPython) + " -c 'import skimage.metrics'", out) != 0)
+  if (!testing::executable(kPython))
+    GTEST_SKIP() << kPython << " not installed (make deps installs python3-skimage)";
+  const auto probe = tstest::run_shell(std::string(kPython) + " -c 'import skimage.metrics'");
+  if (probe.status != 0)
     GTEST_SKIP() << kPython
                  << " with scikit-image not available (make deps installs python3-skimage): "
-                 << out;
-  testing::TempDir dir;
+                 << probe.output;
+  tstest::TempDir dir;
   { std::ofstream(dir / "ssim.py") << kSkimageScript; }
   struct Case {
     std::string name;
@@ -145,7 +148,9 @@ TEST(CrossCheck, SkimageStructuralSimilarity) {
     for (const std::string& part : {a, b, std::string(cases[i].downsample ? "2" : "1")})
       cmd.append(" ").append(part);
   }
-  ASSERT_EQ(testing::run(cmd, out), 0) << out;
+  const auto r = tstest::run_shell(cmd);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string& out = r.output;
   std::istringstream in(out);
   for (const Case& c : cases) {
     double ref[4];

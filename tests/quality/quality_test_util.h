@@ -1,14 +1,10 @@
 // SPDX-License-Identifier: MIT
-// Test images generated in code, degradations, and running external tools.
+// Test images generated in code, degradations, and finding external tools.
 #pragma once
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
 #include <random>
 #include <string>
 
@@ -82,34 +78,7 @@ inline Image blurred(const Image& in, int passes) {
   return cur;
 }
 
-/// A fresh directory under the system temp dir, removed on destruction.
-struct TempDir {
-  std::filesystem::path path;
-  TempDir() {
-    path =
-        std::filesystem::temp_directory_path() /
-        ("ts_quality_" + std::to_string(std::random_device{}()) + "_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
-
-/// Runs a shell command; returns its exit status and combined stdout+stderr.
-inline int run(const std::string& command, std::string& output) {
-  output.clear();
-  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return -1;
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) output.append(buf.data(), n);
-  const int status = ::pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
+/// Whether `path` (absolute) is an executable file.
 inline bool executable(const char* path) {
   return ::access(path, X_OK) == 0;
 }

@@ -148,7 +148,7 @@ TEST(BenchLodsprite, AsyncReportsBothDisplays) {
     EXPECT_EQ(a[display]["frame_ms"].size(), 12u) << display;
     EXPECT_EQ(a[display]["draw_ms"].size(), 12u) << display;
     EXPECT_GT(double(a[display]["median_ms"]), 0.0) << display;
-    EXPECT_GE(int(a[display]["late_frames"]), 0) << display;
+    EXPECT_LE(int(a[display]["late_frames"]), 12) << display;  // at most every frame
   }
   EXPECT_TRUE(std::filesystem::exists(out + "/async.dat"));  // the frame-time plot's data
   EXPECT_EQ(a["async_display"]["keyframes_in_frame"], 1);    // only the first frame waits

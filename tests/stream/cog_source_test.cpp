@@ -224,7 +224,7 @@ TEST(CogSource, BenchStreamFliesACogAndRefusesBadOnesWithExit2) {
   ASSERT_EQ(r.status, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(std::ifstream(t / "s.json"));
   EXPECT_EQ(j["terrain"]["samples"][0], 257);
-  EXPECT_GE(j["cog"]["bounds_ms"].get<double>(), 0.0);
+  EXPECT_GT(j["cog"]["bounds_ms"].get<double>(), 0.0);  // one pass over the overviews
   EXPECT_EQ(j["images_equal_when_resident"]["frames_compared"],
             j["images_equal_when_resident"]["frames_equal"]);
   EXPECT_GT(j["images_equal_when_resident"]["frames_compared"].get<int>(), 0);

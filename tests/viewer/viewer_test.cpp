@@ -47,7 +47,7 @@ nlohmann::json read_json(const std::string& f) {
 }
 
 bool have_xvfb() {
-  return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
+  return tstest::have_tool("xvfb-run");
 }
 
 /// `view` under Xvfb on a small synthetic terrain.
@@ -222,7 +222,8 @@ TEST(ViewCli, ScriptedRunUnderXvfbMovesRecordsAndReplays) {
   EXPECT_EQ(a["size"], nlohmann::json({160, 90}));
   EXPECT_GE(a["frames"].get<int>(), 5);  // frames advance
   ASSERT_EQ(a["events"].size(), 5u);
-  for (const auto& e : a["events"]) EXPECT_GE(e["latency_ms"].get<double>(), 0) << e;
+  // Every event reaches the screen (-1: never shown), some time after it is injected.
+  for (const auto& e : a["events"]) EXPECT_GT(e["latency_ms"].get<double>(), 0) << e;
   EXPECT_TRUE(fs::exists(tmp / "shot.png"));
   // W flies along the start heading, on the level.
   const auto& p0 = a["camera_start"]["position"];
@@ -278,7 +279,7 @@ TEST(ViewCli, SpriteKeyframesLandFromASecondThreadUnderXvfb) {
   EXPECT_GT(s["keyframe_ms_p50"].get<double>(), 0) << s;
   EXPECT_GE(s["keyframe_ms_max"].get<double>(), s["keyframe_ms_p50"].get<double>()) << s;
   ASSERT_EQ(s["events"].size(), 3u);
-  for (const auto& e : s["events"]) EXPECT_GE(e["latency_ms"].get<double>(), 0) << e;
+  for (const auto& e : s["events"]) EXPECT_GT(e["latency_ms"].get<double>(), 0) << e;
 }
 
 // Voxel mode with the warp (every third frame real) and the panel's compare
@@ -306,7 +307,8 @@ TEST(ViewCli, VoxelWithWarpAndCompareUnderXvfb) {
   EXPECT_GT(c["ssim"].get<double>(), 0.3) << c;
   EXPECT_LT(c["ssim"].get<double>(), 1.0) << c;
   EXPECT_GT(c["psnr"].get<double>(), 12.0) << c;
-  EXPECT_GE(c["flip"].get<double>(), 0.0) << c;
+  EXPECT_GT(c["flip"].get<double>(), 0.0) << c;
+  EXPECT_LT(c["flip"].get<double>(), 1.0) << c;
   // Bad values are one line and exit 2.
   for (const char* bad : {"--voxel-ratio 0", "--real-every 0", "--warp sideways"}) {
     auto b = view(std::string("--mode voxel --frames 1 ") + bad);

@@ -46,7 +46,7 @@ TEST(BenchWarp, WritesTheContractAndNamesTheWorstWarps) {
       EXPECT_GE(double(w["psnr"]), psnr);
       psnr = w["psnr"];
       EXPECT_GT(double(w["moved_m"]), 0.0);  // the paper path moves every frame
-      EXPECT_GE(double(w["turn_deg"]), 0.0);
+      EXPECT_LE(double(w["turn_deg"]), 180.0);  // an angle between two view directions
       EXPECT_GT(double(w["clearance_m"]), 0.0);  // above the ground
     }
   }

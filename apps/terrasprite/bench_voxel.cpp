@@ -23,7 +23,7 @@
 #include "terrasprite/output/output_dir.h"
 #include "terrasprite/quality/quality.h"
 #include "terrasprite/common/stats.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/terrain.h"
 #include "terrasprite/voxel/voxel_renderer.h"
 
 namespace terrasprite::cli {

@@ -25,7 +25,7 @@
 #include "terrasprite/raster/mesh_renderer.h"
 #include "terrasprite/quality/quality.h"
 #include "terrasprite/sprite/sprite_renderer.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/texture_gen.h"
 
 namespace terrasprite::cli {
 namespace {

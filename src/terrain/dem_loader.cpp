@@ -11,7 +11,8 @@
 
 #include "terrain/gdal_util.h"
 #include "terrasprite/common/error.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/dem_loader.h"
+#include "terrasprite/terrain/nodata_fill.h"
 
 namespace terrasprite {
 namespace {

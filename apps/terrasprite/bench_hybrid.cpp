@@ -31,7 +31,7 @@
 #include "terrasprite/hybrid/hybrid_renderer.h"
 #include "terrasprite/objects/lod_chain.h"
 #include "terrasprite/quality/quality.h"
-#include "terrasprite/terrain/terrain_mesh.h"
+#include "terrasprite/terrain/grid_mesh.h"
 #include "terrasprite/hybrid/walkthrough_path.h"
 
 namespace terrasprite::cli {
@@ -342,22 +342,20 @@ void run_bench_hybrid(const HybridArgs& a) {
   // saw the grid from below in 108 of 160 frames, A, B and D among them).
   const auto drawn = grid_surface(terrain.heights, a.terrain_quads);
   ground_instances(scene, drawn);
-  std::string path_text;
+  KeyframePath keys;
   if (a.path.empty()) {
-    path_text = walkthrough_path_json(terrain.heights, drawn);
+    keys = walkthrough_path(terrain.heights, drawn);
   } else {
     std::ifstream in(a.path);
     if (!in) throw InputError(fmt::format("--path {}: cannot read the file", a.path));
     std::stringstream ss;
     ss << in.rdbuf();
-    path_text = ss.str();
+    keys = parse_path_json(ss.str(), a.path);
   }
-  const std::string path_name = a.path.empty() ? "the default walkthrough" : a.path;
-  std::vector<Camera> path =
-      path_from_json(path_text, path_name, terrain.heights, a.frames, double(w) / h);
+  std::vector<Camera> path = sample_path(keys, terrain.heights, a.frames, double(w) / h);
   if (a.path.empty()) keep_above_ground(path, drawn);
   const std::vector<PathCheckpoint> checkpoints =
-      snapped(checkpoints_of(path_text, path_name, a.frames), a.score_every, a.frames);
+      snapped(checkpoint_frames(keys, a.frames), a.score_every, a.frames);
   OutputDir out(a.out, output_policy());
 
   GlContext gl;

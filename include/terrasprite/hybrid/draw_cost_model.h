@@ -166,8 +166,6 @@ class DrawCostModel {
   /// kind its draw calls, its instances' fixed and their per-pixel time.
   /// Terms with no part in `load` (a kind not drawn) are left as they are.
   void observe(const FrameLoad& load, double measured_ms);
-  /// The refit's multiplier of kind `kind`'s per-pixel time (1: as calibrated).
-  double pixel_multiplier(ObjectKind kind) const;
   /// The refit's extra cost of one instance of impostor kind `kind` in a
   /// frame, ms (0 for meshes; see CostModelOptions::impostor_extra_prior_ms).
   double impostor_extra_ms(ObjectKind kind) const;

@@ -61,7 +61,7 @@ consumer: build-all
 
 # The suite under ASan + UBSan (CI runs it after `test`). Tests whose ctest
 # label matches ASAN_SKIP are left out: too slow instrumented for CI's budget
-# (README, Tests). Leak checking is off: Mesa's llvmpipe and GDAL keep
+# (docs/testing.md). Leak checking is off: Mesa's llvmpipe and GDAL keep
 # process-lifetime allocations.
 ASAN_SKIP ?=
 test-asan: deps

@@ -53,7 +53,7 @@ void write_frames(const HybridScenarioResult& s, OutputDir& out) {
     for (std::string_view k : kColumns) row.push_back(value(k));
     f << fmt::format("{}\n", fmt::join(row, " "));
   }
-  write_text(out.file(dat_name(s.name)), f.str());
+  report::write_text(out.file(dat_name(s.name)), f.str());
 }
 
 std::string plots_script(const HybridBenchResult& r) {
@@ -185,11 +185,11 @@ std::string table2_markdown(const HybridBenchResult& r) {
 
 void write_hybrid_report(const HybridBenchResult& r, OutputDir& out) {
   for (const HybridScenarioResult& s : r.scenarios) write_frames(s, out);
-  write_text(out.file("plots.gp"), plots_script(r));
-  const std::string plot_error = run_gnuplot(out.partial().string(), "plots.gp");
+  report::write_text(out.file("plots.gp"), plots_script(r));
+  const std::string plot_error = report::run_gnuplot(out.partial().string(), "plots.gp");
   const std::vector<std::string> fig6 = write_figure6(r, out);
   const std::string table2 = table2_markdown(r);
-  write_text(out.file("table2.md"), table2);
+  report::write_text(out.file("table2.md"), table2);
   std::ostringstream h;
   h << "<!doctype html><html><head><meta charset='utf-8'><title>Hybrid objects "
        "walkthrough</title></head><body>\n"
@@ -231,7 +231,7 @@ void write_hybrid_report(const HybridBenchResult& r, OutputDir& out) {
     h << "<figure style='display:inline-block'><img src='" << f << "' width=420><figcaption>" << f
       << "</figcaption></figure>\n";
   h << "</body></html>\n";
-  write_text(out.file("index.html"), h.str());
+  report::write_text(out.file("index.html"), h.str());
 }
 
 }  // namespace terrasprite::cli

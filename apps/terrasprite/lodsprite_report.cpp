@@ -87,7 +87,7 @@ std::string async_plot(const AsyncComparison& a, OutputDir& out) {
   for (std::size_t i = 0; i < n; ++i)
     d << fmt::format("{} {:.3f} {:.3f} {:.3f} {:.3f}\n", i, a.sync.frame_ms[i], a.async.frame_ms[i],
                      a.sync.draw_ms[i], a.async.draw_ms[i]);
-  write_text(out.file("async.dat"),
+  report::write_text(out.file("async.dat"),
              "frame sync_ms async_ms sync_draw_ms async_draw_ms\n" + d.str());
   const double median = a.async.median_ms, p99 = a.async.p99_ms;
   return fmt::format(
@@ -123,15 +123,15 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
   for (const LodQuadsPoint& t : j.lod_sweep)
     ld << fmt::format("{} {} {} {} {}\n", t.lod_quads, t.pass.keyframes, t.pass.speedup,
                       t.pass.mean_ssim, t.pass.speedup_from_medians);
-  write_text(out.file("per_frame.dat"),
+  report::write_text(out.file("per_frame.dat"),
              "frame is_key ms full_ms lod_ms error_px error_px_exact psnr ssim flip lod_psnr "
              "lod_ssim lod_flip fallback_fraction\n" +
                  pf.str());
-  write_text(out.file("threshold.dat"),
+  report::write_text(out.file("threshold.dat"),
              "threshold_px keyframes keyframe_fraction speedup mean_ssim speedup_from_medians\n" +
                  th.str());
-  write_text(out.file("frames.dat"), "frames keyframes keyframe_fraction\n" + fr.str());
-  write_text(out.file("lod.dat"),
+  report::write_text(out.file("frames.dat"), "frames keyframes keyframe_fraction\n" + fr.str());
+  report::write_text(out.file("lod.dat"),
              "lod_quads keyframes speedup mean_ssim speedup_from_medians\n" + ld.str());
   std::string gp = kPlots;
   const bool paper = j.metric == "paper";
@@ -146,8 +146,8 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
   replace_all("QSTYLE", j.reference_every > 1 ? "lp pt 7 ps 0.4" : "l");
   replace_all("THRESHOLD", fmt::format("{}", j.threshold_px));
   if (j.async) gp += async_plot(*j.async, out);
-  write_text(out.file("plots.gp"), gp);
-  const std::string plot_error = run_gnuplot(out.partial().string(), "plots.gp");
+  report::write_text(out.file("plots.gp"), gp);
+  const std::string plot_error = report::run_gnuplot(out.partial().string(), "plots.gp");
   const bool plotted = plot_error.empty();
   if (!plotted)
     fmt::print(stderr, "warning: {}; the .dat and plots.gp files are kept\n", plot_error);
@@ -363,7 +363,7 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
   }
   h << "<p>All numbers: <code>lodsprite.json</code>; per-frame data: "
        "<code>per_frame.dat</code>.</p></body></html>\n";
-  write_text(out.file("index.html"), h.str());
+  report::write_text(out.file("index.html"), h.str());
 }
 
 }  // namespace terrasprite::cli

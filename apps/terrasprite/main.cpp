@@ -23,14 +23,11 @@ std::string one_line(std::string s) {
 }
 
 // Renderers that allocate a frame per draw (the GL ones' read-back, the
-// reference ray caster; the voxel flythrough and its warps reuse theirs, see
-// Renderer::draw_into) hand glibc blocks of megabytes: by default it maps them
-// afresh (mmap) and returns freed heap tops to the system, so each such frame
-// page-faults all its buffers again, about 30 us a page on our VM. Keep blocks
-// up to 32 MB (glibc's ceiling for this setting) on the heap and up to 128 MB
-// of freed heap. Measured before frames were reused, on `render --mode voxel
-// --warp poly2 --real-every 4 --size 1920x1080 --path paper`: 20.1 -> 16.0 ms
-// per output frame (the first warps had taken 56 ms instead of 3), 142 MB peak.
+// reference ray caster) hand glibc blocks of megabytes, which it would map
+// afresh (mmap) and return to the system after each frame, page-faulting every
+// buffer again. Keep blocks up to 32 MB (glibc's ceiling for this setting) on
+// the heap and up to 128 MB of freed heap. Figures:
+// docs/results/2026-11-30-render-heap-trim.md.
 void keep_frame_buffers_resident() {
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 128 << 20);

@@ -57,7 +57,7 @@ std::string figure1(const QualityTable& t, const TableOptions& o, OutputDir& out
       }
       dat << "\n";
     }
-    write_text(out.file(name + ".dat"), dat.str());
+    report::write_text(out.file(name + ".dat"), dat.str());
     gp += fmt::format(
         "set output '{0}.png'\nset multiplot layout 1,3 title 'SSIM over viewing angle: {1}'\n"
         "set xlabel 'phi (deg)'; set ylabel 'theta (deg)'; set view map; set cbrange [0.5:1]\n",
@@ -89,7 +89,7 @@ std::string figure2(const QualityTable& t, const TableOptions& o, OutputDir& out
       plots += fmt::format("{}'{}.dat' index {} u 1:2 w lp lw 1.5 t '{}'",
                            plots.empty() ? "" : ", ", name, index++, rep_label(q));
     }
-    write_text(out.file(name + ".dat"), dat.str());
+    report::write_text(out.file(name + ".dat"), dat.str());
     gp += fmt::format(
         "set output '{}.png'\nset title 'Quality against on-screen size: {}'\nset logscale x 2\n"
         "set xlabel 'bounding-sphere diameter (px)'; set ylabel 'mean SSIM'; set key bottom "
@@ -118,7 +118,7 @@ std::string figure3(const QualityTable& t, const TableOptions& o, OutputDir& out
       plots += fmt::format("{}'fig3.dat' index {} u 1:2 w lp t '{} {} px'",
                            plots.empty() ? "" : ", ", index++, object_kind_name(kind), size);
     }
-  write_text(out.file("fig3.dat"), dat.str());
+  report::write_text(out.file("fig3.dat"), dat.str());
   return fmt::format(
       "set output 'fig3.png'\nset title 'Draw time against quality'\nset logscale x\n"
       "set xlabel 'ms per instance (llvmpipe)'; set ylabel 'mean SSIM'; set key outside "
@@ -158,9 +158,9 @@ void write_objects_report(const QualityTable& t, const TableOptions& o, OutputDi
   std::string gp = "set terminal pngcairo size 1500,480 font 'sans,10'\n" + figure1(t, o, out) +
                    "set terminal pngcairo size 900,600 font 'sans,10'\n" + figure2(t, o, out) +
                    figure3(t, o, out);
-  write_text(out.file("plots.gp"), gp);
-  write_text(out.file("table1.md"), table1_markdown(t, o));
-  const std::string failed = run_gnuplot(out.partial().string(), "plots.gp");
+  report::write_text(out.file("plots.gp"), gp);
+  report::write_text(out.file("table1.md"), table1_markdown(t, o));
+  const std::string failed = report::run_gnuplot(out.partial().string(), "plots.gp");
   if (!failed.empty()) fmt::print(stderr, "warning: {}; .dat files kept without plots\n", failed);
 }
 

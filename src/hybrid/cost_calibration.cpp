@@ -240,7 +240,8 @@ void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& dr
   // more costs inside a frame, (tc - tn) / (n - 1). The overhead (mostly
   // the flush) is paid once a frame and is in the terrain's measured time;
   // it comes off the fitted constants (charged per call, it would add draws
-  // that are not there to every group of a frame).
+  // that are not there to every group of a frame;
+  // docs/results/2026-12-02-hybrid-cost-calibration.md).
   const DrawOverheads oh = draw_overheads(draws);
   const std::array<double, 3>& overhead = oh.overhead;
   for (std::size_t k = 0; k < 3; ++k)

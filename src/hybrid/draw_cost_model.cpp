@@ -248,7 +248,7 @@ void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
   // through its covariance with the others, and could price its kind out
   // so that it is never drawn to correct it. Its covariance with the terms
   // that learn is dropped, its own kept unchanged (no forgetting of what no
-  // frame shows).
+  // frame shows; docs/results/2026-12-03-hybrid-cost-refit.md).
   std::array<bool, kTerms> in{};
   for (int i = 0; i < kTerms; ++i) in[std::size_t(i)] = z[std::size_t(i)] != 0;
   std::array<double, kTerms> pz{};

@@ -11,7 +11,8 @@ RasterOptions hybrid_terrain_raster(int samples) {
   // filter: the terrain is the same in every scenario, and the time the
   // hand filter would take goes to the objects. Back faces culled: the
   // walkthrough stands on the drawn grid, so they are never seen (bar a
-  // pixel on a ridge's silhouette), and their setup is skipped.
+  // pixel on a ridge's silhouette), and their setup is skipped
+  // (docs/results/2026-12-01-hybrid-terrain-drape.md).
   return {.drape_filter = DrapeFilter::kTrilinear, .cull_back_faces = true, .samples = samples};
 }
 

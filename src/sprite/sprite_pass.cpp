@@ -150,7 +150,7 @@ void SpritePass::draw(TerrainGpu& scene, const GpuMesh& coarse, const CoarseGrid
     glDrawElements(GL_TRIANGLES, key_mesh_.index_count, GL_UNSIGNED_INT, nullptr);
   }
   // One trilinear tap: cheaper than the hand filter's up-to-8 taps and as
-  // close to the anisotropic reference (docs/results/2026-12-07-lodsprite-defaults.md).
+  // close to the anisotropic reference (docs/results/2026-12-01-lodsprite-drape-filter.md).
   if (drape_mesh_.index_count > 0) scene.draw(drape_mesh_, vp, lighting, DrapeSampling::kTrilinear);
 }
 

@@ -3,7 +3,7 @@
 // object whose bounding sphere lies behind that depth on every pixel its
 // projection can touch cannot show, so it costs nothing and needs no
 // representation. At human height most of a walkthrough's instances in
-// the frustum may be behind a hill.
+// the frustum may be behind a hill (docs/results/2026-12-02-hybrid-occlusion.md).
 //
 // Conservative by construction: the sphere's exact screen rectangle (its
 // tangent planes through the eye), widened by a pixel, is tested against a

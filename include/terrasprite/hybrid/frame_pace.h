@@ -8,7 +8,7 @@
 // learns that slope, d log(measured / predicted) per unit of
 // log(read-back / its median), from the frames themselves and turns each
 // frame's deviation into a factor on the part of the frame's prediction that
-// follows the read-back. Figures: docs/results/2026-12-07-hybrid-defaults.md.
+// follows the read-back. Figures: docs/results/2026-12-07-hybrid-frame-pace.md.
 #pragma once
 #include <deque>
 #include <utility>

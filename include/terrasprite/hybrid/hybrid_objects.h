@@ -52,14 +52,15 @@ struct HybridOptions {
   /// Impostors are not offered to instances larger than this on screen
   /// (0: no limit; `ibr` always gets them): the bench passes 2x the
   /// tables' largest size, past which their quality is extrapolated (and an
-  /// impostor of an object beside the camera is far worse than its table).
+  /// impostor of an object beside the camera is far worse than its table:
+  /// docs/results/2026-12-07-hybrid-max-impostor-size.md).
   double max_impostor_size_px = 0;
   /// The policies weigh an option at its expected SSIM less this many times
   /// its table's spread near the view (ExpectedQuality::ssim_spread), so
   /// that a choice among many options does not go to the ones whose table
   /// happens to be most optimistic (the optimiser's curse). 0: the tables'
   /// value as it is, the default (a penalty has not been shown to help;
-  /// figures: docs/results/2026-12-07-hybrid-defaults.md).
+  /// docs/results/2026-12-05-hybrid-quality-spread-penalty.md).
   double quality_spread_penalty = 0;
   /// Budgeted policies (not `full`, not `ibr`) may leave instances whose
   /// on-screen diameter is under this many pixels undrawn: such an instance
@@ -69,7 +70,7 @@ struct HybridOptions {
   /// tight budget makes likely. 0: every visible instance is drawn, at its
   /// cheapest at least, even where that floor alone is over the budget
   /// (many instances a few pixels wide) and the nearest ones then get their
-  /// cheapest too.
+  /// cheapest too (docs/results/2026-12-01-hybrid-not-drawn.md).
   double cull_px = 0;
   /// The objects' budget (the frame's, less the terrain and the draw calls
   /// the policy cannot see, at the read-back's pace) never falls below this
@@ -78,7 +79,7 @@ struct HybridOptions {
   /// model's refit and the read-back's pace all answer one slow frame, and
   /// together they would cut the objects' budget to a fraction of its usual
   /// for a frame or several (every instance near its coarsest).
-  /// Figures: docs/results/2026-12-07-hybrid-defaults.md.
+  /// Figures: docs/results/2026-12-03-hybrid-objects-budget-floor.md.
   double objects_budget_floor = 0.6;
   int objects_budget_window = 9;
   BudgetControllerOptions controller;  ///< target_ms is set from target_ms above

@@ -69,7 +69,7 @@ struct PolicyOptions {
   /// frame, so its first frames run over the target). The floor stays near
   /// the tables' 0.95: lower targets pick relief impostors whose quality in
   /// the scene is far under their tables'.
-  /// Figures: docs/results/2026-12-07-hybrid-defaults.md.
+  /// Figures: docs/results/2026-12-07-hybrid-fit-budget.md.
   bool fit_budget = true;
   double fit_step = 0.01, fit_min_ssim = 0.90;
   OptimalOptions optimal;

@@ -26,7 +26,7 @@ struct RasterOptions {
   /// llvmpipe's anisotropic path (seconds on single grazing frames of the
   /// paper path); trilinear is as close to the anisotropic reference as a
   /// hand filter at a fraction of its time (figures:
-  /// docs/results/2026-12-07-lodsprite-defaults.md). Full resolution keeps
+  /// docs/results/2026-12-01-lodsprite-drape-filter.md). Full resolution keeps
   /// hardware 16x: it is the quality reference, and its small triangles
   /// never hit that path's stalls.
   DrapeFilter drape_filter = DrapeFilter::kAuto;

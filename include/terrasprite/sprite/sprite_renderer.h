@@ -50,7 +50,7 @@ struct SpriteOptions {
   /// its texture, SpriteError::contrast_levels; uniform mesh only). The
   /// paper's by default: per keyframe spent it is as good as exact
   /// reprojection or better, and at 1 px it keeps the paper's keyframe
-  /// budget (figures: docs/results/2026-12-07-lodsprite-defaults.md).
+  /// budget (docs/results/2026-12-07-lodsprite-paper-metric.md).
   ErrorMetric metric = ErrorMetric::kPaper;
   /// Second trigger: keyframe when more than this fraction of the in-view
   /// coarse-quad centres were not visible in the keyframe (so the view is
@@ -69,7 +69,7 @@ struct SpriteOptions {
   /// misplaces it by SpriteError::drape_px pixels. So the keyframe may stretch
   /// to 1 + scale_per_drape_px x drape_px where that is above
   /// max_resample_scale (scale_trigger_limit). 0 = the constant trigger.
-  /// 1/16 by default (docs/results/2026-12-07-lodsprite-defaults.md).
+  /// 1/16 by default (docs/results/2026-12-01-lodsprite-scale-trigger.md).
   double scale_per_drape_px = 1.0 / 16;
   /// Ours: a coarse quad whose largest deviation from the full-resolution
   /// surface moves the current view's image by less than this many pixels
@@ -122,7 +122,7 @@ struct SpriteOptions {
   /// the view it would land on exceeds this fraction of threshold_px. At 1 a
   /// keyframe lands just as the old one reaches the threshold, slightly off
   /// its predicted camera, where the synchronous renderer shows an exact one.
-  /// In (0, 1]; 0.6 by default (docs/results/2026-12-07-lodsprite-defaults.md).
+  /// In (0, 1]; 0.6 by default (docs/results/2026-12-07-lodsprite-async-lead.md).
   double async_lead = 0.6;
 };
 

@@ -166,7 +166,7 @@ class ColumnMarcher::Plane {
   }
 
   // Height on major grid line m (a multiple of 2^L) at distance t.
-  float height_line(int L, long m, double t) const {
+  [[gnu::always_inline]] float height_line(int L, long m, double t) const {
     const double scale = 1.0 / double(1 << L);
     const int mL = int(m >> L);
     const double qL = (en_ + t * gn_) * scale;

@@ -17,7 +17,8 @@ namespace terrasprite {
 namespace {
 
 constexpr const char* kPath =
-    R"({"keyframes": [{"t": 1, "position": [0, 0, 5]}, {"t": 11, "position": [9, 0, 5]}],
+    R"({"keyframes": [{"t": 1, "position": [0, 0, 5], "yaw_deg": 0},
+                  {"t": 11, "position": [9, 0, 5], "yaw_deg": 0}],
   "checkpoints": [{"name": "A", "t": 1}, {"name": "B", "t": 6}, {"name": "C", "t": 11}]})";
 
 TEST(Walkthrough, CheckpointsLandOnTheirFrames) {

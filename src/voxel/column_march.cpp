@@ -165,7 +165,8 @@ class ColumnMarcher::Plane {
     return h + a * (p - h);
   }
 
-  // Height on major grid line m (a multiple of 2^L) at distance t.
+  // Height on major grid line m (a multiple of 2^L) at distance t. Always
+  // inlined: an out-of-line call would keep the plane's state in memory.
   [[gnu::always_inline]] float height_line(int L, long m, double t) const {
     const double scale = 1.0 / double(1 << L);
     const int mL = int(m >> L);

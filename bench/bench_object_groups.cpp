@@ -39,8 +39,7 @@ struct Fixture {
     set = std::make_unique<GlSceneObjects>(
         default_object_layout(dir ? dir : "../shared/data", terrain.heights), LodOptions{},
         default_cache_dir());
-    camera = path_from_json(walkthrough_path_json(terrain.heights), "walkthrough", terrain.heights,
-                            160, 320.0 / 180)[40];
+    camera = sample_path(walkthrough_path(terrain.heights), terrain.heights, 160, 320.0 / 180)[40];
     std::size_t total = 0;
     for (std::size_t m = 0; m < set->model_count(); ++m) total += set->instances(m).size();
     instances.reserve(total);  // the groups' spans point into it

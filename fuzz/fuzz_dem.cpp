@@ -8,7 +8,6 @@
 
 #include "terrasprite/common/error.h"
 #include "terrasprite/terrain/terrain.h"
-#include "terrasprite/terrain/terrain_gen.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string name = "/vsimem/fuzz_dem";

@@ -6,7 +6,7 @@
 
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/common/error.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/synth.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const terrasprite::Heightfield terrain = [] {

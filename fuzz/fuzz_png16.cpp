@@ -11,7 +11,7 @@
 #include "terrasprite/common/error.h"
 #include "terrasprite/common/image.h"
 #include "terrasprite/terrain/terrain.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/dem_loader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;

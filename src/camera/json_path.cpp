@@ -65,10 +65,9 @@ double number_of(const nlohmann::json& k, const char* key, double fallback,
   return v;
 }
 
-std::vector<Key> parse(std::string_view text, const std::string& path, double aspect) {
-  nlohmann::json doc;
+nlohmann::json parse_document(std::string_view text, const std::string& path) {
   try {
-    doc = nlohmann::json::parse(text);
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(fmt::format("{}: malformed JSON at byte {}", path, e.byte));
   } catch (const nlohmann::json::exception& e) {
@@ -77,43 +76,77 @@ std::vector<Key> parse(std::string_view text, const std::string& path, double as
     std::replace(why.begin(), why.end(), '\n', ' ');
     throw InputError(fmt::format("{}: unreadable JSON ({})", path, why));
   }
-  if (!doc.is_object() || !doc.contains("keyframes") || !doc["keyframes"].is_array() ||
-      doc["keyframes"].empty())
-    throw InputError(fmt::format("{}: needs a non-empty \"keyframes\" array", path));
-  std::vector<Key> keys;
-  for (std::size_t i = 0; i < doc["keyframes"].size(); ++i) {
-    const auto& k = doc["keyframes"][i];
-    std::string where = fmt::format("{}: keyframes[{}]", path, i);
-    if (!k.is_object()) throw InputError(where + " must be an object");
-    if (!k.contains("t") || !k["t"].is_number())
-      throw InputError(where + ".t must be a number (seconds)");
-    if (!k.contains("position")) throw InputError(where + " has no position");
-    Key key;
-    key.t = k["t"].get<double>();
-    if (!(std::abs(key.t) <= kMaxTimeS))
+}
+
+// Keyframe `k`, checked; `where` names it in errors.
+PathKeyframe keyframe_of(const nlohmann::json& k, const std::string& where) {
+  if (!k.is_object()) throw InputError(where + " must be an object");
+  if (!k.contains("t") || !k["t"].is_number())
+    throw InputError(where + ".t must be a number (seconds)");
+  if (!k.contains("position")) throw InputError(where + " has no position");
+  PathKeyframe key;
+  key.t = k["t"].get<double>();
+  if (!(std::abs(key.t) <= kMaxTimeS))
+    throw InputError(
+        fmt::format("{}.t {}: must be finite and within {:g} s", where, key.t, kMaxTimeS));
+  key.position = vec3_of(k["position"], where + ".position");
+  key.fov_deg = number_of(k, "fov_deg", 60.0, where);
+  if (!(key.fov_deg > 0 && key.fov_deg < 180))
+    throw InputError(where + ".fov_deg must be in (0, 180)");
+  if (k.contains("target")) {
+    key.target = vec3_of(k["target"], where + ".target");
+    if (glm::length(*key.target - key.position) <= 0)
+      throw InputError(where + ".target equals its position");
+    key.roll_deg = number_of(k, "roll_deg", 0.0, where);
+  } else if (k.contains("yaw_deg") || k.contains("pitch_deg")) {
+    key.yaw_deg = number_of(k, "yaw_deg", 0.0, where);
+    key.pitch_deg = number_of(k, "pitch_deg", 0.0, where);
+    key.roll_deg = number_of(k, "roll_deg", 0.0, where);
+    if (std::abs(key.pitch_deg) > 90) throw InputError(where + ".pitch_deg must be in [-90, 90]");
+  } else {
+    throw InputError(where + " needs \"target\" or \"yaw_deg\"/\"pitch_deg\"");
+  }
+  return key;
+}
+
+// The document's checkpoints (none without the key), within [t0, t1].
+std::vector<PathCheckpoint> checkpoints_of(const nlohmann::json& doc, const std::string& name,
+                                           double t0, double t1) {
+  std::vector<PathCheckpoint> out;
+  if (!doc.contains("checkpoints")) return out;
+  if (!doc["checkpoints"].is_array())
+    throw InputError(fmt::format("{}: \"checkpoints\" must be an array", name));
+  for (std::size_t i = 0; i < doc["checkpoints"].size(); ++i) {
+    const auto& c = doc["checkpoints"][i];
+    const std::string where = fmt::format("{}: checkpoints[{}]", name, i);
+    if (!c.is_object() || !c.contains("name") || !c["name"].is_string() ||
+        c["name"].get<std::string>().empty())
+      throw InputError(where + ": needs a non-empty \"name\"");
+    if (!c.contains("t") || !c["t"].is_number() || !std::isfinite(c["t"].get<double>()))
+      throw InputError(where + ": needs a number \"t\" (seconds)");
+    const double t = c["t"].get<double>();
+    if (!(t >= t0 && t <= t1))
       throw InputError(
-          fmt::format("{}.t {}: must be finite and within {:g} s", where, key.t, kMaxTimeS));
-    key.pos = vec3_of(k["position"], where + ".position");
-    key.fov = number_of(k, "fov_deg", 60.0, where);
-    if (!(key.fov > 0 && key.fov < 180)) throw InputError(where + ".fov_deg must be in (0, 180)");
+          fmt::format("{}: t {} is outside the keyframes' span [{}, {}]", where, t, t0, t1));
+    out.push_back({c["name"].get<std::string>(), t, 0});
+  }
+  return out;
+}
+
+// The keyframes' orientations (camera-local to world), each on the shorter
+// arc from the one before.
+std::vector<Key> keys_of(const KeyframePath& path, double aspect) {
+  std::vector<Key> keys;
+  for (const PathKeyframe& k : path.keyframes) {
     Camera c;
-    if (k.contains("target")) {
-      glm::dvec3 target = vec3_of(k["target"], where + ".target");
-      if (glm::length(target - key.pos) <= 0)
-        throw InputError(where + ".target equals its position");
-      c = Camera::look_at(key.pos, target, key.fov, aspect, keys.empty() ? 0.0 : 0.0);
-      c.roll_deg = number_of(k, "roll_deg", 0.0, where);
-    } else if (k.contains("yaw_deg") || k.contains("pitch_deg")) {
-      c.yaw_deg = number_of(k, "yaw_deg", 0.0, where);
-      c.pitch_deg = number_of(k, "pitch_deg", 0.0, where);
-      c.roll_deg = number_of(k, "roll_deg", 0.0, where);
-      if (std::abs(c.pitch_deg) > 90) throw InputError(where + ".pitch_deg must be in [-90, 90]");
+    if (k.target) {
+      c = Camera::look_at(k.position, *k.target, k.fov_deg, aspect, 0.0);
     } else {
-      throw InputError(where + " needs \"target\" or \"yaw_deg\"/\"pitch_deg\"");
+      c.yaw_deg = k.yaw_deg;
+      c.pitch_deg = k.pitch_deg;
     }
-    key.orient = orientation_of(c);
-    if (!keys.empty() && !(key.t > keys.back().t))
-      throw InputError(where + ".t must be greater than the previous keyframe's");
+    c.roll_deg = k.roll_deg;
+    Key key{k.t, k.position, orientation_of(c), k.fov_deg};
     if (!keys.empty() && glm::dot(keys.back().orient, key.orient) < 0)
       key.orient = -key.orient;  // shortest arc
     keys.push_back(key);
@@ -130,21 +163,27 @@ glm::dvec3 catmull_rom(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dv
 
 }  // namespace
 
-std::vector<Camera> load_path_file(const std::string& path, const Heightfield& h, int frames,
-                                   double aspect) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(fmt::format("{}: no such path file", path));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open path file", path));
-  const std::string text((std::istreambuf_iterator<char>(in)), {});
-  return path_from_json(text, path, h, frames, aspect);
+KeyframePath parse_path_json(std::string_view text, const std::string& path) {
+  const nlohmann::json doc = parse_document(text, path);
+  if (!doc.is_object() || !doc.contains("keyframes") || !doc["keyframes"].is_array() ||
+      doc["keyframes"].empty())
+    throw InputError(fmt::format("{}: needs a non-empty \"keyframes\" array", path));
+  KeyframePath out;
+  for (std::size_t i = 0; i < doc["keyframes"].size(); ++i) {
+    const std::string where = fmt::format("{}: keyframes[{}]", path, i);
+    PathKeyframe key = keyframe_of(doc["keyframes"][i], where);
+    if (!out.keyframes.empty() && !(key.t > out.keyframes.back().t))
+      throw InputError(where + ".t must be greater than the previous keyframe's");
+    out.keyframes.push_back(key);
+  }
+  out.checkpoints = checkpoints_of(doc, path, out.keyframes.front().t, out.keyframes.back().t);
+  return out;
 }
 
-std::vector<Camera> path_from_json(std::string_view text, const std::string& path,
-                                   const Heightfield& h, int frames, double aspect) {
+std::vector<Camera> sample_path(const KeyframePath& path, const Heightfield& h, int frames,
+                                double aspect) {
   if (frames < 1) throw InputError(fmt::format("frames {}: must be at least 1", frames));
-  std::vector<Key> keys = parse(text, path, aspect);
+  const std::vector<Key> keys = keys_of(path, aspect);
   std::vector<Camera> out;
   const double t0 = keys.front().t, t1 = keys.back().t;
   const int n = int(keys.size());
@@ -171,6 +210,32 @@ std::vector<Camera> path_from_json(std::string_view text, const std::string& pat
     out.push_back(c);
   }
   return out;
+}
+
+std::vector<PathCheckpoint> checkpoint_frames(const KeyframePath& path, int frames) {
+  std::vector<PathCheckpoint> out = path.checkpoints;
+  if (path.keyframes.empty()) return out;
+  const double t0 = path.keyframes.front().t, t1 = path.keyframes.back().t;
+  for (PathCheckpoint& c : out)
+    c.frame = t1 > t0 ? int(std::lround((c.t - t0) / (t1 - t0) * (frames - 1))) : 0;
+  return out;
+}
+
+std::vector<Camera> load_path_file(const std::string& path, const Heightfield& h, int frames,
+                                   double aspect) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(fmt::format("{}: no such path file", path));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot open path file", path));
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  return path_from_json(text, path, h, frames, aspect);
+}
+
+std::vector<Camera> path_from_json(std::string_view text, const std::string& path,
+                                   const Heightfield& h, int frames, double aspect) {
+  if (frames < 1) throw InputError(fmt::format("frames {}: must be at least 1", frames));
+  return sample_path(parse_path_json(text, path), h, frames, aspect);
 }
 
 }  // namespace terrasprite

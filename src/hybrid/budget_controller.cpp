@@ -97,9 +97,9 @@ double BudgetController::gain() const {
 }
 
 double BudgetController::noise() const {
-  // Nothing measured yet is not no noise: replayed (margin 2), 2.9 of a
-  // walkthrough's 8 frames over target fell in its first 20 when this was
-  // 0, 1.8 with the prior.
+  // Nothing measured yet is not no noise: without a prior the first frames
+  // of a walkthrough run over target more often
+  // (docs/results/2026-12-02-hybrid-budget-margin.md).
   if (int(changes_.size()) < std::max(1, o_.prior_changes)) return o_.prior_noise;
   std::vector<double> c(changes_.begin(), changes_.end());
   std::nth_element(c.begin(), c.begin() + std::ptrdiff_t(c.size() / 2), c.end());

@@ -237,12 +237,11 @@ void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& dr
   // overhead being the call and the flush at glFinish; a batch of n
   // instances in one call: tn = overhead + n instance; the same n as n
   // calls: tc = overhead + (n - 1) call + n instance. The call is what one
-  // more costs inside a frame, (tc - tn) / (n - 1): about 1 us on llvmpipe.
-  // The overhead (about 0.08 ms, mostly the flush) is paid once a frame and
-  // is in the terrain's measured time; it comes off the fitted constants.
-  // (Charged per call, it put 2 ms of draws that were not there into a frame
-  // of 25 groups, and more where more groups are drawn: at checkpoint E the
-  // frames were predicted at twice what they measured and the budget fell.)
+  // more costs inside a frame, (tc - tn) / (n - 1). The overhead (mostly
+  // the flush) is paid once a frame and is in the terrain's measured time;
+  // it comes off the fitted constants (charged per call, it would add draws
+  // that are not there to every group of a frame;
+  // docs/results/2026-12-02-hybrid-cost-calibration.md).
   const DrawOverheads oh = draw_overheads(draws);
   const std::array<double, 3>& overhead = oh.overhead;
   for (std::size_t k = 0; k < 3; ++k)
@@ -288,9 +287,9 @@ void fit_draw_costs(DrawCostModel& model, const std::vector<CalibrationDraw>& dr
   // A mesh level's spread batch against one instance alone at the same size:
   // (tn - t1) / (n - 1) is an instance's time among others spread over the
   // image, with no flush in it. Its pixels (the level's own per-pixel
-  // slope) come off; what is left is the level's constant. Fitted beside an
-  // 80 us flush, single draws put the constant of small levels anywhere
-  // from a quarter to four times this.
+  // slope) come off; what is left is the level's constant (fitted beside a
+  // flush far larger than it, single draws would leave it uncertain by a
+  // large factor).
   for (const CalibrationDraw& d : draws) {
     if (!d.spread || d.above || d.rep.kind != ObjectKind::kMesh || d.instances < 2) continue;
     const auto one = std::find_if(draws.begin(), draws.end(), [&](const CalibrationDraw& s) {

@@ -244,13 +244,11 @@ void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
   const std::array<double, kTerms> z = contributions(load);  // each term's calibrated ms
   auto P = [&](int i, int j) -> double& { return covariance_[std::size_t(i * kTerms + j)]; };
   // Only the terms in this frame's time learn from it. A term with nothing
-  // in the frame (an impostor kind not drawn) moved all the same through its
-  // covariance with the others: in the walkthrough the octahedral extra rose
-  // from 0.03 ms an instance (frame 8) to 0.20 (frame 150) while 3 of those
-  // 142 frames drew one octahedral impostor each. It priced them out (6x
-  // their calibrated cost), so they were never drawn to correct it. Its
-  // covariance with the terms that learn is dropped, its own kept as it was
-  // (no forgetting of what no frame shows).
+  // in the frame (an impostor kind not drawn) would move all the same
+  // through its covariance with the others, and could price its kind out
+  // so that it is never drawn to correct it. Its covariance with the terms
+  // that learn is dropped, its own kept unchanged (no forgetting of what no
+  // frame shows; docs/results/2026-12-03-hybrid-cost-refit.md).
   std::array<bool, kTerms> in{};
   for (int i = 0; i < kTerms; ++i) in[std::size_t(i)] = z[std::size_t(i)] != 0;
   std::array<double, kTerms> pz{};
@@ -265,10 +263,9 @@ void DrawCostModel::observe(const FrameLoad& load, double measured_ms) {
   if (!(predicted > 0) || !(measured_ms > 0)) return;
   // The frame term and the kinds' terms rise and fall together in a closed
   // loop, so a few noisy frames can trade one for another without changing
-  // the frame's prediction: simulated 160-frame runs at 22% frame noise left
-  // the meshes' multiplier at its 0.05 floor in 6 of 40. Their spread about
-  // the frame's mean multiplier is drawn in first (this frame's prediction
-  // stays as it was); a pace every term shares is kept whole.
+  // the frame's prediction (and drive one multiplier to its floor). Their
+  // spread about the frame's mean multiplier is drawn in first (this
+  // frame's prediction is unchanged); a pace every term shares is kept whole.
   if (options_.spread_retention < 1) {
     double calibrated = 0, refit = 0;  // a term not in the frame has z = 0
     for (int i = 0; i < kTerms; ++i)

@@ -14,12 +14,12 @@
 #include <tuple>
 
 #include "gl/render_target.h"
+#include "terrasprite/common/stats.h"
 #include "terrasprite/hybrid/depth_occlusion.h"
 #include "terrasprite/hybrid/expected_quality.h"
 #include "terrasprite/hybrid/frame_pace.h"
 #include "terrasprite/hybrid/instance_view.h"
 #include "terrasprite/hybrid/measured_fixed_time.h"
-#include "terrasprite/common/stats.h"
 
 namespace terrasprite {
 namespace {
@@ -45,6 +45,27 @@ struct Viewed {
   InstanceOptions options;
 };
 
+/// The chosen instances by (model, representation): one instanced draw each.
+using DrawGroups = std::map<GroupKey, std::pair<Representation, std::vector<ObjectInstance>>>;
+
+/// The machine's pace as the depth read-back showed it (neutral without one).
+struct ReadBackPace {
+  FrameLoad load;        ///< known_extra_ms: the terrain's deviation from usual
+  double factor = 1;     ///< on the prediction of what follows the read-back
+  double log_ratio = 0;  ///< log(read-back / usual)
+};
+
+/// The frame's expected SSIM from the tables' values, before any penalty.
+double expected_ssim(const std::vector<InstanceOptions>& frame, const FrameSelection& sel) {
+  double wsum = 0, expected = 0;
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    const RepresentationOption& chosen = frame[i].options[std::size_t(sel.option[i])];
+    wsum += frame[i].weight;
+    expected += frame[i].weight * (chosen.ssim + chosen.penalty);
+  }
+  return wsum > 0 ? expected / wsum : 1.0;
+}
+
 }  // namespace
 
 struct HybridObjects::Impl {
@@ -60,8 +81,7 @@ struct HybridObjects::Impl {
   /// The last frame's predicted time less what the policy saw (terrain plus
   /// the chosen options' costs): the draw calls of the (model,
   /// representation) groups beyond one per model and kind, which a
-  /// per-instance knapsack cannot see. Taken off the next frame's budget:
-  /// under a 10 ms target the frames were predicted 1.7-2.5 ms over it.
+  /// per-instance knapsack cannot see. Taken off the next frame's budget.
   double draw_gap_ms = 0;
   /// The terrain's time in each frame, as the read-back measured it.
   MeasuredFixedTime fixed_time;
@@ -81,6 +101,24 @@ struct HybridObjects::Impl {
   /// Reads only what no frame changes until the selection (tables, cost
   /// model, instances): it runs beside the occlusion read-back.
   std::vector<Viewed> view_and_price(const Camera& camera, const HybridScenario& scenario) const;
+
+  // The stages of a frame, in draw()'s order.
+  bool viewport_is_image() const;
+  std::vector<Viewed> view_unoccluded(const Camera& camera, const HybridScenario& scenario,
+                                      bool cull, HybridFrameStats& st);
+  std::vector<InstanceOptions> frame_options(std::vector<Viewed>& viewed,
+                                             HybridFrameStats& st) const;
+  void share_draw_calls(const std::vector<Viewed>& viewed, std::vector<InstanceOptions>& frame,
+                        HybridFrameStats& st) const;
+  double frame_budget(HybridScenario::Control control, PolicyOptions& po) const;
+  ReadBackPace read_back_pace(bool cull, double occlusion_ms);
+  double floored_budget(double computed);
+  DrawGroups group_chosen(const Camera& camera, const std::vector<Viewed>& viewed,
+                          const std::vector<InstanceOptions>& frame, const FrameSelection& sel,
+                          HybridFrameStats& st);
+  void predict_frame(double selected_ms, const ReadBackPace& paced, bool cull,
+                     HybridFrameStats& st);
+  void draw_groups(const DrawGroups& groups, const Camera& camera);
 
   Impl(GlSceneObjects& s, const DrawCostModel& c, const HybridOptions& o)
       : set(s),
@@ -149,7 +187,7 @@ std::vector<Viewed> HybridObjects::Impl::view_and_price(const Camera& camera,
       for (const Offer& f : offers[m]) {
         if (scenario.full && !(f.rep.kind == ObjectKind::kMesh && f.rep.level == 0)) continue;
         // Beyond the tables' sizes an impostor's quality is unknown, and
-        // near the camera it is far worse than they say (checkpoint D).
+        // near the camera it is far worse than they say.
         // Within two radii the camera is inside or at the impostor's box.
         if (f.rep.kind != ObjectKind::kMesh && o.max_impostor_size_px > 0 &&
             (v.size_px > o.max_impostor_size_px || v.distance_m < 2 * radius) &&
@@ -176,6 +214,197 @@ std::vector<Viewed> HybridObjects::Impl::view_and_price(const Camera& camera,
   return out;
 }
 
+bool HybridObjects::Impl::viewport_is_image() const {
+  // Only into an image of the options' size: elsewhere the pixel mapping
+  // would be wrong, and a wrong mapping could hide what shows.
+  GLint viewport[4] = {0, 0, 0, 0};
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  return viewport[0] == 0 && viewport[1] == 0 && viewport[2] == options.width &&
+         viewport[3] == options.height;
+}
+
+std::vector<Viewed> HybridObjects::Impl::view_unoccluded(const Camera& camera,
+                                                         const HybridScenario& scenario, bool cull,
+                                                         HybridFrameStats& st) {
+  // Every instance in the frustum, viewed and priced, on another thread
+  // while the read-back waits for the terrain's rasterisation (with a
+  // software rasteriser on the drawing thread the other core is idle then).
+  // Nothing here needs the depth; the occlusion test filters after.
+  std::vector<Viewed> viewed;
+  auto view = [&] {
+    const auto v0 = std::chrono::steady_clock::now();
+    viewed = view_and_price(camera, scenario);
+    st.view_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - v0).count();
+  };
+  DepthOcclusion occluder;
+  tbb::task_group views;
+  if (cull) {
+    views.run(view);
+    const auto r0 = std::chrono::steady_clock::now();
+    GLint fbo = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+    occluder = DepthOcclusion(
+        gl::read_depth_raw(GLuint(fbo), options.width, options.height, depth_scratch),
+        options.width, options.height, camera);
+    st.occlusion_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count();
+  } else {
+    view();
+  }
+  views.wait();
+  std::erase_if(viewed, [&](const Viewed& c) {
+    const bool hidden =
+        cull && occluder.hidden(sphere_on_screen(camera, options.width, options.height,
+                                                 c.view.centre_m, c.view.radius_m));
+    st.occluded += hidden;
+    return hidden;
+  });
+  return viewed;
+}
+
+std::vector<InstanceOptions> HybridObjects::Impl::frame_options(std::vector<Viewed>& viewed,
+                                                                HybridFrameStats& st) const {
+  std::vector<InstanceOptions> frame;
+  frame.reserve(viewed.size());
+  for (Viewed& c : viewed) {
+    long long lo = c.options.options.front().triangles;
+    for (const auto& opt : c.options.options) lo = std::min(lo, opt.triangles);
+    st.triangles_min += lo;
+    st.triangles_max += set.model(c.model).model().triangles();
+    frame.push_back(std::move(c.options));
+  }
+  return frame;
+}
+
+void HybridObjects::Impl::share_draw_calls(const std::vector<Viewed>& viewed,
+                                           std::vector<InstanceOptions>& frame,
+                                           HybridFrameStats& st) const {
+  // A draw call per (model, representation) the knapsack cannot see as a
+  // fixed cost: each visible instance of the model carries its share of it
+  // (at most one call per representation for all of them).
+  for (std::size_t first = 0; first < frame.size();) {
+    std::size_t end = first;
+    while (end < frame.size() && viewed[end].model == viewed[first].model) ++end;
+    const double visible = double(end - first);
+    for (std::size_t k = first; k < end; ++k) {
+      double cheapest = INFINITY;
+      for (RepresentationOption& opt : frame[k].options) {
+        if (is_drawn(opt.rep)) opt.cost_ms += cost.terms(opt.rep.kind).per_draw_ms / visible;
+        cheapest = std::min(cheapest, opt.cost_ms);
+      }
+      st.floor_ms += cheapest;
+    }
+    first = end;
+  }
+}
+
+double HybridObjects::Impl::frame_budget(HybridScenario::Control control, PolicyOptions& po) const {
+  switch (control) {
+    case HybridScenario::Control::kNone:
+      return INFINITY;
+    case HybridScenario::Control::kQualityStep:
+      // The paper's quality step for the impostors; the meshes' budget is
+      // the target as the same measured-time loop corrects it (a fixed
+      // budget in predicted milliseconds would miss by the model's error).
+      po.target_ssim = quality_step.quality();
+      return controller.budget_ms();
+    case HybridScenario::Control::kBudgetPi:
+      return controller.budget_ms();
+    case HybridScenario::Control::kFixed:
+      return options.target_ms;
+  }
+  return INFINITY;
+}
+
+ReadBackPace HybridObjects::Impl::read_back_pace(bool cull, double occlusion_ms) {
+  // What the terrain took in this frame is known by now (the read-back
+  // waited for it): the objects get what it left (its usual time is in the
+  // model's frame term; its deviation is added). What follows the
+  // read-back (the objects, their draw calls) runs at the pace the
+  // read-back showed: its prediction is scaled by the pace's factor (1
+  // without culling).
+  ReadBackPace p;
+  if (cull) {
+    p.load.known_extra_ms = fixed_time.deviation(occlusion_ms);
+    p.log_ratio = fixed_time.last_log_ratio();
+    p.factor = pace.factor(p.log_ratio);
+  }
+  return p;
+}
+
+double HybridObjects::Impl::floored_budget(double computed) {
+  // Floored by the recent budgets (HybridOptions::objects_budget_floor): one
+  // slow frame must not send every instance to its coarsest.
+  if (!std::isfinite(computed)) return computed;
+  double floored = computed;
+  if (!recent_budgets.empty())
+    floored = std::max(computed, options.objects_budget_floor *
+                                     median({recent_budgets.begin(), recent_budgets.end()}));
+  recent_budgets.push_back(computed);
+  while (int(recent_budgets.size()) > std::max(1, options.objects_budget_window))
+    recent_budgets.pop_front();
+  return floored;
+}
+
+DrawGroups HybridObjects::Impl::group_chosen(const Camera& camera,
+                                             const std::vector<Viewed>& viewed,
+                                             const std::vector<InstanceOptions>& frame,
+                                             const FrameSelection& sel, HybridFrameStats& st) {
+  // Group by (model, representation); one instanced draw per group.
+  DrawGroups groups;
+  for (std::size_t k = 0; k < frame.size(); ++k) {
+    const RepresentationOption& opt = frame[k].options[std::size_t(sel.option[k])];
+    const std::size_t m = viewed[k].model, i = viewed[k].index;
+    const Representation& r = opt.rep;
+    if (!is_drawn(r)) {
+      ++st.not_drawn;
+      continue;
+    }
+    auto& g = groups[{m, int(r.kind), r.level, r.resolution}];
+    g.first = r;
+    g.second.push_back(set.instances(m)[i]);
+    cost.add(load, r, double(opt.triangles), viewed[k].view.pixels, int(m),
+             set.model(m).culls_back_faces(r, g.second.back(), camera), viewed[k].view.on_screen);
+    st.triangles += opt.triangles;
+    st.instances_by_kind[std::size_t(r.kind)] += 1;
+  }
+  for (const auto& [key, g] : groups) {
+    load.kinds[std::size_t(std::get<1>(key))].draws += 1;
+    st.draws_by_kind[std::size_t(std::get<1>(key))] += 1;
+  }
+  return groups;
+}
+
+void HybridObjects::Impl::predict_frame(double selected_ms, const ReadBackPace& paced, bool cull,
+                                        HybridFrameStats& st) {
+  st.predicted_ms = cost.predict(load);
+  draw_gap_ms = std::max(0.0, st.predicted_ms - cost.frame_ms(load) - selected_ms);
+  st.draw_gap_ms = draw_gap_ms;
+  // The pace as known time: added to the prediction, never refit.
+  const double after = st.predicted_ms - cost.frame_ms(load);
+  unpaced_ms = cull ? st.predicted_ms : 0.0;
+  pace_x = st.predicted_ms > 0 ? paced.log_ratio * after / st.predicted_ms : 0.0;
+  load.known_extra_ms += (paced.factor - 1) * after;
+  st.predicted_ms = cost.predict(load);
+  for (std::size_t k = 0; k < 3; ++k)
+    st.predicted_by_kind_ms[k] = paced.factor * cost.kind_ms(load, ObjectKind(k));
+}
+
+void HybridObjects::Impl::draw_groups(const DrawGroups& groups, const Camera& camera) {
+  // Per model, all its groups at once: one upload of their instances.
+  std::vector<GlModel::Group> batch;
+  for (auto it = groups.begin(); it != groups.end(); ++it) {
+    if (drawn_kinds[std::size_t(std::get<1>(it->first))])
+      batch.push_back({it->second.first, it->second.second});
+    const auto next = std::next(it);
+    if (next == groups.end() || std::get<0>(next->first) != std::get<0>(it->first)) {
+      set.model(std::get<0>(it->first)).draw(batch, camera);  // nothing when empty
+      batch.clear();
+    }
+  }
+}
+
 HybridObjects::~HybridObjects() = default;
 
 void HybridObjects::prepare() {
@@ -187,198 +416,40 @@ void HybridObjects::prepare() {
 long long HybridObjects::draw(const Camera& camera) {
   Impl& s = *impl_;
   const auto t0 = std::chrono::steady_clock::now();
-  const HybridOptions& o = s.options;
   HybridFrameStats st;
   // The terrain is drawn: what lies behind it needs no representation.
-  DepthOcclusion occluder;
-  GLint viewport[4] = {0, 0, 0, 0};
-  if (scenario_.cull_occluded) glGetIntegerv(GL_VIEWPORT, viewport);
-  // Only into an image of the options' size: elsewhere the pixel mapping
-  // would be wrong, and a wrong mapping could hide what shows.
-  const bool cull = scenario_.cull_occluded && viewport[0] == 0 && viewport[1] == 0 &&
-                    viewport[2] == o.width && viewport[3] == o.height;
-  // Every instance in the frustum, viewed and priced, on another thread
-  // while the read-back waits for the terrain's rasterisation: with
-  // llvmpipe rasterising on the drawing thread (LP_NUM_THREADS=0, two
-  // cores) the other core is idle then. Nothing here needs the depth; the
-  // occlusion test filters after. (Flushing the terrain earlier instead, to
-  // rasterise it beside the viewing, only moved the wait into the
-  // selection's time, p95 2.4 ms against 1.0, when llvmpipe had threads.)
-  std::vector<Viewed> viewed;
-  auto view = [&] {
-    const auto v0 = std::chrono::steady_clock::now();
-    viewed = s.view_and_price(camera, scenario_);
-    st.view_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - v0).count();
-  };
-  tbb::task_group views;
-  if (cull) {
-    views.run(view);
-    const auto r0 = std::chrono::steady_clock::now();
-    GLint fbo = 0;
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
-    occluder = DepthOcclusion(gl::read_depth_raw(GLuint(fbo), o.width, o.height, s.depth_scratch),
-                              o.width, o.height, camera);
-    st.occlusion_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count();
-  } else {
-    view();
-  }
-  views.wait();
-  // The instances not behind the terrain; frame[k] holds viewed[k]'s options.
-  std::erase_if(viewed, [&](const Viewed& c) {
-    const bool hidden = cull && occluder.hidden(sphere_on_screen(camera, o.width, o.height,
-                                                                 c.view.centre_m, c.view.radius_m));
-    st.occluded += hidden;
-    return hidden;
-  });
-  std::vector<InstanceOptions> frame;
-  frame.reserve(viewed.size());
-  for (Viewed& c : viewed) {
-    long long lo = c.options.options.front().triangles;
-    for (const auto& opt : c.options.options) lo = std::min(lo, opt.triangles);
-    st.triangles_min += lo;
-    st.triangles_max += s.set.model(c.model).model().triangles();
-    frame.push_back(std::move(c.options));
-  }
-  // A draw call per (model, representation) the knapsack cannot see as a
-  // fixed cost: each visible instance of the model carries its share of it
-  // (at most one call per representation for all of them).
-  for (std::size_t first = 0; first < frame.size();) {
-    std::size_t end = first;
-    while (end < frame.size() && viewed[end].model == viewed[first].model) ++end;
-    const double visible = double(end - first);
-    for (std::size_t k = first; k < end; ++k) {
-      double cheapest = INFINITY;
-      for (RepresentationOption& opt : frame[k].options) {
-        if (is_drawn(opt.rep)) opt.cost_ms += s.cost.terms(opt.rep.kind).per_draw_ms / visible;
-        cheapest = std::min(cheapest, opt.cost_ms);
-      }
-      st.floor_ms += cheapest;
-    }
-    first = end;
-  }
+  const bool cull = scenario_.cull_occluded && s.viewport_is_image();
+  std::vector<Viewed> viewed = s.view_unoccluded(camera, scenario_, cull, st);
+  std::vector<InstanceOptions> frame = s.frame_options(viewed, st);
+  s.share_draw_calls(viewed, frame, st);
   st.visible = int(frame.size());
   const auto t1 = std::chrono::steady_clock::now();
 
-  // The budget the policy spends on objects: the whole frame's, less the terrain.
-  double budget = INFINITY;
-  PolicyOptions po = o.policy;
-  switch (scenario_.control) {
-    case HybridScenario::Control::kNone:
-      break;
-    case HybridScenario::Control::kQualityStep:
-      // The paper's quality step for the impostors; the meshes' budget is
-      // the target as the same measured-time loop corrects it (a fixed
-      // budget in predicted milliseconds would miss by the model's error).
-      po.target_ssim = s.quality_step.quality();
-      budget = s.controller.budget_ms();
-      break;
-    case HybridScenario::Control::kBudgetPi:
-      budget = s.controller.budget_ms();
-      break;
-    case HybridScenario::Control::kFixed:
-      budget = o.target_ms;
-      break;
-  }
+  PolicyOptions po = s.options.policy;
+  const double budget = s.frame_budget(scenario_.control, po);
   st.budget_ms = budget;
   st.target_quality = po.target_ssim;
   const SelectionPolicy policy = scenario_.full ? SelectionPolicy::kStatic : scenario_.policy;
-  // What the terrain took in this frame is known by now (the read-back
-  // waited for it): the objects get what it left (its usual time is in
-  // the model's frame term; its deviation is added). Adding the instances'
-  // view and the last policy's time too (up to 2.5 ms a frame) narrowed
-  // nothing: sd(log measured / predicted) 0.130-0.154 in 4 runs against
-  // 0.128-0.159 in 3.
-  // What follows the read-back (the objects, their draw calls) runs at the
-  // pace the read-back showed: its prediction is scaled by the pace's
-  // factor (1 without culling).
-  FrameLoad load;
-  double pace = 1, pace_z = 0;
-  if (cull) {
-    load.known_extra_ms = s.fixed_time.deviation(st.occlusion_ms);
-    pace_z = s.fixed_time.last_log_ratio();
-    pace = s.pace.factor(pace_z);
-  }
-  st.pace = pace;
-  const double computed_budget = (budget - s.cost.frame_ms(load)) / pace - s.draw_gap_ms;
-  // Floored by the recent budgets (HybridOptions::objects_budget_floor): one
-  // slow frame must not send every instance to its coarsest.
-  double objects_budget = computed_budget;
-  if (std::isfinite(computed_budget)) {
-    if (!s.recent_budgets.empty())
-      objects_budget =
-          std::max(computed_budget, o.objects_budget_floor *
-                                        median({s.recent_budgets.begin(), s.recent_budgets.end()}));
-    s.recent_budgets.push_back(computed_budget);
-    while (int(s.recent_budgets.size()) > std::max(1, o.objects_budget_window))
-      s.recent_budgets.pop_front();
-  }
+  const ReadBackPace paced = s.read_back_pace(cull, st.occlusion_ms);
+  st.pace = paced.factor;
+  const double objects_budget =
+      s.floored_budget((budget - s.cost.frame_ms(paced.load)) / paced.factor - s.draw_gap_ms);
   st.objects_budget_ms = objects_budget;
   FrameSelection sel = select_representations(policy, frame, objects_budget, po);
-  if (o.use_hysteresis && !scenario_.full)
+  if (s.options.use_hysteresis && !scenario_.full)
     st.switches = s.hysteresis.apply(frame, sel, objects_budget);
   st.objective_greedy = sel.objective_greedy;
   st.objective_optimal = sel.objective_optimal;
   st.benefit = sel.benefit;
-  // The frame's expected SSIM from the tables' values, before any penalty.
-  double wsum = 0, expected = 0;
-  for (std::size_t i = 0; i < frame.size(); ++i) {
-    const RepresentationOption& chosen = frame[i].options[std::size_t(sel.option[i])];
-    wsum += frame[i].weight;
-    expected += frame[i].weight * (chosen.ssim + chosen.penalty);
-  }
-  st.expected_ssim = wsum > 0 ? expected / wsum : 1.0;
+  st.expected_ssim = expected_ssim(frame, sel);
   const auto t2 = std::chrono::steady_clock::now();
   st.selection_ms = std::chrono::duration<double, std::milli>(t2 - t0).count() - st.occlusion_ms;
   st.policy_ms = std::chrono::duration<double, std::milli>(t2 - t1).count();
 
-  // Group by (model, representation); one instanced draw per group.
-  std::map<GroupKey, std::pair<Representation, std::vector<ObjectInstance>>> groups;
-  s.load = load;
-  for (std::size_t k = 0; k < frame.size(); ++k) {
-    const RepresentationOption& opt = frame[k].options[std::size_t(sel.option[k])];
-    const std::size_t m = viewed[k].model, i = viewed[k].index;
-    const Representation& r = opt.rep;
-    if (!is_drawn(r)) {
-      ++st.not_drawn;
-      continue;
-    }
-    auto& g = groups[{m, int(r.kind), r.level, r.resolution}];
-    g.first = r;
-    g.second.push_back(s.set.instances(m)[i]);
-    s.cost.add(s.load, r, double(opt.triangles), viewed[k].view.pixels, int(m),
-               s.set.model(m).culls_back_faces(r, g.second.back(), camera),
-               viewed[k].view.on_screen);
-    st.triangles += opt.triangles;
-    st.instances_by_kind[std::size_t(r.kind)] += 1;
-  }
-  for (const auto& [key, g] : groups) {
-    s.load.kinds[std::size_t(std::get<1>(key))].draws += 1;
-    st.draws_by_kind[std::size_t(std::get<1>(key))] += 1;
-  }
-  st.predicted_ms = s.cost.predict(s.load);
-  s.draw_gap_ms = std::max(0.0, st.predicted_ms - s.cost.frame_ms(s.load) - sel.cost_ms);
-  st.draw_gap_ms = s.draw_gap_ms;
-  // The pace as known time: added to the prediction, never refit.
-  const double after = st.predicted_ms - s.cost.frame_ms(s.load);
-  s.unpaced_ms = cull ? st.predicted_ms : 0.0;
-  s.pace_x = st.predicted_ms > 0 ? pace_z * after / st.predicted_ms : 0.0;
-  s.load.known_extra_ms += (pace - 1) * after;
-  st.predicted_ms = s.cost.predict(s.load);
-  for (std::size_t k = 0; k < 3; ++k)
-    st.predicted_by_kind_ms[k] = pace * s.cost.kind_ms(s.load, ObjectKind(k));
-  // Per model, all its groups at once: one upload of their instances.
-  std::vector<GlModel::Group> batch;
-  for (auto it = groups.begin(); it != groups.end(); ++it) {
-    if (s.drawn_kinds[std::size_t(std::get<1>(it->first))])
-      batch.push_back({it->second.first, it->second.second});
-    const auto next = std::next(it);
-    if (next == groups.end() || std::get<0>(next->first) != std::get<0>(it->first)) {
-      s.set.model(std::get<0>(it->first)).draw(batch, camera);  // nothing when empty
-      batch.clear();
-    }
-  }
+  s.load = paced.load;
+  const DrawGroups groups = s.group_chosen(camera, viewed, frame, sel, st);
+  s.predict_frame(sel.cost_ms, paced, cull, st);
+  s.draw_groups(groups, camera);
   last_ = st;
   return st.triangles;
 }

@@ -8,11 +8,11 @@ namespace terrasprite {
 RasterOptions hybrid_terrain_raster(int samples) {
   // Never llvmpipe's anisotropic path: it stalls for seconds at grazing
   // angles, and a walkthrough is all grazing angles. Trilinear, not the hand
-  // filter: the terrain is the same in every scenario, and at 320 x 180 it
-  // took 2.0 ms against the hand filter's 10.5, which went to the objects.
-  // Back faces culled: the walkthrough stands on the drawn grid, so they are
-  // never seen (1 silhouette pixel in 11 of 160 frames differs), and the
-  // terrain took 1.4 ms against 2.4.
+  // filter: the terrain is the same in every scenario, and the time the
+  // hand filter would take goes to the objects. Back faces culled: the
+  // walkthrough stands on the drawn grid, so they are never seen (bar a
+  // pixel on a ridge's silhouette), and their setup is skipped
+  // (docs/results/2026-12-01-hybrid-terrain-drape.md).
   return {.drape_filter = DrapeFilter::kTrilinear, .cull_back_faces = true, .samples = samples};
 }
 

@@ -258,8 +258,8 @@ void GlModel::Impl::draw_level_parts(int level, GLuint p, GLsizei count, GLuint 
     glUniform1i(glGetUniformLocation(p, "u_textured"), mat.texture >= 0 ? 1 : 0);
     glUniform1i(glGetUniformLocation(p, "u_texture"), 0);
     if (mat.texture >= 0) glBindTextureUnit(0, textures[mat.texture].id());
-    // Back faces of a single-sided material cannot show: not rasterising
-    // them took 14% off the walkthrough's full geometry on llvmpipe.
+    // Back faces of a single-sided material cannot show: they are not
+    // rasterised.
     if (mat.double_sided && !cull_all)
       glDisable(GL_CULL_FACE);
     else

@@ -202,7 +202,7 @@ glm::dvec3 closest_on_triangle(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dv
 constexpr std::size_t kProbes = 1024;
 constexpr std::size_t kMeasureMaxTriangles = 4096;
 // Small parts: at most this fraction of the model's radius (half its bounding
-// box's diagonal). The forest patch's stones are 3-4% of it.
+// box's diagonal): pebbles and stones strewn over a model, not its parts.
 constexpr double kSmallPart = 0.05;
 
 std::vector<glm::dvec3> probes(const Model& m) {

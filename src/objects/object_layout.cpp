@@ -12,7 +12,7 @@
 #include <random>
 
 #include "terrasprite/common/error.h"
-#include "terrasprite/terrain/terrain_mesh.h"
+#include "terrasprite/terrain/grid_mesh.h"
 
 namespace terrasprite {
 namespace {

@@ -306,11 +306,10 @@ objects::OctahedralImpostor& GlModel::Impl::octahedral_impostor(int res, int vie
   glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, clear_albedo);
   glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 1, clear_geometry);
   glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &far);
-  // Every view from the full mesh. A LOD level within a quarter texel (the
-  // earlier shortcut) keeps the silhouette but smooths the normals, and the
-  // shading detail was most of what the impostor lost (bunny, 128 per view,
-  // 400 px: mean SSIM 0.82 -> 0.86 at the four horizontal views); even a level
-  // with a triangle per texel costs 0.02-0.05 mean SSIM.
+  // Every view from the full mesh. A LOD level within a quarter texel keeps
+  // the silhouette but smooths the normals, and the shading detail is most
+  // of what an impostor would lose; even a level with a triangle per texel
+  // costs visible quality.
   for (int j = 0; j < views; ++j)
     for (int i = 0; i < views; ++i) {
       glViewport(i * res, j * res, res, res);

@@ -232,9 +232,9 @@ QualityTable measure_quality_table(GlModel& model, const TableOptions& o,
           }
           // Neither image covers a sample (a flat model edge-on at 4 px):
           // both show only the background, and the whole images say so
-          // (SSIM 1). Masked, the scores were 0 / 0: NaN samples made the
-          // expected quality of every nearby view NaN and the cached table
-          // unreadable (JSON null).
+          // (SSIM 1). Masked, the scores would be 0 / 0: NaN samples would
+          // make the expected quality of every nearby view NaN and the cached
+          // table unreadable (JSON null).
           if (!any) mask.clear();
           const double psnr = quality::psnr(ref.color.view(), s.color.view(), mask).rgb;
           const double ssim = quality::ssim(ref.color.view(), s.color.view(),

@@ -3,8 +3,8 @@
 // Edge collapses cannot remove a closed part (a pebble stops at about ten
 // triangles) and cannot shorten an open one's locked border, so a model
 // strewn with small parts (the Kenney forest patch: 28 stones of 18
-// triangles, 25% of it) kept them whole on its first level and took every
-// triangle from its trees (cones of 52-56 triangles down to 16-20).
+// triangles, a quarter of it) would keep them whole on its first level and
+// take every triangle from its trees.
 // meshoptimizer 0.21 has this as meshopt_SimplifyPrune; Debian ships 0.18.
 #pragma once
 #include <cstdint>

@@ -107,7 +107,7 @@ out vec4 o_color;
 void main() {
   vec2 uv = drape_uv(v_world.xy);
   // Two programs, not a branch: a texture() under a condition costs llvmpipe
-  // its per-quad filtering path (full resolution ran 3.4x slower that way).
+  // its per-quad filtering path, several times slower at full resolution.
 #if HAND_FILTER
   vec4 c = drape_hand_filtered(u_drape, uv, dFdx(uv), dFdy(uv));
 #else

@@ -11,7 +11,7 @@
 #include "gl/gl_objects.h"
 #include "terrasprite/raster/scene.h"
 #include "terrasprite/terrain/terrain.h"
-#include "terrasprite/terrain/terrain_mesh.h"
+#include "terrasprite/terrain/grid_mesh.h"
 
 namespace terrasprite {
 

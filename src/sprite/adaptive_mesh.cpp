@@ -14,7 +14,8 @@
 #include <unordered_set>
 #include <utility>
 
-#include "terrasprite/terrain/terrain_mesh.h"
+#include "terrasprite/terrain/grid_mesh.h"
+#include "terrasprite/terrain/pyramid.h"
 
 namespace terrasprite {
 namespace {
@@ -111,6 +112,12 @@ struct AdaptiveMesher::Impl {
   }
 
   struct Refinement;
+  class CellWriter;
+  /// Largest vertical distance between a sample and the triangles drawn
+  /// over cell q (leaf k): a two-triangle leaf's own error, else measured
+  /// on its fan.
+  double cell_deviation(const CoarseGrid& g, Key k, std::size_t q,
+                        const std::vector<glm::ivec2>& vertex_sample) const;
   double screen_error(Key k, const Camera& cam, const glm::dmat4& vp, double pixel) const {
     const int l = level_of(k), i = i_of(k), j = j_of(k), n = 1 << l;
     const std::size_t at = std::size_t(j) * n + i;
@@ -195,6 +202,13 @@ struct AdaptiveMesher::Impl::Refinement {
     triangles += after - before;
     for (int c = 0; c < 4; ++c) push(child(k, c));
   }
+  /// Splits leaves until the error is within tolerance or the budget is spent.
+  void refine(const AdaptiveMeshOptions& o);
+  /// The leaves in depth-first order, children in order 0..3.
+  std::vector<Key> leaves() const;
+  /// Cells around each cell (itself first), for the metric's reprojection:
+  /// the leaves under twelve points just outside its border.
+  void link_near_cells(const std::unordered_map<Key, int>& cell_of, CoarseGrid& g) const;
   Key leaf_at(double x, double y) const {
     Key k = node(0, 0, 0);
     while (split.count(k)) {
@@ -211,89 +225,99 @@ int AdaptiveMesher::levels() const {
   return p_->levels;
 }
 
-CoarseGrid AdaptiveMesher::build(const Camera& camera, int width, int height,
-                                 const AdaptiveMeshOptions& o) const {
-  (void)width;
-  const Impl& m = *p_;
-  const Heightfield& h = m.h;
-  Impl::Refinement r{m, camera, camera.view_projection(), camera.pixel_angle(height)};
-  r.push(node(0, 0, 0));
-  while (!r.queue.empty()) {
-    const auto [e, k] = r.queue.top();
-    r.queue.pop();
-    if (!r.leaf(k)) continue;
+void AdaptiveMesher::Impl::Refinement::refine(const AdaptiveMeshOptions& o) {
+  // Largest screen-space error first until the largest left is within
+  // tolerance; a split that breaks the triangle budget is undone (a smaller
+  // one may still fit).
+  push(node(0, 0, 0));
+  while (!queue.empty()) {
+    const auto [e, k] = queue.top();
+    queue.pop();
+    if (!leaf(k)) continue;
     if (e <= o.tolerance_px) break;
-    const long long before = r.triangles;
-    r.journal.clear();
-    r.split_leaf(k);
-    if (r.triangles > o.triangle_budget) {  // undo; a smaller split may still fit
-      for (auto it = r.journal.rbegin(); it != r.journal.rend(); ++it) r.split.erase(*it);
-      r.triangles = before;
+    const long long before = triangles;
+    journal.clear();
+    split_leaf(k);
+    if (triangles > o.triangle_budget) {
+      for (auto it = journal.rbegin(); it != journal.rend(); ++it) split.erase(*it);
+      triangles = before;
     }
   }
+}
 
-  // The leaves, their vertices (shared by sample) and triangles.
-  std::vector<Key> leaves;
+std::vector<Key> AdaptiveMesher::Impl::Refinement::leaves() const {
+  std::vector<Key> out;
   for (std::vector<Key> stack{node(0, 0, 0)}; !stack.empty();) {
     const Key k = stack.back();
     stack.pop_back();
-    if (r.split.count(k))
+    if (split.count(k))
       for (int c = 3; c >= 0; --c) stack.push_back(child(k, c));
     else
-      leaves.push_back(k);
+      out.push_back(k);
   }
-  CoarseGrid g;
-  g.adaptive = true;
-  g.quads_x = int(leaves.size());
-  g.quads_y = 1;
-  const std::size_t n = leaves.size();
-  g.centre.resize(n);
-  g.has_centre.resize(n);
-  g.edge_offset.resize(n);
-  g.normal.resize(n);
-  g.max_deviation.resize(n);
-  g.cell_rect.resize(n);
-  g.weight.resize(n);
-  std::unordered_map<Key, std::uint32_t> vertex_of;  // by sample index j * width + i
-  std::vector<glm::ivec2> vertex_sample;
-  auto vertex = [&](int i, int j) {
-    const Key s = Key(j) * Key(h.width) + Key(i);
-    auto [it, fresh] = vertex_of.try_emplace(s, std::uint32_t(g.mesh_vertices.size()));
+  return out;
+}
+
+// The leaves' cells written into a CoarseGrid: vertices shared by sample,
+// triangles per cell, and the error metric's sample of each cell.
+class AdaptiveMesher::Impl::CellWriter {
+ public:
+  CellWriter(const Refinement& r, const Heightfield& h, CoarseGrid& g) : r_(r), h_(h), g_(g) {}
+
+  void cell(std::size_t q, Key k) {
+    const int l = level_of(k), i = i_of(k), j = j_of(k);
+    const auto& xs = r_.m.xs;
+    const auto& ys = r_.m.ys;
+    const int x0 = xs[l][i], x1 = xs[l][i + 1], y0 = ys[l][j], y1 = ys[l][j + 1];
+    g_.cell_rect[q] = {x0, y0, x1, y1};
+    g_.weight[q] = double(x1 - x0) * (y1 - y0);
+    g_.cell_first.push_back(int(g_.triangles.size()));
+    if (r_.split_edges(k) == 0)
+      two_triangles_cell(q, x0, y0, x1, y1);
+    else
+      fan_cell(q, k, x0, y0, x1, y1);
+  }
+
+  // Sample (i, j) of every triangle's corners, by vertex index.
+  const std::vector<glm::ivec2>& vertex_samples() const { return vertex_sample_; }
+
+ private:
+  std::uint32_t vertex(int i, int j) {
+    const Key s = Key(j) * Key(h_.width) + Key(i);
+    auto [it, fresh] = vertex_of_.try_emplace(s, std::uint32_t(g_.mesh_vertices.size()));
     if (fresh) {
-      g.mesh_vertices.emplace_back(h.world_x(i), h.world_y(j), double(h.at(i, j)));
-      vertex_sample.emplace_back(i, j);
+      g_.mesh_vertices.emplace_back(h_.world_x(i), h_.world_y(j), double(h_.at(i, j)));
+      vertex_sample_.emplace_back(i, j);
     }
     return it->second;
-  };
-  auto sample = [&](int i, int j) {
-    return glm::dvec3(h.world_x(i), h.world_y(j), double(h.at(i, j)));
-  };
-  std::unordered_map<Key, int> cell_of;
-  for (std::size_t q = 0; q < n; ++q) {
-    const Key k = leaves[q];
-    cell_of[k] = int(q);
-    const int l = level_of(k), i = i_of(k), j = j_of(k);
-    const int x0 = m.xs[l][i], x1 = m.xs[l][i + 1], y0 = m.ys[l][j], y1 = m.ys[l][j + 1];
-    g.cell_rect[q] = {x0, y0, x1, y1};
-    g.weight[q] = double(x1 - x0) * (y1 - y0);
-    g.cell_first.push_back(int(g.triangles.size()));
+  }
+  glm::dvec3 sample(int i, int j) const {
+    return glm::dvec3(h_.world_x(i), h_.world_y(j), double(h_.at(i, j)));
+  }
+
+  // A leaf with no split neighbour: two triangles as build_grid_mesh, the
+  // metric's sample at its centre.
+  void two_triangles_cell(std::size_t q, int x0, int y0, int x1, int y1) {
     const std::uint32_t a = vertex(x0, y0), b = vertex(x1, y0), d = vertex(x0, y1),
                         e = vertex(x1, y1);
-    const int edges = r.split_edges(k);
-    if (edges == 0) {
-      g.triangles.insert(g.triangles.end(), {a, d, e, a, e, b});  // as build_grid_mesh
-      const int ci = (x0 + x1) / 2, cj = (y0 + y1) / 2;
-      g.has_centre[q] = (x1 - x0 >= 2 && y1 - y0 >= 2) ? 1 : 0;
-      g.centre[q] = sample(ci, cj);
-      g.edge_offset[q] = signed_edge_offset(g.centre[q], sample(x0, y0), sample(x1, y1));
-      g.normal[q] = grid_normal(h, ci, cj);
-      continue;
-    }
-    // A fan around the centre over the boundary, counter-clockwise seen from
-    // above: a, (west), d, (south), e, (east), b, (north).
-    const int xm = m.xs[l + 1][2 * i + 1], ym = m.ys[l + 1][2 * j + 1];
+    g_.triangles.insert(g_.triangles.end(), {a, d, e, a, e, b});
+    const int ci = (x0 + x1) / 2, cj = (y0 + y1) / 2;
+    g_.has_centre[q] = (x1 - x0 >= 2 && y1 - y0 >= 2) ? 1 : 0;
+    g_.centre[q] = sample(ci, cj);
+    g_.edge_offset[q] = signed_edge_offset(g_.centre[q], sample(x0, y0), sample(x1, y1));
+    g_.normal[q] = grid_normal(h_, ci, cj);
+  }
+
+  // A fan around the centre over the boundary, counter-clockwise seen from
+  // above: a, (west), d, (south), e, (east), b, (north); a midpoint on each
+  // edge whose neighbour is split.
+  void fan_cell(std::size_t q, Key k, int x0, int y0, int x1, int y1) {
+    const int l = level_of(k), i = i_of(k), j = j_of(k);
+    const std::uint32_t a = vertex(x0, y0), b = vertex(x1, y0), d = vertex(x0, y1),
+                        e = vertex(x1, y1);
+    const int xm = r_.m.xs[l + 1][2 * i + 1], ym = r_.m.ys[l + 1][2 * j + 1];
     auto has = [&](int dx, int dy) {
-      return r.in_bounds(l, i + dx, j + dy) && r.split.count(node(l, i + dx, j + dy)) > 0;
+      return r_.in_bounds(l, i + dx, j + dy) && r_.split.count(node(l, i + dx, j + dy)) > 0;
     };
     std::vector<std::uint32_t> ring{a};
     if (has(-1, 0)) ring.push_back(vertex(x0, ym));
@@ -305,15 +329,19 @@ CoarseGrid AdaptiveMesher::build(const Camera& camera, int width, int height,
     if (has(0, -1)) ring.push_back(vertex(xm, y0));
     const std::uint32_t c = vertex(xm, ym);
     for (std::size_t v = 0; v < ring.size(); ++v)
-      g.triangles.insert(g.triangles.end(), {c, ring[v], ring[(v + 1) % ring.size()]});
-    // The metric's sample: of the quarter centres (each on the spoke from its
-    // corner to c), the one farthest from its spoke.
+      g_.triangles.insert(g_.triangles.end(), {c, ring[v], ring[(v + 1) % ring.size()]});
+    fan_metric_sample(q, x0, y0, x1, y1, xm, ym);
+  }
+
+  // The metric's sample of a fan: of the quarter centres (each on the spoke
+  // from its corner to the centre), the one farthest from its spoke.
+  void fan_metric_sample(std::size_t q, int x0, int y0, int x1, int y1, int xm, int ym) {
     const std::array<std::array<int, 6>, 4> quarters{{{x0, y0, xm, ym, x0, y0},
                                                       {xm, y0, x1, ym, x1, y0},
                                                       {x0, ym, xm, y1, x0, y1},
                                                       {xm, ym, x1, y1, x1, y1}}};
-    g.has_centre[q] = 0;
-    g.centre[q] = sample(xm, ym);
+    g_.has_centre[q] = 0;
+    g_.centre[q] = sample(xm, ym);
     double best = -1;
     for (const auto& [qx0, qy0, qx1, qy1, cx, cy] : quarters) {
       if (qx1 - qx0 < 2 || qy1 - qy0 < 2) continue;
@@ -321,47 +349,51 @@ CoarseGrid AdaptiveMesher::build(const Camera& camera, int width, int height,
       const double off = signed_edge_offset(sample(si, sj), sample(cx, cy), sample(xm, ym));
       if (std::abs(off) > best) {
         best = std::abs(off);
-        g.has_centre[q] = 1;
-        g.centre[q] = sample(si, sj);
-        g.edge_offset[q] = off;
-        g.normal[q] = grid_normal(h, si, sj);
+        g_.has_centre[q] = 1;
+        g_.centre[q] = sample(si, sj);
+        g_.edge_offset[q] = off;
+        g_.normal[q] = grid_normal(h_, si, sj);
       }
     }
   }
-  g.cell_first.push_back(int(g.triangles.size()));
 
-  // Largest vertical distance between a sample and the triangles drawn over
-  // it: a two-triangle leaf's own error, else measured on its fan.
-  tbb::parallel_for(std::size_t(0), n, [&](std::size_t q) {
-    const Key k = leaves[q];
-    const int l = level_of(k);
-    if (l < m.levels && g.cell_first[q + 1] - g.cell_first[q] == 6) {
-      g.max_deviation[q] = m.own[l][std::size_t(j_of(k)) * (1 << l) + i_of(k)];
-      return;
-    }
-    double dev = 0;
-    for (int t = g.cell_first[q]; t < g.cell_first[q + 1]; t += 3) {
-      const glm::ivec2 p0 = vertex_sample[g.triangles[t]], p1 = vertex_sample[g.triangles[t + 1]],
-                       p2 = vertex_sample[g.triangles[t + 2]];
-      const double z0 = h.at(p0.x, p0.y), z1 = h.at(p1.x, p1.y), z2 = h.at(p2.x, p2.y);
-      const double det = double(p1.x - p0.x) * (p2.y - p0.y) - double(p2.x - p0.x) * (p1.y - p0.y);
-      if (det == 0) continue;
-      const glm::ivec2 lo = glm::min(p0, glm::min(p1, p2)), hi = glm::max(p0, glm::max(p1, p2));
-      for (int y = lo.y; y <= hi.y; ++y)
-        for (int x = lo.x; x <= hi.x; ++x) {
-          const double u =
-              (double(x - p0.x) * (p2.y - p0.y) - double(p2.x - p0.x) * (y - p0.y)) / det;
-          const double v =
-              (double(p1.x - p0.x) * (y - p0.y) - double(x - p0.x) * (p1.y - p0.y)) / det;
-          if (u < -1e-9 || v < -1e-9 || u + v > 1 + 1e-9) continue;
-          dev = std::max(dev, std::abs(h.at(x, y) - (z0 + u * (z1 - z0) + v * (z2 - z0))));
-        }
-    }
-    g.max_deviation[q] = dev;
-  });
+  const Refinement& r_;
+  const Heightfield& h_;
+  CoarseGrid& g_;
+  std::unordered_map<Key, std::uint32_t> vertex_of_;  // by sample index j * width + i
+  std::vector<glm::ivec2> vertex_sample_;
+};
 
-  // Cells around each cell (itself first), for the metric's reprojection.
-  for (std::size_t q = 0; q < n; ++q) {
+double AdaptiveMesher::Impl::cell_deviation(const CoarseGrid& g, Key k, std::size_t q,
+                                            const std::vector<glm::ivec2>& vertex_sample) const {
+  const int l = level_of(k);
+  if (l < levels && g.cell_first[q + 1] - g.cell_first[q] == 6)
+    return own[l][std::size_t(j_of(k)) * (1 << l) + i_of(k)];
+  double dev = 0;
+  for (int t = g.cell_first[q]; t < g.cell_first[q + 1]; t += 3) {
+    const glm::ivec2 p0 = vertex_sample[g.triangles[t]], p1 = vertex_sample[g.triangles[t + 1]],
+                     p2 = vertex_sample[g.triangles[t + 2]];
+    const double z0 = h.at(p0.x, p0.y), z1 = h.at(p1.x, p1.y), z2 = h.at(p2.x, p2.y);
+    const double det = double(p1.x - p0.x) * (p2.y - p0.y) - double(p2.x - p0.x) * (p1.y - p0.y);
+    if (det == 0) continue;
+    const glm::ivec2 lo = glm::min(p0, glm::min(p1, p2)), hi = glm::max(p0, glm::max(p1, p2));
+    for (int y = lo.y; y <= hi.y; ++y)
+      for (int x = lo.x; x <= hi.x; ++x) {
+        const double u =
+            (double(x - p0.x) * (p2.y - p0.y) - double(p2.x - p0.x) * (y - p0.y)) / det;
+        const double v =
+            (double(p1.x - p0.x) * (y - p0.y) - double(x - p0.x) * (p1.y - p0.y)) / det;
+        if (u < -1e-9 || v < -1e-9 || u + v > 1 + 1e-9) continue;
+        dev = std::max(dev, std::abs(h.at(x, y) - (z0 + u * (z1 - z0) + v * (z2 - z0))));
+      }
+  }
+  return dev;
+}
+
+void AdaptiveMesher::Impl::Refinement::link_near_cells(const std::unordered_map<Key, int>& cell_of,
+                                                       CoarseGrid& g) const {
+  const Heightfield& h = m.h;
+  for (std::size_t q = 0; q < g.cell_rect.size(); ++q) {
     g.near_first.push_back(int(g.near_cells.size()));
     g.near_cells.push_back(int(q));
     const auto [x0, y0, x1, y1] = g.cell_rect[q];
@@ -380,13 +412,55 @@ CoarseGrid AdaptiveMesher::build(const Camera& camera, int width, int height,
                                                         {x0 - 0.5, y0 + 0.25 * hh}}};
     for (const auto& [x, y] : around) {
       if (x < 0 || y < 0 || x > h.width - 1 || y > h.height - 1) continue;
-      const int c = cell_of.at(r.leaf_at(x, y));
+      const int c = cell_of.at(leaf_at(x, y));
       if (std::find(g.near_cells.begin() + g.near_first.back(), g.near_cells.end(), c) ==
           g.near_cells.end())
         g.near_cells.push_back(c);
     }
   }
   g.near_first.push_back(int(g.near_cells.size()));
+}
+
+namespace {
+
+// A grid of `n` adaptive cells with every per-cell array sized.
+CoarseGrid adaptive_grid(std::size_t n) {
+  CoarseGrid g;
+  g.adaptive = true;
+  g.quads_x = int(n);
+  g.quads_y = 1;
+  g.centre.resize(n);
+  g.has_centre.resize(n);
+  g.edge_offset.resize(n);
+  g.normal.resize(n);
+  g.max_deviation.resize(n);
+  g.cell_rect.resize(n);
+  g.weight.resize(n);
+  return g;
+}
+
+}  // namespace
+
+CoarseGrid AdaptiveMesher::build(const Camera& camera, int width, int height,
+                                 const AdaptiveMeshOptions& o) const {
+  (void)width;
+  const Impl& m = *p_;
+  Impl::Refinement r{m, camera, camera.view_projection(), camera.pixel_angle(height)};
+  r.refine(o);
+  const std::vector<Key> leaves = r.leaves();
+  const std::size_t n = leaves.size();
+  CoarseGrid g = adaptive_grid(n);
+  Impl::CellWriter cells(r, m.h, g);
+  std::unordered_map<Key, int> cell_of;
+  for (std::size_t q = 0; q < n; ++q) {
+    cell_of[leaves[q]] = int(q);
+    cells.cell(q, leaves[q]);
+  }
+  g.cell_first.push_back(int(g.triangles.size()));
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t q) {
+    g.max_deviation[q] = m.cell_deviation(g, leaves[q], q, cells.vertex_samples());
+  });
+  r.link_near_cells(cell_of, g);
   g.serial = next_grid_serial();
   return g;
 }

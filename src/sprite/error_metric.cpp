@@ -11,7 +11,8 @@
 #include <limits>
 
 #include "terrasprite/sprite/error_metric.h"
-#include "terrasprite/terrain/terrain_mesh.h"
+#include "terrasprite/terrain/grid_mesh.h"
+#include "terrasprite/terrain/pyramid.h"
 
 namespace terrasprite {
 namespace {

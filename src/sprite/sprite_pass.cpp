@@ -149,9 +149,8 @@ void SpritePass::draw(TerrainGpu& scene, const GpuMesh& coarse, const CoarseGrid
     glBindVertexArray(key_mesh_.vao.id());
     glDrawElements(GL_TRIANGLES, key_mesh_.index_count, GL_UNSIGNED_INT, nullptr);
   }
-  // One trilinear tap: on the paper path (quiet, 512²) it was both cheaper
-  // than the hand filter's up-to-8 taps (sprite frame 1.9 against 3.1 ms)
-  // and closer to the anisotropic reference (mean SSIM 0.9291 against 0.9278).
+  // One trilinear tap: cheaper than the hand filter's up-to-8 taps and as
+  // close to the anisotropic reference (docs/results/2026-12-01-lodsprite-drape-filter.md).
   if (drape_mesh_.index_count > 0) scene.draw(drape_mesh_, vp, lighting, DrapeSampling::kTrilinear);
 }
 

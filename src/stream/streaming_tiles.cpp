@@ -88,7 +88,6 @@ struct StreamingTiles::Impl {
   TerrainGrid cgrid;
   std::unique_ptr<StreamingTiles> fine;
   double shift_x = 0, shift_y = 0;  // the window set's frame -> world
-  std::size_t total_budget = 0;
   int pin_from = 0;  // levels pin_from.. are pinned
   std::vector<std::vector<std::unique_ptr<TileData>>> table;
   std::vector<std::vector<State>> state;
@@ -271,8 +270,8 @@ void StreamingTiles::Impl::plan(const Camera& cam, StreamFrameStats& st) {
     double score;
   };
   // Tiles the last frame read are evicted only for tiles a frame missed, never
-  // to prefetch: a tile the march reads wide of the footprint was otherwise
-  // evicted for prefetch and missed again (32769²: 0.3% of reads degraded).
+  // to prefetch: a tile the march reads wide of the footprint would otherwise
+  // be evicted for prefetch and missed again.
   std::vector<Victim> idle, in_use;
   for (int L = 0; L < pin_from; ++L)
     for (std::size_t i = 0; i < state[std::size_t(L)].size(); ++i) {
@@ -323,7 +322,6 @@ StreamingTiles::StreamingTiles(const TileSetInfo& set, StreamOptions options)
     throw InputError(
         fmt::format("TERRASPRITE_STREAM_FAULTS {}: must be a share within 0..1", p.o.fault_rate));
   GDALSetCacheMax64(GIntBig(p.o.gdal_cache_bytes));
-  p.total_budget = p.o.cache_bytes;
   p.cgrid = combined_grid(p.set);
   if (p.set.fine && p.set.fine_set) {
     if (!(p.o.fine_share > 0 && p.o.fine_share < 1))
@@ -527,9 +525,6 @@ StreamingTiles::FirstView StreamingTiles::wait_for_first_view(
   }
 }
 
-std::size_t StreamingTiles::budget_bytes() const {
-  return p_->total_budget;
-}
 std::size_t StreamingTiles::pinned_bytes() const {
   return p_->pinned + (p_->fine ? p_->fine->pinned_bytes() : 0);
 }

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Height rasters through GDAL: geotransform to metres, band scale/offset,
 // nodata (tagged, given, or detected sentinels), terrain-RGB/Terrarium PNGs.
+#include "terrasprite/terrain/dem_loader.h"
+
 #include <fmt/format.h>
 #include <gdal.h>
 #include <ogr_srs_api.h>
@@ -11,7 +13,7 @@
 
 #include "terrain/gdal_util.h"
 #include "terrasprite/common/error.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/nodata_fill.h"
 
 namespace terrasprite {
 namespace {
@@ -107,8 +109,27 @@ bool spacing_from_geo(GDALDatasetH ds, const double gt[6], int w, int h, double&
 
 }  // namespace detail
 
-Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings) {
-  const std::string& path = o.dem;
+namespace {
+
+// An open height raster, checked for size, with its reads' errors naming it.
+struct HeightRaster {
+  const std::string& path;
+  detail::GdalErrorCapture& capture;
+  Dataset ds;
+  int w = 0, h = 0, bands = 0;
+  std::size_t n = 0;  // samples
+
+  // Band `band` (1-based) whole as `t` into `dst`.
+  void read(int band, GDALDataType t, void* dst) const {
+    if (GDALRasterIO(GDALGetRasterBand(ds.h, band), GF_Read, 0, 0, w, h, dst, w, h, t, 0, 0) !=
+        CE_None)
+      throw InputError(fmt::format("{}: read failed ({})", path, capture.last()));
+  }
+};
+
+// Opens `r.path` and checks that it is a raster of a size we can hold.
+void open_height_raster(HeightRaster& r) {
+  const std::string& path = r.path;
   std::error_code ec;
   // GDAL's virtual files (/vsimem/, /vsizip/...) are not on the filesystem.
   const bool gdal_virtual = path.rfind("/vsi", 0) == 0;
@@ -116,15 +137,14 @@ Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings
     throw InputError(fmt::format("{}: no such file", path));
   if (std::filesystem::is_directory(path, ec))
     throw InputError(fmt::format("{}: is a directory, not a height raster", path));
-  detail::GdalErrorCapture capture;
-  Dataset ds{GDALOpen(path.c_str(), GA_ReadOnly)};
-  if (!ds.h) {
-    std::string why = capture.last().empty() ? "unsupported or corrupt raster" : capture.last();
+  r.ds.h = GDALOpen(path.c_str(), GA_ReadOnly);
+  if (!r.ds.h) {
+    std::string why = r.capture.last().empty() ? "unsupported or corrupt raster" : r.capture.last();
     std::replace(why.begin(), why.end(), '\n', ' ');
     throw InputError(fmt::format("{}: not a readable height raster ({})", path, why));
   }
-  const int w = GDALGetRasterXSize(ds.h), h = GDALGetRasterYSize(ds.h),
-            bands = GDALGetRasterCount(ds.h);
+  const int w = GDALGetRasterXSize(r.ds.h), h = GDALGetRasterYSize(r.ds.h),
+            bands = GDALGetRasterCount(r.ds.h);
   if (w <= 0 || h <= 0 || bands <= 0) throw InputError(fmt::format("{}: raster is empty", path));
   if (w < 2 || h < 2)
     throw InputError(
@@ -132,112 +152,144 @@ Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings
   if (static_cast<long long>(w) * h > 16385LL * 16385LL)
     throw InputError(fmt::format(
         "{}: raster is {}x{}; more than 16385x16385 samples is not supported yet", path, w, h));
+  r.w = w;
+  r.h = h;
+  r.bands = bands;
+  r.n = static_cast<std::size_t>(w) * h;
+}
 
-  GDALRasterBandH b1 = GDALGetRasterBand(ds.h, 1);
-  const bool bytes = GDALGetRasterDataType(b1) == GDT_Byte;
-  HeightEncoding enc = o.encoding;
-  if (enc == HeightEncoding::kAuto && bytes && bands >= 3)
+// The encoding to read `r` with: `asked`, checked against the raster's bands.
+HeightEncoding checked_encoding(const HeightRaster& r, HeightEncoding asked) {
+  const bool bytes = GDALGetRasterDataType(GDALGetRasterBand(r.ds.h, 1)) == GDT_Byte;
+  if (asked == HeightEncoding::kAuto && bytes && r.bands >= 3)
     throw InputError(
         fmt::format("{}: an 8-bit colour raster; give --encoding terrain-rgb or terrarium to read "
                     "it as heights",
-                    path));
-  if (enc != HeightEncoding::kAuto && (!bytes || bands < 3))
-    throw InputError(fmt::format("{}: --encoding needs an 8-bit RGB raster", path));
+                    r.path));
+  if (asked != HeightEncoding::kAuto && (!bytes || r.bands < 3))
+    throw InputError(fmt::format("{}: --encoding needs an 8-bit RGB raster", r.path));
+  return asked;
+}
 
-  const std::size_t n = static_cast<std::size_t>(w) * h;
-  std::vector<double> raw(n);
-  std::vector<std::uint8_t> valid(n, 1);
-  auto read = [&](GDALRasterBandH band, GDALDataType t, void* dst) {
-    if (GDALRasterIO(band, GF_Read, 0, 0, w, h, dst, w, h, t, 0, 0) != CE_None)
-      throw InputError(fmt::format("{}: read failed ({})", path, capture.last()));
-  };
-  if (enc != HeightEncoding::kAuto) {
-    std::vector<std::uint8_t> rgb[3];
-    for (int c = 0; c < 3; ++c) {
-      rgb[c].resize(n);
-      read(GDALGetRasterBand(ds.h, c + 1), GDT_Byte, rgb[c].data());
-    }
-    std::vector<std::uint8_t> alpha;
-    if (bands >= 4) {
-      alpha.resize(n);
-      read(GDALGetRasterBand(ds.h, 4), GDT_Byte, alpha.data());
-    }
-    long long outside = 0;
-    for (std::size_t p = 0; p < n; ++p) {
-      raw[p] = enc == HeightEncoding::kTerrainRgb
-                   ? decode_terrain_rgb(rgb[0][p], rgb[1][p], rgb[2][p])
-                   : decode_terrarium(rgb[0][p], rgb[1][p], rgb[2][p]);
-      if (!alpha.empty() && alpha[p] == 0) valid[p] = 0;
-      // Earth's surface lies within -11 km (the Mariana Trench) .. +8.8 km.
-      outside += valid[p] && (raw[p] < -12000 || raw[p] > 9000);
-    }
-    if (outside && warnings)
-      warnings->push_back(fmt::format(
-          "{}: {} of {} decoded heights lie outside -12 km .. +9 km; is this really {}-encoded?",
-          path, outside, n, enc == HeightEncoding::kTerrainRgb ? "terrain-RGB" : "Terrarium"));
-  } else {
-    read(b1, GDT_Float64, raw.data());
-    int has_nodata = 0;
-    double nodata = GDALGetRasterNoDataValue(b1, &has_nodata);
-    if (o.nodata) {
-      has_nodata = 1;
-      nodata = *o.nodata;
-    }
-    long long sentinel_count[3] = {0, 0, 0};
-    const double sentinels[3] = {-32768, -32767, -9999};
-    for (std::size_t p = 0; p < n; ++p) {
-      double v = raw[p];
-      if (!std::isfinite(v) ||
-          (has_nodata && (v == nodata || (std::isnan(nodata) && std::isnan(v))))) {
-        valid[p] = 0;
-        continue;
-      }
-      if (!has_nodata)
-        for (int s = 0; s < 3; ++s) sentinel_count[s] += v == sentinels[s];
-    }
-    for (int s = 0; s < 3; ++s)
-      if (warnings && sentinel_count[s] * 1000 >= static_cast<long long>(n))  // >= 0.1% of cells
-        warnings->push_back(
-            fmt::format("{}: {} cells hold {}, a typical nodata sentinel, but the file tags no "
-                        "nodata; pass --nodata {} to treat them as holes",
-                        path, sentinel_count[s], sentinels[s], sentinels[s]));
-    int ok = 0;
-    double scale = GDALGetRasterScale(b1, &ok);
-    if (!ok) scale = 1.0;
-    double offset = GDALGetRasterOffset(b1, &ok);
-    if (!ok) offset = 0.0;
-    for (std::size_t p = 0; p < n; ++p) raw[p] = raw[p] * scale + offset;
+// Heights decoded from an RGB(A) raster; alpha 0 marks nodata.
+void decode_rgb_heights(const HeightRaster& r, HeightEncoding enc, std::vector<double>& raw,
+                        std::vector<std::uint8_t>& valid, std::vector<std::string>* warnings) {
+  const std::size_t n = r.n;
+  std::vector<std::uint8_t> rgb[3];
+  for (int c = 0; c < 3; ++c) {
+    rgb[c].resize(n);
+    r.read(c + 1, GDT_Byte, rgb[c].data());
   }
-
-  double gt[6] = {0, 1, 0, 0, 0, 1};
-  const bool has_gt = geotransform_of(ds.h, gt);
-  if (has_gt) orient_north_up(path, w, h, gt, raw, valid);
-
-  Heightfield hf;
-  hf.width = w;
-  hf.height = h;
-  hf.name = std::filesystem::path(path).filename().string();
-  hf.heights.resize(n);
-  for (std::size_t p = 0; p < n; ++p) hf.heights[p] = valid[p] ? float(raw[p] * o.z_scale) : 0.f;
-  try {
-    hf.nodata_count = fill_nodata(hf.heights, valid, w, h);
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("{}: {}", path, e.what()));
+  std::vector<std::uint8_t> alpha;
+  if (r.bands >= 4) {
+    alpha.resize(n);
+    r.read(4, GDT_Byte, alpha.data());
   }
+  long long outside = 0;
+  for (std::size_t p = 0; p < n; ++p) {
+    raw[p] = enc == HeightEncoding::kTerrainRgb
+                 ? decode_terrain_rgb(rgb[0][p], rgb[1][p], rgb[2][p])
+                 : decode_terrarium(rgb[0][p], rgb[1][p], rgb[2][p]);
+    if (!alpha.empty() && alpha[p] == 0) valid[p] = 0;
+    // Earth's surface lies within -11 km (the Mariana Trench) .. +8.8 km.
+    outside += valid[p] && (raw[p] < -12000 || raw[p] > 9000);
+  }
+  if (outside && warnings)
+    warnings->push_back(fmt::format(
+        "{}: {} of {} decoded heights lie outside -12 km .. +9 km; is this really {}-encoded?",
+        r.path, outside, n, enc == HeightEncoding::kTerrainRgb ? "terrain-RGB" : "Terrarium"));
+}
 
+// Heights of band 1 (its scale and offset applied); nodata as tagged or as
+// `given`, with a warning for untagged typical sentinels.
+void read_band_heights(const HeightRaster& r, const std::optional<double>& given,
+                       std::vector<double>& raw, std::vector<std::uint8_t>& valid,
+                       std::vector<std::string>* warnings) {
+  const std::size_t n = r.n;
+  GDALRasterBandH b1 = GDALGetRasterBand(r.ds.h, 1);
+  r.read(1, GDT_Float64, raw.data());
+  int has_nodata = 0;
+  double nodata = GDALGetRasterNoDataValue(b1, &has_nodata);
+  if (given) {
+    has_nodata = 1;
+    nodata = *given;
+  }
+  long long sentinel_count[3] = {0, 0, 0};
+  const double sentinels[3] = {-32768, -32767, -9999};
+  for (std::size_t p = 0; p < n; ++p) {
+    double v = raw[p];
+    if (!std::isfinite(v) ||
+        (has_nodata && (v == nodata || (std::isnan(nodata) && std::isnan(v))))) {
+      valid[p] = 0;
+      continue;
+    }
+    if (!has_nodata)
+      for (int s = 0; s < 3; ++s) sentinel_count[s] += v == sentinels[s];
+  }
+  for (int s = 0; s < 3; ++s)
+    if (warnings && sentinel_count[s] * 1000 >= static_cast<long long>(n))  // >= 0.1% of cells
+      warnings->push_back(
+          fmt::format("{}: {} cells hold {}, a typical nodata sentinel, but the file tags no "
+                      "nodata; pass --nodata {} to treat them as holes",
+                      r.path, sentinel_count[s], sentinels[s], sentinels[s]));
+  int ok = 0;
+  double scale = GDALGetRasterScale(b1, &ok);
+  if (!ok) scale = 1.0;
+  double offset = GDALGetRasterOffset(b1, &ok);
+  if (!ok) offset = 0.0;
+  for (std::size_t p = 0; p < n; ++p) raw[p] = raw[p] * scale + offset;
+}
+
+// Sample spacing from the georeferencing (or `o.spacing`, or 30 m with a warning).
+void set_spacing(const HeightRaster& r, const TerrainOptions& o, bool has_gt, const double gt[6],
+                 Heightfield& hf, std::vector<std::string>* warnings) {
   GeoTransform geo;
   double sx = 30.0, sy = 30.0;
-  if (has_gt && detail::spacing_from_geo(ds.h, gt, w, h, sx, sy, geo)) hf.geo = geo;
+  if (has_gt && detail::spacing_from_geo(r.ds.h, gt, r.w, r.h, sx, sy, geo)) hf.geo = geo;
   if (o.spacing) {
     sx = sy = *o.spacing;
   } else if (!hf.geo && warnings) {
     warnings->push_back(
-        fmt::format("{}: no georeferencing; assuming 30 m spacing (use --spacing)", path));
+        fmt::format("{}: no georeferencing; assuming 30 m spacing (use --spacing)", r.path));
   }
   if (!(sx > 0) || !(sy > 0) || !std::isfinite(sx) || !std::isfinite(sy))
-    throw InputError(fmt::format("{}: sample spacing {}x{} m is not positive", path, sx, sy));
+    throw InputError(fmt::format("{}: sample spacing {}x{} m is not positive", r.path, sx, sy));
   hf.spacing_x = sx;
   hf.spacing_y = sy;
+}
+
+}  // namespace
+
+Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings) {
+  const std::string& path = o.dem;
+  detail::GdalErrorCapture capture;
+  HeightRaster r{path, capture, {}};
+  open_height_raster(r);
+  const HeightEncoding enc = checked_encoding(r, o.encoding);
+
+  std::vector<double> raw(r.n);
+  std::vector<std::uint8_t> valid(r.n, 1);
+  if (enc != HeightEncoding::kAuto)
+    decode_rgb_heights(r, enc, raw, valid, warnings);
+  else
+    read_band_heights(r, o.nodata, raw, valid, warnings);
+
+  double gt[6] = {0, 1, 0, 0, 0, 1};
+  const bool has_gt = geotransform_of(r.ds.h, gt);
+  if (has_gt) orient_north_up(path, r.w, r.h, gt, raw, valid);
+
+  Heightfield hf;
+  hf.width = r.w;
+  hf.height = r.h;
+  hf.name = std::filesystem::path(path).filename().string();
+  hf.heights.resize(r.n);
+  for (std::size_t p = 0; p < r.n; ++p) hf.heights[p] = valid[p] ? float(raw[p] * o.z_scale) : 0.f;
+  try {
+    hf.nodata_count = fill_nodata(hf.heights, valid, r.w, r.h);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", path, e.what()));
+  }
+  set_spacing(r, o, has_gt, gt, hf, warnings);
   return hf;
 }
 

@@ -11,7 +11,7 @@
 #include <cmath>
 
 #include "terrasprite/common/error.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/texture_gen.h"
 
 namespace terrasprite::detail {
 namespace {

@@ -5,7 +5,8 @@
 #include <cassert>
 #include <cmath>
 
-#include "terrasprite/terrain/terrain_mesh.h"
+#include "terrasprite/terrain/grid_mesh.h"
+#include "terrasprite/terrain/pyramid.h"
 
 namespace terrasprite {
 

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "terrasprite/common/error.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/nodata_fill.h"
 
 namespace terrasprite {
 namespace {

@@ -5,7 +5,7 @@
 #include <cassert>
 #include <cmath>
 
-#include "terrasprite/terrain/terrain_mesh.h"
+#include "terrasprite/terrain/pyramid.h"
 
 namespace terrasprite {
 

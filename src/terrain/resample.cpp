@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include <tbb/parallel_for.h>
 
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/resample.h"
 
 namespace terrasprite {
 

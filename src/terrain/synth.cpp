@@ -12,7 +12,7 @@
 #include <random>
 
 #include "terrasprite/common/error.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/synth.h"
 
 namespace terrasprite {
 namespace {

@@ -13,7 +13,10 @@
 #include "terrain/drape.h"
 #include "terrain/grid_sample.h"
 #include "terrasprite/common/error.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/dem_loader.h"
+#include "terrasprite/terrain/resample.h"
+#include "terrasprite/terrain/synth.h"
+#include "terrasprite/terrain/texture_gen.h"
 
 namespace terrasprite {
 namespace {

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/texture_gen.h"
 
 namespace terrasprite {
 namespace {

@@ -119,8 +119,8 @@ class Loop {
   std::optional<Image> difference_;  // of the last compare
   double last_script_t_ = 0;
   // Screenshots are read before the swap but encoded on their own threads after
-  // it: a PNG of 1280 x 720 takes ~170 ms, which would otherwise delay the swap
-  // and count against the latency of every event that frame shows.
+  // it: encoding a PNG takes many frames' time, which would otherwise delay
+  // the swap and count against the latency of every event that frame shows.
   std::vector<std::pair<Image, std::string>> shots_;
   std::vector<std::future<void>> writes_;
 };

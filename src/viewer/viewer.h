@@ -29,8 +29,8 @@ struct ViewerOptions {
   /// GL renderers draw in a context sharing objects with the window's and the
   /// window shows their target's texture, nothing read back. Off (default):
   /// they draw in their own contexts and each frame's colour is read back and
-  /// uploaded; on Mesa llvmpipe that measured faster (the window's draw waits
-  /// for the other context's rendering: present 190 ms vs 65 ms at 640x360).
+  /// uploaded; on Mesa llvmpipe that is faster (shared, the window's draw
+  /// waits for the other context's rendering).
   bool share_context = false;
 };
 

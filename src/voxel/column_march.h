@@ -38,10 +38,13 @@ class ColumnMarcher {
   void march(double dx, double dy, std::span<const double> slopes, std::span<MarchHit> hits) const;
 
  private:
-  // The march over either reader (tiled, or whole levels without checks).
+  // The march over either reader (tiled, or whole levels without checks),
+  // one vertical plane's line and reads at a time (column_march.cpp).
   template <class Reader>
   void march_with(double dx, double dy, std::span<const double> slopes,
                   std::span<MarchHit> hits) const;
+  template <class Reader>
+  class Plane;
 
   const TerrainTiles& src_;
   const TerrainGrid& d_;

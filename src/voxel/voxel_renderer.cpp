@@ -184,8 +184,8 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
     offset[c + 1] = offset[c] + std::size_t(std::max<std::int64_t>(0, k1[c] - k0[c] + 1));
   }
   // Grown with a quarter of headroom: left to the vector, the first frame
-  // needing a few more samples than any before doubled the buffer, and
-  // touching that much fresh memory made it 2-3x slower than its neighbours.
+  // needing a few more samples than any before would double the buffer, and
+  // touching that much fresh memory would make it slower than its neighbours.
   if (offset[n] > samples.capacity()) samples.reserve(offset[n] + offset[n] / 4);
   samples.resize(offset[n]);
 
@@ -292,10 +292,9 @@ void VoxelRenderer::State::planes(const Camera& cam, Frame& out) {
 
   // March every column, then resample the image in vertical strips of 64
   // pixels (whole cache lines of the output rows), a row segment at a time.
-  // (Marching chunks of columns and resampling each chunk's wedge at once,
-  // while its columns were in cache, cost more: each chunk wrote a few pixels
-  // of every row, so the output lines were fetched 2-3 times, and a pixel was
-  // located 1.3 times; the buffer reads are prefetched instead.)
+  // Resampling each chunk of columns while it is in cache would write a few
+  // pixels of every row per chunk and fetch the output lines several times;
+  // the buffer reads are prefetched instead.
   tbb::parallel_for(
       tbb::blocked_range<int>(0, n, 2),
       [&](const tbb::blocked_range<int>& range) {

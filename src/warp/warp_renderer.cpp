@@ -81,11 +81,10 @@ void WarpScheduler::draw_into(const Camera& camera, Frame& target) {
     target.camera = camera;
     target.gpu_ms = last_->gpu_ms;
     target.triangles = last_->triangles;
-    last_holes_ = 0;
     return;
   }
   const Frame* second = o_.second_reference ? previous_.get() : nullptr;
-  last_holes_ = warper_.warp(*last_, camera, w_, h_, o_.warp, second).hole_fraction;
+  warper_.warp(*last_, camera, w_, h_, o_.warp, second);
   warper_.exchange(target);
 }
 

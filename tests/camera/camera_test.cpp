@@ -7,7 +7,7 @@
 #include "terrasprite/camera/camera.h"
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/common/error.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/synth.h"
 #include "test_util.h"
 
 using namespace terrasprite;

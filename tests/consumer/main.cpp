@@ -1,7 +1,7 @@
 // Uses the installed library: synthesise a tiny terrain and print its range.
 #include <cstdio>
 
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/synth.h"
 
 int main() {
   terrasprite::SynthOptions o;

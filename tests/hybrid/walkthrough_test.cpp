@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 #include "terrasprite/camera/camera_path.h"
@@ -8,37 +10,71 @@
 #include "terrasprite/gl/gl_context.h"
 #include "terrasprite/raster/mesh_renderer.h"
 #include "terrasprite/terrain/terrain.h"
-#include "terrasprite/terrain/terrain_mesh.h"
+#include "terrasprite/terrain/grid_mesh.h"
 #include "terrasprite/hybrid/walkthrough_path.h"
 
 namespace terrasprite {
 namespace {
 
 constexpr const char* kPath =
-    R"({"keyframes": [{"t": 1, "position": [0, 0, 5]}, {"t": 11, "position": [9, 0, 5]}],
+    R"({"keyframes": [{"t": 1, "position": [0, 0, 5], "yaw_deg": 0},
+                  {"t": 11, "position": [9, 0, 5], "yaw_deg": 0}],
   "checkpoints": [{"name": "A", "t": 1}, {"name": "B", "t": 6}, {"name": "C", "t": 11}]})";
 
 TEST(Walkthrough, CheckpointsLandOnTheirFrames) {
-  const auto cps = checkpoints_of(kPath, "p.json", 21);
+  const auto cps = checkpoint_frames(parse_path_json(kPath, "p.json"), 21);
   ASSERT_EQ(cps.size(), 3u);
   EXPECT_EQ(cps[0].frame, 0);
   EXPECT_EQ(cps[1].frame, 10);
   EXPECT_EQ(cps[2].frame, 20);
-  EXPECT_TRUE(checkpoints_of(R"({"keyframes": []})", "p.json", 5).empty());
+  EXPECT_TRUE(checkpoint_frames(parse_path_json(R"({"keyframes": [{"t": 0, "position": [0, 0, 5],
+                                  "yaw_deg": 0}]})",
+                                                "p.json"),
+                                5)
+                  .empty());
 }
 
-TEST(Walkthrough, BadCheckpointsNameTheFile) {
-  for (const char* bad :
-       {R"({"keyframes": [{"t": 0}, {"t": 1}], "checkpoints": [{"t": 0.5}]})",
-        R"({"keyframes": [{"t": 0}, {"t": 1}], "checkpoints": [{"name": "A", "t": 2}]})",
-        R"({"keyframes": [{"t": 0}, {"t": 1}], "checkpoints": [{"name": "A", "t": "x"}]})",
-        R"({"keyframes": [{"t": 0}, {"t": 1}], "checkpoints": 3})"}) {
+TEST(Walkthrough, BadCheckpointsNameTheFileAndTheCheckpoint) {
+  const std::string keys =
+      R"("keyframes": [{"t": 0, "position": [0, 0, 5], "yaw_deg": 0},
+                       {"t": 1, "position": [9, 0, 5], "yaw_deg": 0}])";
+  for (const std::string bad : {R"("checkpoints": [{"t": 0.5}])",
+                                R"("checkpoints": [{"name": "A", "t": 2}])",
+                                R"("checkpoints": [{"name": "A", "t": "x"}])",
+                                R"("checkpoints": 3)"}) {
     try {
-      checkpoints_of(bad, "p.json", 5);
+      parse_path_json("{" + keys + ", " + bad + "}", "p.json");
       ADD_FAILURE() << bad;
     } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("p.json"), std::string::npos) << e.what();
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind("p.json: ", 0), 0u) << what;
+      EXPECT_NE(what.find("checkpoints"), std::string::npos) << what;
     }
+  }
+}
+
+// The default walkthrough as data samples to the cameras its path-file
+// JSON gives: the same keyframes, checkpoints A-E.
+TEST(Walkthrough, DefaultPathIsAPathFile) {
+  const Terrain t = load_terrain(TerrainOptions{});
+  const KeyframePath p = walkthrough_path(t.heights);
+  ASSERT_EQ(p.keyframes.size(), 9u);
+  ASSERT_EQ(p.checkpoints.size(), 5u);
+  EXPECT_EQ(p.checkpoints.front().name, "A");
+  EXPECT_EQ(p.checkpoints.back().name, "E");
+  std::string json = R"({"keyframes": [)";
+  for (const PathKeyframe& k : p.keyframes)
+    json += fmt::format(R"({}{{"t": {}, "position": [{}, {}, {}], "target": [{}, {}, {}]}})",
+                        &k == &p.keyframes.front() ? "" : ", ", k.t, k.position.x, k.position.y,
+                        k.position.z, k.target->x, k.target->y, k.target->z);
+  json += "]}";
+  const auto a = sample_path(p, t.heights, 40, 16.0 / 9);
+  const auto b = path_from_json(json, "walkthrough", t.heights, 40, 16.0 / 9);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].position, b[i].position) << "frame " << i;
+    EXPECT_EQ(a[i].yaw_deg, b[i].yaw_deg) << "frame " << i;
+    EXPECT_EQ(a[i].pitch_deg, b[i].pitch_deg) << "frame " << i;
   }
 }
 
@@ -54,8 +90,7 @@ TEST(Walkthrough, NeverSeesTheDrawnTerrainFromBelow) {
   const Heightfield& hf = t.heights;
   const int quads = 64, w = 160, h = 90;
   const auto drawn = grid_surface(hf, quads);
-  std::vector<Camera> path =
-      path_from_json(walkthrough_path_json(hf, drawn), "walkthrough", hf, 160, double(w) / h);
+  std::vector<Camera> path = sample_path(walkthrough_path(hf, drawn), hf, 160, double(w) / h);
   keep_above_ground(path, drawn);
   Scene scene(t);
   MeshRenderer culled(scene, w, h, quads, RasterOptions{.cull_back_faces = true}),

@@ -9,7 +9,7 @@
 
 #include "terrasprite/common/error.h"
 #include "terrasprite/terrain/terrain.h"
-#include "terrasprite/terrain/terrain_mesh.h"
+#include "terrasprite/terrain/grid_mesh.h"
 #include "test_util.h"
 
 namespace ts = terrasprite;

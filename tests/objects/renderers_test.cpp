@@ -15,7 +15,7 @@
 #include "terrasprite/raster/mesh_renderer.h"
 #include "terrasprite/raster/scene.h"
 #include "terrasprite/sprite/sprite_renderer.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/texture_gen.h"
 #include "test_util.h"
 
 namespace ts = terrasprite;

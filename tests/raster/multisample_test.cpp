@@ -13,7 +13,7 @@
 #include "terrasprite/gl/gl_context.h"
 #include "terrasprite/raster/mesh_renderer.h"
 #include "terrasprite/raster/scene.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/texture_gen.h"
 
 namespace ts = terrasprite;
 

@@ -12,7 +12,7 @@
 #include "terrasprite/gl/gl_context.h"
 #include "terrasprite/raster/mesh_renderer.h"
 #include "terrasprite/terrain/terrain.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/texture_gen.h"
 
 using namespace terrasprite;
 

@@ -15,7 +15,7 @@
 #include "terrasprite/gl/gl_context.h"
 #include "terrasprite/raster/mesh_renderer.h"
 #include "terrasprite/sprite/sprite_renderer.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/terrain.h"
 
 namespace terrasprite {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/synth.h"
 
 namespace terrasprite {
 namespace {

@@ -8,7 +8,7 @@
 #include "sprite_test_util.h"
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/sprite/error_metric.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/synth.h"
 
 namespace terrasprite {
 namespace {

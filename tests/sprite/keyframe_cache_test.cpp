@@ -9,7 +9,7 @@
 #include "terrasprite/common/error.h"
 #include "terrasprite/gl/gl_context.h"
 #include "terrasprite/sprite/sprite_renderer.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/terrain.h"
 
 namespace terrasprite {
 namespace {

@@ -12,7 +12,8 @@
 #include "terrasprite/common/error.h"
 #include "terrasprite/gl/gl_context.h"
 #include "terrasprite/raster/mesh_renderer.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/synth.h"
+#include "terrasprite/terrain/texture_gen.h"
 
 namespace terrasprite {
 namespace {

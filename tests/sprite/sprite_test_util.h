@@ -5,7 +5,8 @@
 #include "terrasprite/terrain/heightfield.h"
 #include "terrasprite/quality/quality.h"
 #include "terrasprite/terrain/terrain.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/synth.h"
+#include "terrasprite/terrain/texture_gen.h"
 
 namespace terrasprite::sprite_test {
 

@@ -17,7 +17,7 @@
 
 #include "stream_test_util.h"
 #include "terrasprite/common/error.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/resample.h"
 #include "test_util.h"
 
 namespace terrasprite {

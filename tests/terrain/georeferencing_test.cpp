@@ -9,7 +9,7 @@
 #include "terrasprite/terrain/image_io.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/terrain/terrain.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/dem_loader.h"
 #include "test_util.h"
 
 using namespace terrasprite;

@@ -11,7 +11,7 @@
 #include <functional>
 
 #include "terrasprite/common/error.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/nodata_fill.h"
 
 using namespace terrasprite;
 

@@ -5,8 +5,9 @@
 #include <cmath>
 #include <glm/glm.hpp>
 
-#include "terrasprite/terrain/terrain_gen.h"
-#include "terrasprite/terrain/terrain_mesh.h"
+#include "terrasprite/terrain/grid_mesh.h"
+#include "terrasprite/terrain/pyramid.h"
+#include "terrasprite/terrain/synth.h"
 
 using namespace terrasprite;
 

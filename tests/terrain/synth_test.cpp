@@ -3,7 +3,7 @@
 
 #include "terrasprite/common/error.h"
 #include "terrasprite/terrain/terrain.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/synth.h"
 
 using namespace terrasprite;
 

@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "terrasprite/common/error.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/terrain.h"
 #include "test_util.h"
 #include "viewer/fly_controller.h"
 #include "viewer/input_event.h"

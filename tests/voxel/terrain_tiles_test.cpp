@@ -13,7 +13,7 @@
 #include <tuple>
 
 #include "terrasprite/quality/quality.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/terrain.h"
 #include "terrasprite/voxel/voxel_renderer.h"
 
 namespace terrasprite {

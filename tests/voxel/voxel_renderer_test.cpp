@@ -15,7 +15,7 @@
 #include "terrasprite/gl/gl_context.h"
 #include "terrasprite/raster/mesh_renderer.h"
 #include "terrasprite/quality/quality.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/terrain.h"
 
 namespace terrasprite {
 namespace {

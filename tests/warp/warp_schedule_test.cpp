@@ -9,7 +9,7 @@
 #include <cstring>
 #include <vector>
 
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/terrain.h"
 #include "terrasprite/voxel/voxel_renderer.h"
 #include "terrasprite/warp/warp.h"
 #include "terrasprite/warp/warp_renderer.h"

@@ -17,7 +17,7 @@
 #include "terrasprite/common/error.h"
 #include "terrasprite/quality/quality.h"
 #include "terrasprite/camera/renderer.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/terrain.h"
 #include "terrasprite/voxel/voxel_renderer.h"
 #include "warp/bilinear.h"
 

@@ -2,6 +2,7 @@
 // Camera paths: the LOD-sprite paper's flight (Chen et al. 1999, Fig. 7) and
 // JSON keyframe files.
 #pragma once
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -21,18 +22,57 @@ namespace terrasprite {
 std::vector<Camera> paper_path(const Heightfield& h, int frames, double aspect,
                                double fov_y_deg = 60.0);
 
-/// Reads a JSON path file (format in the README):
+/// One keyframe of a keyframe path, in world metres (x east, y north, z up,
+/// origin at the terrain centre at height 0).
+struct PathKeyframe {
+  double t = 0;  ///< seconds
+  glm::dvec3 position{0.0};
+  std::optional<glm::dvec3> target;  ///< looked at; without one, yaw_deg and pitch_deg
+  double yaw_deg = 0, pitch_deg = 0, roll_deg = 0;
+  double fov_deg = 60;  ///< vertical field of view, degrees
+};
+
+/// A named moment of a path (path file key "checkpoints": [{"name", "t"}]).
+struct PathCheckpoint {
+  std::string name;
+  double t = 0;   ///< seconds, the keyframes' time
+  int frame = 0;  ///< the frame nearest t when sampled (checkpoint_frames)
+};
+
+/// A keyframe path: at least one keyframe, t strictly increasing, and
+/// checkpoints within the keyframes' span (frame 0 until checkpoint_frames).
+struct KeyframePath {
+  std::vector<PathKeyframe> keyframes;
+  std::vector<PathCheckpoint> checkpoints;
+};
+
+/// Parses path-file JSON (format in the README):
 /// {"keyframes": [{"t": s, "position": [x,y,z], "target": [x,y,z] | "yaw_deg",
-/// "pitch_deg", "roll_deg", "fov_deg"}]} in world metres (x east, y north,
-/// z up, origin at the terrain centre at height 0). Samples `frames` frames
-/// uniformly in t (Catmull-Rom positions, slerped orientations).
-/// Throws InputError naming the file for a missing or malformed file.
+/// "pitch_deg", "roll_deg", "fov_deg"}], "checkpoints": [{"name", "t"}]}
+/// ("checkpoints" optional). Every number is checked: positions and targets
+/// finite and within 1e7 m, t finite (within 1e9 s) and increasing, angles
+/// in range, checkpoints named and within the keyframes' span. Throws
+/// InputError naming `name` otherwise.
+KeyframePath parse_path_json(std::string_view text, const std::string& name);
+
+/// `path` sampled with `frames` frames (>= 1, else InputError) uniformly in t
+/// from the first keyframe to the last: Catmull-Rom positions, slerped
+/// orientations, fov interpolated, near/far planes fitted to `h`.
+std::vector<Camera> sample_path(const KeyframePath& path, const Heightfield& h, int frames,
+                                double aspect);
+
+/// `path`'s checkpoints, each on the frame nearest its time when the path is
+/// sampled with `frames` frames (sample_path).
+std::vector<PathCheckpoint> checkpoint_frames(const KeyframePath& path, int frames);
+
+/// Reads a JSON path file (parse_path_json's format):
+/// {"keyframes": [{"t": s, "position": [x,y,z], "target": [x,y,z] | "yaw_deg",
+/// "pitch_deg", "roll_deg", "fov_deg"}]}, sampled as sample_path. Throws
+/// InputError naming the file for a missing or malformed file.
 std::vector<Camera> load_path_file(const std::string& path, const Heightfield& h, int frames,
                                    double aspect);
 
 /// load_path_file on JSON text already in memory; `name` names it in errors.
-/// Every number is checked: positions and targets finite and within 1e7 m,
-/// t finite (within 1e9 s) and increasing, angles in range.
 std::vector<Camera> path_from_json(std::string_view text, const std::string& name,
                                    const Heightfield& h, int frames, double aspect);
 

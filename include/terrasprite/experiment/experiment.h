@@ -123,10 +123,9 @@ struct Participant {
   /// Takes turns with the other rotating participants: they share their
   /// places in the frame's order, shuffled every frame (with a fixed seed:
   /// the same orders every run), so none always draws right after the same
-  /// one. A draw's time depends on what ran just
-  /// before it: in the hybrid walkthrough the scenario drawn after `ibr`
-  /// measured a log-spread of 0.14, the one after `mixed` 0.18, whichever
-  /// scenario it was, and the spread sets each one's budget. The reference
+  /// one. A draw's time depends on what ran just before it (in the hybrid
+  /// walkthrough the spread of a scenario's frame times, which sets its
+  /// budget, depends on which scenario it follows). The reference
   /// never rotates (it is drawn first: the others are scored against it).
   bool rotate = false;
 };

@@ -31,8 +31,7 @@ struct CostCalibrationOptions {
   /// Meshes, at the smallest size: this many instances in a grid across the
   /// image, one draw (at most 8 for levels over 20k triangles; 0: none).
   /// Instances on one spot share the rasteriser's tiles; a walkthrough's do
-  /// not, and there a level's instances cost more per triangle
-  /// (0.13-0.35 us on llvmpipe against 0.07-0.12 on one spot).
+  /// not, and there a level's instances cost more per triangle.
   int spread = 24;
 };
 

@@ -2,9 +2,8 @@
 // Occlusion culling against a depth buffer already drawn (the terrain): an
 // object whose bounding sphere lies behind that depth on every pixel its
 // projection can touch cannot show, so it costs nothing and needs no
-// representation. At human height most of the walkthrough's instances in
-// the frustum are behind a hill (checkpoint E: 204-221 of 354, 63% of full
-// geometry's triangles).
+// representation. At human height most of a walkthrough's instances in
+// the frustum may be behind a hill (docs/results/2026-12-02-hybrid-occlusion.md).
 //
 // Conservative by construction: the sphere's exact screen rectangle (its
 // tangent planes through the eye), widened by a pixel, is tested against a

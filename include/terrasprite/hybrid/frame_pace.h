@@ -3,12 +3,12 @@
 // drawn and its depth read back before the selection, so how much longer
 // (or shorter) than usual that took is known before the objects are
 // chosen. Its deviation is already added to the frame's prediction as
-// milliseconds (MeasuredFixedTime); what follows the read-back ran slow or
-// fast with it too: over 4 walkthroughs, log(measured / predicted) still
-// rose 0.18-0.31 per unit of log(read-back / its median) after that, the
-// same machine pace on the objects' draws. This learns that slope from the
-// frames themselves and turns each frame's deviation into a factor on the
-// part of the frame's prediction that follows the read-back.
+// milliseconds (MeasuredFixedTime); what follows the read-back runs slow or
+// fast with it too (the same machine pace on the objects' draws). This
+// learns that slope, d log(measured / predicted) per unit of
+// log(read-back / its median), from the frames themselves and turns each
+// frame's deviation into a factor on the part of the frame's prediction that
+// follows the read-back. Figures: docs/results/2026-12-07-hybrid-frame-pace.md.
 #pragma once
 #include <deque>
 #include <utility>

@@ -51,17 +51,16 @@ struct HybridOptions {
   bool use_hysteresis = true;
   /// Impostors are not offered to instances larger than this on screen
   /// (0: no limit; `ibr` always gets them): the bench passes 2x the
-  /// tables' largest size, past which their quality is extrapolated. At
-  /// 1.7 m an impostor of an object beside the camera scored 9 dB PSNR.
+  /// tables' largest size, past which their quality is extrapolated (and an
+  /// impostor of an object beside the camera is far worse than its table:
+  /// docs/results/2026-12-07-hybrid-max-impostor-size.md).
   double max_impostor_size_px = 0;
   /// The policies weigh an option at its expected SSIM less this many times
   /// its table's spread near the view (ExpectedQuality::ssim_spread), so
   /// that a choice among many options does not go to the ones whose table
-  /// happens to be most optimistic (the optimiser's curse: at checkpoint B,
-  /// short of budget, mixed-optimal's expected SSIM ran 0.012-0.014 over
-  /// the measured and it fell under mixed). 0: the tables' value as it is.
-  /// 0.5 against 0 in 10 interleaved walkthrough pairs: B +0.008 in 6,
-  /// -0.003 in 4, on a noisy host; not shown to help, so 0 by default.
+  /// happens to be most optimistic (the optimiser's curse). 0: the tables'
+  /// value as it is, the default (a penalty has not been shown to help;
+  /// docs/results/2026-12-05-hybrid-quality-spread-penalty.md).
   double quality_spread_penalty = 0;
   /// Budgeted policies (not `full`, not `ibr`) may leave instances whose
   /// on-screen diameter is under this many pixels undrawn: such an instance
@@ -69,21 +68,18 @@ struct HybridOptions {
   /// policy like its other options: it is left out when drawing it gains
   /// less per millisecond than what the budget buys elsewhere, which a
   /// tight budget makes likely. 0: every visible instance is drawn, at its
-  /// cheapest at least. Without it the floor (every visible instance at its
-  /// cheapest) was over the budget at the walkthrough's checkpoint E, where
-  /// 180 of 354 instances are under 4 px: every instance was drawn at its
-  /// cheapest, the nearest ones included.
+  /// cheapest at least, even where that floor alone is over the budget
+  /// (many instances a few pixels wide) and the nearest ones then get their
+  /// cheapest too (docs/results/2026-12-01-hybrid-not-drawn.md).
   double cull_px = 0;
   /// The objects' budget (the frame's, less the terrain and the draw calls
   /// the policy cannot see, at the read-back's pace) never falls below this
   /// fraction of the median of the previous `objects_budget_window` frames'
   /// (as computed, before this floor; 0: no floor). The loop, the cost
   /// model's refit and the read-back's pace all answer one slow frame, and
-  /// together they cut the objects' budget to a fraction of its usual for a
-  /// frame or several: with a CPU hog beside 4 walkthroughs, 71 frames
-  /// scored an expected SSIM 0.15 or more under the frames around them (every
-  /// instance near its coarsest) and took 4.9-18.7 ms, median 8.9, against
-  /// an 18 ms target. With the floor: 24 such frames, the p95 held as often.
+  /// together they would cut the objects' budget to a fraction of its usual
+  /// for a frame or several (every instance near its coarsest).
+  /// Figures: docs/results/2026-12-03-hybrid-objects-budget-floor.md.
   double objects_budget_floor = 0.6;
   int objects_budget_window = 9;
   BudgetControllerOptions controller;  ///< target_ms is set from target_ms above
@@ -153,8 +149,8 @@ class HybridObjects : public SceneObjects {
   void feedback(double measured_ms);
   /// Back to the state before the first frame: the calibrated cost model,
   /// fresh controllers and hysteresis. For after untimed warm-up draws (a
-  /// cold first draw ran 2x its prediction and set the first timed frame's
-  /// budget at half the target).
+  /// cold first draw runs far over its prediction and would cut the first
+  /// timed frame's budget).
   void forget_feedback();
   const HybridFrameStats& last() const { return last_; }
   const HybridScenario& scenario() const { return scenario_; }

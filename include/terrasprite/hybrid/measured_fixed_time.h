@@ -19,9 +19,8 @@ class MeasuredFixedTime {
   /// median. The median is the usual cost, which the cost model's frame
   /// term already holds; the deviation is this frame's known surprise. A
   /// stall of the machine, not of the view, shows as one measurement far
-  /// over the rest: taken whole (and, refit as a multiplier, up to 3 x),
-  /// it left checkpoint B's objects less than their cheapest and object
-  /// SSIM fell from 0.95 to 0.50. A lasting change moves the median within
+  /// over the rest: taken whole it would leave the objects less than their
+  /// cheapest for that frame. A lasting change moves the median within
   /// window / 2 frames. Not positive or not finite: 0, recorded nothing.
   double deviation(double ms);
   /// log(ms / usual) of the last deviation() call, from its clamped

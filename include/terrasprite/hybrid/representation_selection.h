@@ -63,12 +63,12 @@ struct PolicyOptions {
   int max_impostor_resolution = 128;
   /// paper, past it: when the impostors reaching `target_ssim` and every
   /// mesh at its cheapest do not fit the budget, the target is lowered by
-  /// `fit_step` (down to `fit_min_ssim`) until they do, in this frame. The
+  /// `fit_step` (down to `fit_min_ssim`) until they do, in this frame (the
   /// paper's controller only learns it from the measured frame, a step per
-  /// frame: its first frames ran at 1.4-2.2x a 10 ms target. The floor is
-  /// near the tables' 0.95: at 0.80 the walkthrough's first frame (A) fell
-  /// to objects SSIM 0.46 (0.54 at 0.90), the relief impostors' measured
-  /// quality being far under their tables' there.
+  /// frame, so its first frames run over the target). The floor stays near
+  /// the tables' 0.95: lower targets pick relief impostors whose quality in
+  /// the scene is far under their tables'.
+  /// Figures: docs/results/2026-12-07-hybrid-fit-budget.md.
   bool fit_budget = true;
   double fit_step = 0.01, fit_min_ssim = 0.90;
   OptimalOptions optimal;

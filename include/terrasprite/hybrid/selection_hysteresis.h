@@ -19,10 +19,10 @@ struct HysteresisOptions {
   double min_gain = 0.01;
   /// The hold never costs an instance more than this fraction of the
   /// benefit the selection wants for it: a switch that soon gains more goes
-  /// through. After a sudden cut in the budget (every instance at its
-  /// cheapest), a hold of `hold_frames` kept the cheapest representations
-  /// for 8 frames while the budget had recovered and the instances came
-  /// closer: object SSIM 0.27 at the walkthrough's checkpoint B.
+  /// through: after a sudden cut in the budget (every instance at its
+  /// cheapest), a plain hold of `hold_frames` would keep the cheapest
+  /// representations after the budget recovered and the instances came
+  /// closer.
   double max_hold_loss = 0.05;
 };
 

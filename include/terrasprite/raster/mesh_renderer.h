@@ -24,18 +24,16 @@ struct RasterOptions {
   /// kAuto: plain LOD filters its drape as the LOD-sprite fallback does
   /// (trilinear), so the two compare on equal terms and neither pays
   /// llvmpipe's anisotropic path (seconds on single grazing frames of the
-  /// paper path). Trilinear replaced the hand filter there: against the
-  /// anisotropic reference on the paper path (quiet, 512²) plain LOD scored
-  /// mean SSIM 0.8771 against 0.8739 in 2.4 against 6.6 ms; on Puget Sound
-  /// 0.9589 against 0.9617 (PSNR 30.77 against 30.56 dB) in 2.1 against 6.5 ms.
-  /// Full resolution keeps hardware 16x: it is the quality reference, and
-  /// its small triangles never hit that path's stalls.
+  /// paper path); trilinear is as close to the anisotropic reference as a
+  /// hand filter at a fraction of its time (figures:
+  /// docs/results/2026-12-01-lodsprite-drape-filter.md). Full resolution keeps
+  /// hardware 16x: it is the quality reference, and its small triangles
+  /// never hit that path's stalls.
   DrapeFilter drape_filter = DrapeFilter::kAuto;
   /// Leave out the triangles facing away (down). A camera above the drawn
   /// surface sees none of them (a ray from above meets a face turned towards
-  /// it first), so the image is the same and llvmpipe skips their setup:
-  /// the hybrid walkthrough's 64-quad terrain at 320 x 180 took 1.4 ms
-  /// against 2.4. Off by default: a camera under the drawn surface (a path
+  /// it first), so the image is the same and the rasteriser skips their
+  /// setup. Off by default: a camera under the drawn surface (a path
   /// at human height over a coarse grid) would see through it.
   bool cull_back_faces = false;
   /// Samples a pixel of the own target (MSAA), 1 to GL_MAX_SAMPLES (4 on

@@ -14,7 +14,7 @@
 
 namespace terrasprite {
 
-/// The coarse grid of `quads` quads per side (terrain_mesh.h's quad_indices)
+/// The coarse grid of `quads` quads per side (terrain/pyramid.h: quad_indices)
 /// and, per coarse quad, its centre vertex C: the full-resolution sample at the
 /// middle of the quad, which the coarse mesh does not contain. Keyframe
 /// independent; built once per terrain and coarse level.

@@ -47,11 +47,10 @@ struct SpriteOptions {
   double threshold_px = 1.0;
   /// Which variant triggers keyframes (paper and exact are always reported;
   /// kContrast reads each keyframe's colour back to weigh the exact error by
-  /// its texture, SpriteError::contrast_levels; uniform mesh only). The paper's, by
-  /// measurement: on the synthetic paper path (115 frames, 1 px) it spent 17
-  /// keyframes for mean SSIM 0.930, where exact reprojection needed 45 (SSIM
-  /// 0.957) at 1 px and 24 (0.939) at 2 px, so per keyframe spent it is as good
-  /// or better, and at 1 px it keeps the paper's keyframe budget.
+  /// its texture, SpriteError::contrast_levels; uniform mesh only). The
+  /// paper's by default: per keyframe spent it is as good as exact
+  /// reprojection or better, and at 1 px it keeps the paper's keyframe
+  /// budget (docs/results/2026-12-07-lodsprite-paper-metric.md).
   ErrorMetric metric = ErrorMetric::kPaper;
   /// Second trigger: keyframe when more than this fraction of the in-view
   /// coarse-quad centres were not visible in the keyframe (so the view is
@@ -70,8 +69,7 @@ struct SpriteOptions {
   /// misplaces it by SpriteError::drape_px pixels. So the keyframe may stretch
   /// to 1 + scale_per_drape_px x drape_px where that is above
   /// max_resample_scale (scale_trigger_limit). 0 = the constant trigger.
-  /// 1/16: paper setup, 1 px, the synthetic terrain's drape is off by about
-  /// 5 px (limit 1.3), Puget Sound's by under 1.5 px (limit 1.25 kept).
+  /// 1/16 by default (docs/results/2026-12-01-lodsprite-scale-trigger.md).
   double scale_per_drape_px = 1.0 / 16;
   /// Ours: a coarse quad whose largest deviation from the full-resolution
   /// surface moves the current view's image by less than this many pixels
@@ -124,9 +122,7 @@ struct SpriteOptions {
   /// the view it would land on exceeds this fraction of threshold_px. At 1 a
   /// keyframe lands just as the old one reaches the threshold, slightly off
   /// its predicted camera, where the synchronous renderer shows an exact one.
-  /// Paper setup at 60 Hz, quiet, mean SSIM against the synchronous run (runs
-  /// differ by about 0.002): 1 -> -0.0055 (26 requests); 0.8 -> -0.0041,
-  /// -0.0066 (29-30); 0.6 -> -0.0023, -0.0049, -0.0053 (32). In (0, 1].
+  /// In (0, 1]; 0.6 by default (docs/results/2026-12-07-lodsprite-async-lead.md).
   double async_lead = 0.6;
 };
 

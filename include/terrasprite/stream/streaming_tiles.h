@@ -102,7 +102,6 @@ class StreamingTiles final : public TerrainTiles {
   FirstView wait_for_first_view(const Camera& camera,
                                 std::chrono::steady_clock::time_point deadline);
 
-  std::size_t budget_bytes() const;
   std::size_t pinned_bytes() const;
   int failed_tiles() const;     ///< reads that failed so far
   int injected_faults() const;  ///< of those, failed by fault_rate or fail_read

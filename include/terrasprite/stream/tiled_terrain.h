@@ -19,7 +19,6 @@
 #include "terrasprite/stream/insets.h"
 #include "terrasprite/terrain/terrain.h"
 #include "terrasprite/voxel/terrain_tiles.h"
-#include "terrasprite/voxel/voxel_renderer.h"
 
 namespace terrasprite {
 
@@ -100,12 +99,16 @@ TerrainGrid combined_grid(const TileSetInfo& set);
 /// its own world position + (x, y).
 void fine_world_shift(const TileSetInfo& set, double& x, double& y);
 
-/// Writes `terrain`'s pyramids into the partial output directory `dir` (it
-/// must exist): height.tif, color.tif, bound.tif as COGs, then tiles.json.
-/// `geo` (optional) georeferences level 0. Throws InputError naming a file
-/// GDAL could not write. Memory: the files are written from the pyramid in
-/// place (GDAL reads it through MEM datasets), plus GDAL's block cache.
-void write_tiled_terrain(const VoxelTerrain& terrain, const std::optional<GeoTransform>& geo,
+/// Writes `terrain`'s pyramids (heights and colours of levels
+/// 0..coarsest_level, bounds of levels 0..bound_levels-1) into the partial
+/// output directory `dir` (it must exist): height.tif, color.tif, bound.tif
+/// as COGs, then tiles.json. `terrain` must hold every level whole
+/// (TerrainTiles::level_block, rows packed), as an in-memory pyramid does;
+/// std::invalid_argument otherwise. `geo` (optional) georeferences level 0.
+/// Throws InputError for a terrain without area, or naming a file GDAL could
+/// not write. Memory: the files are written from the pyramid in place (GDAL
+/// reads it through MEM datasets), plus GDAL's block cache.
+void write_tiled_terrain(const TerrainTiles& terrain, const std::optional<GeoTransform>& geo,
                          const std::string& dir, const TileWriteOptions& options = {});
 
 /// Level-0 rows of a terrain too large to hold, produced on demand for
@@ -120,7 +123,8 @@ struct TerrainRows {
 };
 
 /// The final grid of `terrain` (views it: it must outlive the result), its
-/// colour the drape texture box-filtered onto the samples as VoxelTerrain's.
+/// colour the drape texture box-filtered onto the samples as the ray
+/// caster's in-memory pyramid does.
 TerrainRows terrain_rows(const LargeTerrain& terrain);
 
 /// Where write_tiled_terrain_strips spent its time, seconds.

@@ -41,8 +41,6 @@ class WarpScheduler : public Renderer {
   void draw_into(const Camera& camera, Frame& target) override;
   void read_back(Frame&, ReadBack) override {}
   std::string name() const override;
-  /// Hole fraction of the last frame returned (0 for real frames).
-  double last_hole_fraction() const { return last_holes_; }
 
  private:
   Renderer& real_;
@@ -51,7 +49,6 @@ class WarpScheduler : public Renderer {
   long long count_ = 0;
   std::unique_ptr<Frame> last_, previous_;  ///< the last two real frames, with margin
   Warper warper_;                           ///< keeps the depth warp's scratch between frames
-  double last_holes_ = 0;
 };
 
 }  // namespace terrasprite

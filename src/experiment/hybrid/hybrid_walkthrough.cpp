@@ -22,7 +22,7 @@
 #include "terrasprite/hybrid/cost_calibration.h"
 #include "terrasprite/hybrid/hybrid_renderer.h"
 #include "terrasprite/objects/representation_cache.h"
-#include "terrasprite/terrain/terrain_mesh.h"
+#include "terrasprite/terrain/grid_mesh.h"
 
 namespace terrasprite {
 namespace {
@@ -53,15 +53,15 @@ struct Walk {
   std::vector<PathCheckpoint> checkpoints;  ///< on scored frames
 };
 
-/// The path file's text, or the default walkthrough's over `drawn`.
-std::string path_text(const HybridBenchOptions& o, const Terrain& terrain,
-                      const std::function<double(double, double)>& drawn) {
-  if (o.path_file.empty()) return walkthrough_path_json(terrain.heights, drawn);
+/// The path file's keyframes, or the default walkthrough's over `drawn`.
+KeyframePath path_keys(const HybridBenchOptions& o, const Terrain& terrain,
+                       const std::function<double(double, double)>& drawn) {
+  if (o.path_file.empty()) return walkthrough_path(terrain.heights, drawn);
   std::ifstream in(o.path_file);
   if (!in) throw InputError(fmt::format("--path {}: cannot read the file", o.path_file));
   std::stringstream ss;
   ss << in.rdbuf();
-  return ss.str();
+  return parse_path_json(ss.str(), o.path_file);
 }
 
 Walk load_walk(const HybridBenchOptions& o, const Terrain& terrain) {
@@ -73,11 +73,10 @@ Walk load_walk(const HybridBenchOptions& o, const Terrain& terrain) {
   // coarse grid), not on the bilinear surface, which can lie far below it.
   const auto drawn = grid_surface(terrain.heights, o.terrain_quads);
   ground_instances(w.scene, drawn);
-  const std::string text = path_text(o, terrain, drawn);
-  const std::string name = o.path_file.empty() ? "the default walkthrough" : o.path_file;
-  w.path = path_from_json(text, name, terrain.heights, o.frames, double(o.width) / o.height);
+  const KeyframePath keys = path_keys(o, terrain, drawn);
+  w.path = sample_path(keys, terrain.heights, o.frames, double(o.width) / o.height);
   if (o.path_file.empty()) keep_above_ground(w.path, drawn);
-  w.checkpoints = snapped(checkpoints_of(text, name, o.frames), o.score_every, o.frames);
+  w.checkpoints = snapped(checkpoint_frames(keys, o.frames), o.score_every, o.frames);
   return w;
 }
 

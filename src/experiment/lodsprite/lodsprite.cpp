@@ -25,7 +25,6 @@
 #include "terrasprite/quality/quality.h"
 #include "terrasprite/raster/mesh_renderer.h"
 #include "terrasprite/sprite/sprite_renderer.h"
-#include "terrasprite/terrain/terrain_gen.h"
 
 namespace terrasprite::lodsprite {
 namespace {

@@ -11,7 +11,7 @@
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/quality/quality.h"
 #include "terrasprite/raster/mesh_renderer.h"
-#include "terrasprite/terrain/terrain_gen.h"
+#include "terrasprite/terrain/texture_gen.h"
 
 namespace terrasprite::lodsprite {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Quadtree LOD levels of a height grid and the grid meshes drawn from them.
+// Triangle grids over chosen samples of a height grid, and the surface they draw.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -10,24 +10,10 @@
 
 namespace terrasprite {
 
-/// Sample indices along one axis of n samples for pyramid level k: every
-/// 2^k-th sample plus the last one (a narrower last quad when n - 1 is not a
-/// multiple of 2^k), so no input size loses data. n >= 1, level >= 0.
-std::vector<int> level_indices(int n, int level);
-
-/// Sample indices along one axis for a coarse grid of `quads` quads:
-/// round(q * (n - 1) / quads) for q = 0..quads. For n - 1 a multiple of
-/// `quads` these are exactly every ((n - 1) / quads)-th sample (the paper's
-/// 513 samples, 16 quads: every 32nd). quads is clamped to [1, n - 1].
-std::vector<int> quad_indices(int n, int quads);
-
 /// The sample indices along one axis of the grid TerrainGpu draws for
-/// `quads`: every sample for quads <= 0 (full resolution), else quad_indices.
+/// `quads`: every sample for quads <= 0 (full resolution), else quad_indices
+/// (terrain/pyramid.h).
 std::vector<int> grid_indices(int n, int quads);
-
-/// Number of pyramid levels down to (and including) the first level with
-/// at most `min_quads` quads along the longer axis.
-int level_count(const Heightfield& h, int min_quads = 1);
 
 /// A triangle grid over the samples picked by xs (columns) and ys (rows).
 /// vertices: x, y, z (metres, Heightfield's world frame) and a unit normal
@@ -47,10 +33,9 @@ GridMesh build_grid_mesh(const Heightfield& h, std::span<const int> xs, std::spa
 /// Height in metres of build_grid_mesh(h, xs, ys)'s surface at world (x, y):
 /// the plane of the triangle (x, y) falls in, each quad split from its NW to
 /// its SE corner as the mesh does. Heightfield::sample's bilinear surface is
-/// not what a grid draws: the synthetic terrain's 64-quad grid (240 m quads)
-/// lies up to tens of metres above it, and a camera walking 1.7 m above the
-/// bilinear surface saw the grid from below. Outside the grid: clamped to
-/// its border. xs and ys as for build_grid_mesh.
+/// not what a coarse grid draws (a grid's quads may lie far above or below
+/// it), so anything standing on the drawn terrain uses this. Outside the
+/// grid: clamped to its border. xs and ys as for build_grid_mesh.
 double grid_surface_height(const Heightfield& h, std::span<const int> xs, std::span<const int> ys,
                            double x, double y);
 

@@ -18,6 +18,7 @@
 #include "terrasprite/objects/lod_chain.h"
 #include "terrasprite/output/output_dir.h"
 #include "terrasprite/report/hybrid_report.h"
+#include "terrasprite/report/json_writer.h"
 
 namespace terrasprite::cli {
 namespace {
@@ -101,10 +102,10 @@ std::vector<int> calibration_sizes(const std::string& text, int h) {
 
 /// The options checked before any work (the tables take minutes when not
 /// cached): every value is turned into its typed field or an InputError.
-void check_options(HybridCommand& c) {
+void check_options(HybridCommand& c, const OutputPolicy& policy) {
   HybridBenchOptions& o = c.o;
   std::tie(o.width, o.height) = parse_size(c.size, "--size");
-  check_outputs(c.out, {c.json, c.quality_diagnosis, c.budget_sweep});
+  check_outputs(policy, c.out, {c.json, c.quality_diagnosis, c.budget_sweep});
   o.diagnosis_conditions = diagnosis_conditions(c.diagnosis_conditions);
   o.budget_fractions = budget_fractions(c.budget_fractions);
   if (o.cost_split > 0 && c.budget_sweep.empty())
@@ -157,14 +158,14 @@ QualityTable cached_table(GlSceneObjects& set, std::size_t i, const TableOptions
   return *t;
 }
 
-void run_bench_hybrid(HybridCommand& c) {
-  check_options(c);
+void run_bench_hybrid(HybridCommand& c, const OutputPolicy& policy) {
+  check_options(c, policy);
   // Before the run's GL context, the first of this process.
   c.o.llvmpipe_threads = apply_llvmpipe_threads(c.llvmpipe_threads, "--llvmpipe-threads");
   check_table_options(c);
   const Terrain terrain = load_terrain_verbose(c.terrain);
   check_lod_quads(c.o.terrain_quads, terrain.heights, "--terrain-quads");
-  OutputDir out(c.out, output_policy());
+  OutputDir out(c.out, policy);
   Progress progress("bench hybrid");
   const std::string cache = c.o.cache_dir;
   const HybridBenchResult r =
@@ -175,16 +176,16 @@ void run_bench_hybrid(HybridCommand& c) {
                        std::ref(progress)});
   switch (r.mode) {
     case HybridMode::kQualityDiagnosis:
-      return write_json(r.quality_diagnosis, c.quality_diagnosis);
+      return report::write_json(r.quality_diagnosis, c.quality_diagnosis, policy);
     case HybridMode::kBudgetSweep:
-      return write_json(r.budget_sweep, c.budget_sweep);
+      return report::write_json(r.budget_sweep, c.budget_sweep, policy);
     case HybridMode::kWalkthrough:
       break;
   }
   const nlohmann::json j = report::hybrid_json(r);
   report::write_hybrid_report(r, out);
-  write_json(j, out.file("hybrid.json"));
-  if (!c.json.empty()) write_json(j, c.json);
+  report::write_json(j, out.file("hybrid.json"), policy);
+  if (!c.json.empty()) report::write_json(j, c.json, policy);
   out.commit();
   fmt::print("{}\n{}", report::table2_markdown(r), report::hybrid_summary_text(r));
 }
@@ -347,7 +348,7 @@ void add_output_options(CLI::App* cmd, HybridCommand* a) {
 
 }  // namespace
 
-void add_bench_hybrid(CLI::App& bench) {
+void add_bench_hybrid(CLI::App& bench, const OutputPolicy& policy) {
   auto* cmd = bench.add_subcommand(
       "hybrid", "objects under a frame-time budget: the hybrid walkthrough (Figures 4-6, Table 2)");
   auto c = std::make_shared<HybridCommand>();
@@ -358,7 +359,7 @@ void add_bench_hybrid(CLI::App& bench) {
   add_table_options(cmd, c.get());
   add_side_study_options(cmd, c.get());
   add_output_options(cmd, c.get());
-  cmd->callback([c] { run_bench_hybrid(*c); });
+  cmd->callback([c, &policy] { run_bench_hybrid(*c, policy); });
 }
 
 }  // namespace terrasprite::cli

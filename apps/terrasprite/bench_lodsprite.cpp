@@ -11,6 +11,7 @@
 #include "terrasprite/common/error.h"
 #include "terrasprite/experiment/lodsprite/lodsprite.h"
 #include "terrasprite/output/output_dir.h"
+#include "terrasprite/report/json_writer.h"
 #include "terrasprite/report/lodsprite_json.h"
 #include "terrasprite/report/lodsprite_report.h"
 
@@ -164,7 +165,7 @@ LodspriteOptions run_options(const Opts& o) {
 
 }  // namespace
 
-void add_bench_lodsprite(CLI::App& bench) {
+void add_bench_lodsprite(CLI::App& bench, const OutputPolicy& policy) {
   auto* cmd = bench.add_subcommand("lodsprite",
                                    "LOD-sprite vs full resolution vs plain LOD: the paper's "
                                    "reproduction (JSON + plots + index.html)");
@@ -173,20 +174,21 @@ void add_bench_lodsprite(CLI::App& bench) {
   add_terrain_options(*cmd, o->terrain);
   add_trigger_options(*cmd, *o);
   add_pass_options(*cmd, *o);
-  cmd->callback([o] {
+  cmd->callback([o, &policy] {
     LodspriteOptions c = run_options(*o);
-    check_outputs(o->out, {o->json});
+    check_outputs(policy, o->out, {o->json});
     Terrain terrain = load_terrain_verbose(o->terrain);
     check_lod_quads(c.lod_quads, terrain.heights);
     for (int q : c.lod_sweep) check_lod_quads(q, terrain.heights, "--lod-sweep");
-    OutputDir out(o->out, output_policy());
+    OutputDir out(o->out, policy);
     c.progress = stage_progress("bench lodsprite");
     const lodsprite::LodspriteResult result = lodsprite::run_lodsprite(c, terrain);
     report::write_lodsprite_report(result, out);
     const nlohmann::json j = report::lodsprite_json(result);
-    write_json(j, out.file("lodsprite.json"));  // JSON last: the directory is complete
+    // JSON last: the directory is complete
+    report::write_json(j, out.file("lodsprite.json"), policy);
     out.commit();
-    if (!o->json.empty()) write_json(j, o->json);
+    if (!o->json.empty()) report::write_json(j, o->json, policy);
     nlohmann::json summary = j;
     summary.erase("per_frame");
     fmt::print("{}\n", summary.dump(2));

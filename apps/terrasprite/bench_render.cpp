@@ -10,10 +10,11 @@
 #include "terrasprite/experiment/experiment.h"
 #include "terrasprite/gl/gl_context.h"
 #include "terrasprite/raster/mesh_renderer.h"
+#include "terrasprite/report/json_writer.h"
 
 namespace terrasprite::cli {
 
-void add_bench_render(CLI::App& bench) {
+void add_bench_render(CLI::App& bench, const OutputPolicy& policy) {
   auto* cmd = bench.add_subcommand(
       "render", "full-resolution vs LOD frame times on one path (JSON on stdout)");
   struct Opts {
@@ -33,9 +34,9 @@ void add_bench_render(CLI::App& bench) {
   cmd->add_option("--size", o->size, "image size WxH (default 512x512)");
   cmd->add_option("--json", o->json, "also write the JSON here");
   add_objects_options(*cmd, o->objects);
-  cmd->callback([o] {
+  cmd->callback([o, &policy] {
     auto [w, h] = parse_size(o->size, "--size");
-    check_outputs("", {o->json});
+    check_outputs(policy, "", {o->json});
     Terrain terrain = load_terrain_verbose(o->terrain);
     check_lod_quads(o->lod_quads, terrain.heights);
     std::vector<Camera> path = make_path(o->path, terrain.heights, o->frames, double(w) / h);
@@ -70,7 +71,7 @@ void add_bench_render(CLI::App& bench) {
                         {"full", entry(f)},
                         {"lod", lod_json},
                         {"full_over_lod_median", f.ms().median / std::max(l.ms().median, 1e-9)}};
-    if (!o->json.empty()) write_json(j, o->json);
+    if (!o->json.empty()) report::write_json(j, o->json, policy);
     fmt::print("{}\n", j.dump(2));
   });
 }

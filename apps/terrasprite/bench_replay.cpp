@@ -11,6 +11,7 @@
 #include "terrasprite/common/error.h"
 #include "terrasprite/experiment/hybrid/controller_replay_run.h"
 #include "terrasprite/report/hybrid_report.h"
+#include "terrasprite/report/json_writer.h"
 
 namespace terrasprite::cli {
 namespace {
@@ -32,18 +33,18 @@ std::vector<WalkScenario> scenarios(const std::string& text) {
   return out;
 }
 
-void run_replay(ReplayCommand& c) {
+void run_replay(ReplayCommand& c, const OutputPolicy& policy) {
   if (c.o.runs.empty()) throw InputError("replay-controller: name at least one run directory");
-  if (!c.json.empty()) check_outputs("", {c.json});
+  if (!c.json.empty()) check_outputs(policy, "", {c.json});
   c.o.scenarios = scenarios(c.scenarios);
   const ControllerReplayResult r = run_controller_replay(c.o);
   fmt::print("{}", report::controller_replay_table(r));
-  if (!c.json.empty()) write_json(report::controller_replay_json(r), c.json);
+  if (!c.json.empty()) report::write_json(report::controller_replay_json(r), c.json, policy);
 }
 
 }  // namespace
 
-void add_bench_replay_controller(CLI::App& bench) {
+void add_bench_replay_controller(CLI::App& bench, const OutputPolicy& policy) {
   auto* cmd = bench.add_subcommand(
       "replay-controller",
       "the budget controller replayed on recorded bench hybrid runs (their frames_*.dat), with "
@@ -81,7 +82,7 @@ void add_bench_replay_controller(CLI::App& bench) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--json", c->json, "also write the figures as JSON");
-  cmd->callback([c] { run_replay(*c); });
+  cmd->callback([c, &policy] { run_replay(*c, policy); });
 }
 
 }  // namespace terrasprite::cli

@@ -10,6 +10,7 @@
 #include "terrasprite/common/error.h"
 #include "terrasprite/experiment/stream.h"
 #include "terrasprite/output/output_dir.h"
+#include "terrasprite/report/json_writer.h"
 #include "terrasprite/report/stream_report.h"
 
 namespace terrasprite::cli {
@@ -80,31 +81,32 @@ StreamBenchOptions study_options(const BenchStreamOpts& o) {
   return s;
 }
 
-void run(const BenchStreamOpts& o) {
+void run(const BenchStreamOpts& o, const OutputPolicy& policy) {
   StreamBenchOptions s = study_options(o);
   if (o.child) return run_stream_peer(s);
   const std::string out_dir = o.out.empty() ? std::string("out/bench_stream") : o.out;
-  check_outputs(out_dir, {o.json});
+  check_outputs(policy, out_dir, {o.json});
   Progress progress("bench stream");
   s.progress = std::ref(progress);
   const StreamBenchResult r = run_stream_bench(s);
 
-  OutputDir out(out_dir, output_policy());
+  OutputDir out(out_dir, policy);
   const std::string error = report::write_stream_plot(r, out.partial().string());
   if (!error.empty())
     fmt::print(stderr, "warning: {}; stream_frames.dat kept without a plot\n", error);
   const nlohmann::json summary = report::stream_bench_json(r);
   nlohmann::json full = summary;
   full["per_frame"] = report::stream_per_frame_json(r);
-  write_json(full, out.file("bench_stream.json"));  // JSON last: the directory is complete
+  // JSON last: the directory is complete
+  report::write_json(full, out.file("bench_stream.json"), policy);
   out.commit();
-  if (!o.json.empty()) write_json(full, o.json);
+  if (!o.json.empty()) report::write_json(full, o.json, policy);
   fmt::print("{}\n", summary.dump(2));
 }
 
 }  // namespace
 
-void add_bench_stream(CLI::App& bench) {
+void add_bench_stream(CLI::App& bench, const OutputPolicy& policy) {
   auto* cmd = bench.add_subcommand(
       "stream",
       "streamed terrain: frame times, stalls and degraded reads vs the terrain in memory");
@@ -130,7 +132,7 @@ void add_bench_stream(CLI::App& bench) {
   cmd->add_flag("--in-memory-child", o->child)->group("");  // internal
   cmd->add_option("--json", o->json, "also write the JSON here");
   cmd->add_option("--out", o->out, "output directory: plot, JSON (default out/bench_stream)");
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o, &policy] { run(*o, policy); });
 }
 
 }  // namespace terrasprite::cli

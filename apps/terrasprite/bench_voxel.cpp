@@ -13,6 +13,7 @@
 #include "terrasprite/common/error.h"
 #include "terrasprite/experiment/voxel.h"
 #include "terrasprite/output/output_dir.h"
+#include "terrasprite/report/json_writer.h"
 #include "terrasprite/report/voxel_report.h"
 #include "terrasprite/terrain/image_io.h"
 
@@ -76,12 +77,12 @@ VoxelBenchOptions study_options(const BenchVoxelOpts& o) {
   return v;
 }
 
-void run(const BenchVoxelOpts& o) {
+void run(const BenchVoxelOpts& o, const OutputPolicy& policy) {
   VoxelBenchOptions v = study_options(o);
   const std::string out_dir = o.out.empty() ? std::string("out/bench_voxel") : o.out;
-  check_outputs(out_dir, {o.json});
+  check_outputs(policy, out_dir, {o.json});
   const Terrain terrain = load_terrain_verbose(o.terrain);
-  OutputDir out(out_dir, output_policy());
+  OutputDir out(out_dir, policy);
   v.on_image = [&out](VoxelBenchImage kind, int i, const Image& im) {
     const char* name = kind == VoxelBenchImage::kReference ? "reference" : "multires";
     save_png(im, out.file(fmt::format("{}_{:04d}.png", name, i)));
@@ -94,16 +95,17 @@ void run(const BenchVoxelOpts& o) {
   if (!error.empty())
     fmt::print(stderr, "warning: {}; frame_times.dat kept without a plot\n", error);
   nlohmann::json j = report::voxel_bench_json(r);
-  write_json(j, out.file("bench_voxel.json"));  // JSON last: the directory is complete
+  // JSON last: the directory is complete
+  report::write_json(j, out.file("bench_voxel.json"), policy);
   out.commit();
-  if (!o.json.empty()) write_json(j, o.json);
+  if (!o.json.empty()) report::write_json(j, o.json, policy);
   j.erase("per_frame");
   fmt::print("{}\n", j.dump(2));
 }
 
 }  // namespace
 
-void add_bench_voxel(CLI::App& bench) {
+void add_bench_voxel(CLI::App& bench, const OutputPolicy& policy) {
   auto* cmd = bench.add_subcommand(
       "voxel", "CPU voxel ray caster: speed per variant, thread scaling, quality vs reference");
   auto o = std::make_shared<BenchVoxelOpts>();
@@ -127,7 +129,7 @@ void add_bench_voxel(CLI::App& bench) {
   cmd->add_option(
       "--out", o->out,
       "output directory: plot, reference and multires frames, JSON (default out/bench_voxel)");
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o, &policy] { run(*o, policy); });
 }
 
 }  // namespace terrasprite::cli

@@ -10,6 +10,7 @@
 #include "terrasprite/common/error.h"
 #include "terrasprite/experiment/warp.h"
 #include "terrasprite/output/output_dir.h"
+#include "terrasprite/report/json_writer.h"
 #include "terrasprite/report/warp_report.h"
 
 namespace terrasprite::cli {
@@ -51,29 +52,30 @@ WarpBenchOptions study_options(const BenchWarpOpts& o) {
   return w;
 }
 
-void run(const BenchWarpOpts& o) {
+void run(const BenchWarpOpts& o, const OutputPolicy& policy) {
   WarpBenchOptions w = study_options(o);
   const std::string out_dir = o.out.empty() ? std::string("out/bench_warp") : o.out;
-  check_outputs(out_dir, {o.json});
+  check_outputs(policy, out_dir, {o.json});
   const Terrain terrain = load_terrain_verbose(o.terrain);
   Progress progress("bench warp");
   w.progress = std::ref(progress);
   const WarpBenchResult r = run_warp_bench(terrain, w);
 
-  OutputDir out(out_dir, output_policy());
+  OutputDir out(out_dir, policy);
   const std::string error = report::write_warp_plot(r, out.partial().string());
   if (!error.empty())
     fmt::print(stderr, "warning: {}; quality_vs_k.dat kept without a plot\n", error);
   const nlohmann::json j = report::warp_bench_json(r);
-  write_json(j, out.file("bench_warp.json"));  // JSON last: the directory is complete
+  // JSON last: the directory is complete
+  report::write_json(j, out.file("bench_warp.json"), policy);
   out.commit();
-  if (!o.json.empty()) write_json(j, o.json);
+  if (!o.json.empty()) report::write_json(j, o.json, policy);
   fmt::print("{}\n", j.dump(2));
 }
 
 }  // namespace
 
-void add_bench_warp(CLI::App& bench) {
+void add_bench_warp(CLI::App& bench, const OutputPolicy& policy) {
   auto* cmd = bench.add_subcommand("warp", "post-render warp quality and cost against real frames");
   auto o = std::make_shared<BenchWarpOpts>();
   add_terrain_options(*cmd, o->terrain);
@@ -91,7 +93,7 @@ void add_bench_warp(CLI::App& bench) {
       "K for the flythrough cost figure: one real frame per K output frames (default 4)");
   cmd->add_option("--json", o->json, "also write the JSON here");
   cmd->add_option("--out", o->out, "output directory: plot, JSON (default out/bench_warp)");
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o, &policy] { run(*o, policy); });
 }
 
 }  // namespace terrasprite::cli

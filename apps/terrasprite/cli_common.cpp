@@ -141,19 +141,11 @@ std::vector<std::string> split_list(const std::string& text) {
   return out;
 }
 
-OutputPolicy& output_policy() {
-  static OutputPolicy policy;
-  return policy;
-}
-
-void check_outputs(const std::string& out_dir, std::initializer_list<std::string> files) {
-  if (!out_dir.empty()) OutputDir::check(out_dir, output_policy());
+void check_outputs(const OutputPolicy& policy, const std::string& out_dir,
+                   std::initializer_list<std::string> files) {
+  if (!out_dir.empty()) OutputDir::check(out_dir, policy);
   for (const std::string& f : files)
-    if (!f.empty()) check_output_file(f, output_policy());
-}
-
-void write_json(nlohmann::json j, const std::string& path) {
-  report::write_json(j, path, output_policy());
+    if (!f.empty()) check_output_file(f, policy);
 }
 
 Progress::Progress(std::string label)

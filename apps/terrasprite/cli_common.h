@@ -43,16 +43,11 @@ std::vector<int> int_list(const std::string& text, const char* option);
 /// Comma-separated list of words, as written (empty text: none).
 std::vector<std::string> split_list(const std::string& text);
 
-/// The run's policy for existing outputs (`--overwrite`, an option of every command).
-OutputPolicy& output_policy();
-
-/// Checks, before any work, that every output can be written: the output
-/// directory `out_dir` (skipped when empty) and each non-empty file name.
-/// Throws InputError naming the first that cannot.
-void check_outputs(const std::string& out_dir, std::initializer_list<std::string> files);
-
-/// report::write_json under the run's output policy.
-void write_json(nlohmann::json j, const std::string& path);
+/// Checks, before any work, that every output can be written under `policy`:
+/// the output directory `out_dir` (skipped when empty) and each non-empty file
+/// name. Throws InputError naming the first that cannot.
+void check_outputs(const OutputPolicy& policy, const std::string& out_dir,
+                   std::initializer_list<std::string> files);
 
 using report::number_or_null;
 using report::run_gnuplot;

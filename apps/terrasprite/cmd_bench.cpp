@@ -5,16 +5,16 @@
 
 namespace terrasprite::cli {
 
-void add_bench(CLI::App& app) {
+void add_bench(CLI::App& app, const OutputPolicy& policy) {
   auto* bench = app.add_subcommand("bench", "whole-system benchmarks (JSON + plots)");
   bench->require_subcommand(1);
-  add_bench_render(*bench);
-  add_bench_voxel(*bench);
-  add_bench_lodsprite(*bench);
-  add_bench_warp(*bench);
-  add_bench_stream(*bench);
-  add_bench_hybrid(*bench);
-  add_bench_replay_controller(*bench);
+  add_bench_render(*bench, policy);
+  add_bench_voxel(*bench, policy);
+  add_bench_lodsprite(*bench, policy);
+  add_bench_warp(*bench, policy);
+  add_bench_stream(*bench, policy);
+  add_bench_hybrid(*bench, policy);
+  add_bench_replay_controller(*bench, policy);
 }
 
 }  // namespace terrasprite::cli

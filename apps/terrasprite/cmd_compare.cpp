@@ -12,6 +12,7 @@
 #include "terrasprite/terrain/image_io.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/quality/quality.h"
+#include "terrasprite/report/json_writer.h"
 
 namespace terrasprite::cli {
 
@@ -53,8 +54,8 @@ Wanted parse_metrics(const std::string& text) {
 }
 
 // A single-file PNG output: written beside the target, renamed into place.
-void save_png_output(const Image& image, const std::string& path) {
-  write_output_file(path, output_policy(), [&](const std::string& tmp) { save_png(image, tmp); });
+void save_png_output(const Image& image, const std::string& path, const OutputPolicy& policy) {
+  write_output_file(path, policy, [&](const std::string& tmp) { save_png(image, tmp); });
 }
 
 // Infinite PSNR (identical images) is written as the string "inf": JSON has no infinity.
@@ -65,9 +66,9 @@ std::string db_text(double v) {
   return std::isinf(v) ? std::string("inf") : fmt::format("{:.3f} dB", v);
 }
 
-void run(const Opts& o) {
+void run(const Opts& o, const OutputPolicy& policy) {
   const Wanted want = parse_metrics(o.metrics);
-  check_outputs("", {o.json, o.diff, o.flip_map});
+  check_outputs(policy, "", {o.json, o.diff, o.flip_map});
   if ((want.flip || !o.flip_map.empty()) && !(std::isfinite(o.ppd) && o.ppd > 0 && o.ppd <= 1000))
     throw InputError(fmt::format("--ppd {}: pixels per degree must be in (0, 1000]", o.ppd));
   const Image ref = load_image(o.reference);
@@ -123,11 +124,13 @@ void run(const Opts& o) {
     j["ppd"] = o.ppd;
     table += fmt::format("{:<12} {:.6f}  (median {:.6f}, {} pixels per degree)\n", "flip_mean",
                          f.mean, f.median, o.ppd);
-    if (fo.want_map) save_png_output(quality::flip_image(f.map, ref.width, ref.height), o.flip_map);
+    if (fo.want_map)
+      save_png_output(quality::flip_image(f.map, ref.width, ref.height), o.flip_map, policy);
   }
-  if (!o.diff.empty()) save_png_output(quality::difference_image(a, b, o.diff_scale), o.diff);
+  if (!o.diff.empty())
+    save_png_output(quality::difference_image(a, b, o.diff_scale), o.diff, policy);
   if (!o.json.empty()) {
-    write_json(j, o.json);
+    report::write_json(j, o.json, policy);
   } else {
     fmt::print("{}", table);
   }
@@ -135,7 +138,7 @@ void run(const Opts& o) {
 
 }  // namespace
 
-void add_compare(CLI::App& app) {
+void add_compare(CLI::App& app, const OutputPolicy& policy) {
   auto* cmd = app.add_subcommand(
       "compare", "quality metrics of TEST against REFERENCE: PSNR, SSIM, MS-SSIM, FLIP");
   auto o = std::make_shared<Opts>();
@@ -155,9 +158,9 @@ void add_compare(CLI::App& app) {
   cmd->add_option("--flip-map", o->flip_map,
                   "write the FLIP error map (magma) as PNG (computes FLIP)");
   cmd->add_option("--json", o->json, "write the metrics as JSON instead of the table");
-  cmd->callback([o, metrics] {
+  cmd->callback([o, metrics, &policy] {
     o->metrics_given = metrics->count() > 0;
-    run(*o);
+    run(*o, policy);
   });
 }
 

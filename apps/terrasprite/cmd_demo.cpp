@@ -8,6 +8,7 @@
 #include "terrasprite/experiment/lodsprite/lodsprite.h"
 #include "terrasprite/output/output_dir.h"
 #include "terrasprite/output/video_writer.h"
+#include "terrasprite/report/json_writer.h"
 #include "terrasprite/report/lodsprite_json.h"
 #include "terrasprite/report/lodsprite_report.h"
 #include "terrasprite/terrain/png_writer.h"
@@ -60,7 +61,7 @@ void print_summary(const lodsprite::LodspriteResult& r, const Terrain& terrain,
 
 }  // namespace
 
-void add_demo(CLI::App& app) {
+void add_demo(CLI::App& app, const OutputPolicy& policy) {
   auto* cmd = app.add_subcommand(
       "demo", "fly the paper path over the default terrain with LOD-sprite: frames, stats, report");
   auto o = std::make_shared<DemoOptions>();
@@ -72,11 +73,11 @@ void add_demo(CLI::App& app) {
                 "also run the paper's sweeps (its Figs. 10-12: thresholds 0.5,1,2,4, frame counts "
                 "115..920, coarse meshes 8,16,32): a few minutes more; `bench lodsprite` has the "
                 "full ones");
-  cmd->callback([o] {
+  cmd->callback([o, &policy] {
     auto [w, h] = parse_size(o->size, "--size");
-    check_outputs(o->out, {});
+    check_outputs(policy, o->out, {});
     Terrain terrain = load_terrain_verbose(o->terrain);
-    OutputDir out(o->out, output_policy());
+    OutputDir out(o->out, policy);
     lodsprite::LodspriteOptions c = run_options(*o, w, h);
     VideoWriter video(out.file(c.video), w, h);  // the flight at 30 fps
     PngWriter frames;  // encodes on its own thread while the next frames render
@@ -88,9 +89,9 @@ void add_demo(CLI::App& app) {
     frames.finish();
     video.finish();
     report::write_lodsprite_report(r, out);
-    write_json(report::lodsprite_json(r), out.file("lodsprite.json"));
-    write_json(report::demo_stats_json(r),
-               out.file("stats.json"));  // last: the directory is complete
+    report::write_json(report::lodsprite_json(r), out.file("lodsprite.json"), policy);
+    // last: the directory is complete
+    report::write_json(report::demo_stats_json(r), out.file("stats.json"), policy);
     out.commit();
     print_summary(r, terrain, out);
   });

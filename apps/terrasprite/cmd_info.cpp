@@ -4,10 +4,11 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "terrasprite/report/json_writer.h"
 
 namespace terrasprite::cli {
 
-void add_info(CLI::App& app) {
+void add_info(CLI::App& app, const OutputPolicy& policy) {
   auto* cmd =
       app.add_subcommand("info", "describe a terrain: size, spacing, extent, height range, nodata");
   struct Opts {
@@ -17,8 +18,8 @@ void add_info(CLI::App& app) {
   auto o = std::make_shared<Opts>();
   add_terrain_options(*cmd, o->terrain);
   cmd->add_option("--json", o->json, "write the description as JSON");
-  cmd->callback([o] {
-    check_outputs("", {o->json});
+  cmd->callback([o, &policy] {
+    check_outputs(policy, "", {o->json});
     Terrain t = load_terrain_verbose(o->terrain);
     const Heightfield& h = t.heights;
     nlohmann::json j = {{"name", h.name},
@@ -33,7 +34,7 @@ void add_info(CLI::App& app) {
                         {"texture_size", {t.texture.width, t.texture.height}},
                         {"georeferenced", h.geo.has_value()}};
     if (h.resampled_to) j["resampled_to"] = {h.resampled_to->first, h.resampled_to->second};
-    if (!o->json.empty()) write_json(j, o->json);
+    if (!o->json.empty()) report::write_json(j, o->json, policy);
     fmt::print("{}: {} x {} samples, spacing {:.3f} x {:.3f} m, extent {:.1f} x {:.1f} m\n", h.name,
                h.width, h.height, h.spacing_x, h.spacing_y, h.extent_x(), h.extent_y());
     fmt::print("heights {:.2f} .. {:.2f} m, {} nodata cells filled{}\n", h.min_height(),

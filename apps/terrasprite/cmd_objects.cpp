@@ -14,6 +14,7 @@
 #include "terrasprite/experiment/objects/objects_table.h"
 #include "terrasprite/objects/attach_objects.h"
 #include "terrasprite/output/output_dir.h"
+#include "terrasprite/report/json_writer.h"
 #include "terrasprite/report/objects_report.h"
 
 namespace terrasprite::cli {
@@ -46,19 +47,19 @@ Model load(const ModelArgs& m) {
   return load_model(m.file, model_options(m));
 }
 
-void add_objects_info(CLI::App& objects) {
+void add_objects_info(CLI::App& objects, const OutputPolicy& policy) {
   auto* cmd =
       objects.add_subcommand("info", "describe a model: triangles, vertices, bounds, textures");
   auto m = std::make_shared<ModelArgs>();
   auto json = std::make_shared<std::string>();
   add_model_options(*cmd, *m);
   cmd->add_option("--json", *json, "write the description as JSON");
-  cmd->callback([m, json] {
-    check_outputs("", {*json});
+  cmd->callback([m, json, &policy] {
+    check_outputs(policy, "", {*json});
     const Model model = load(*m);
     const nlohmann::json j = report::model_info_json(model);
     const glm::vec3 lo = model.bounds_min, hi = model.bounds_max;
-    if (!json->empty()) write_json(j, *json);
+    if (!json->empty()) report::write_json(j, *json, policy);
     fmt::print("{}: {} triangles, {} vertices, {} parts, normals {}\n", model.name,
                model.triangles(), model.vertices(), model.parts.size(),
                model.normals_from_file ? "from the file" : "computed");
@@ -102,7 +103,7 @@ TableOptions table_options(const TableArgs& a) {
   return o;
 }
 
-void add_objects_table(CLI::App& objects) {
+void add_objects_table(CLI::App& objects, const OutputPolicy& policy) {
   auto* cmd = objects.add_subcommand(
       "table", "measure a model's representations against it: quality tables, plots, Table 1");
   auto a = std::make_shared<TableArgs>();
@@ -125,7 +126,7 @@ void add_objects_table(CLI::App& objects) {
   cmd->add_option("--cache", a->cache, "cache directory (default: ~/.cache/terrasprite/objects)");
   cmd->add_flag("--no-cache", a->no_cache,
                 "build the representations and measure again; read and store nothing");
-  cmd->callback([a] {
+  cmd->callback([a, &policy] {
     ObjectsTableOptions o;
     o.table = table_options(*a);
     o.model_file = a->model.file;
@@ -134,12 +135,12 @@ void add_objects_table(CLI::App& objects) {
     o.use_cache = !a->no_cache;
     const std::string stem = std::filesystem::path(a->model.file).stem().string();
     const std::string out_dir = a->out.empty() ? "out/objects_" + stem : a->out;
-    check_outputs(out_dir, {a->json});
+    check_outputs(policy, out_dir, {a->json});
     Progress progress("objects table");
     o.progress = [&](int done, int total) { progress(done, total); };
     const ObjectsTableResult r = run_objects_table(o);
-    OutputDir out(out_dir, output_policy());
-    report::write_objects_table(r, o.table, out, a->json, output_policy());
+    OutputDir out(out_dir, policy);
+    report::write_objects_table(r, o.table, out, a->json, policy);
     out.commit();
     const QualityTable& t = r.table;
     fmt::print("{}", report::table1_markdown(t, o.table));
@@ -157,7 +158,7 @@ struct SceneArgs {
   int frames = 5;
 };
 
-void add_objects_scene(CLI::App& objects) {
+void add_objects_scene(CLI::App& objects, const OutputPolicy& policy) {
   auto* cmd = objects.add_subcommand(
       "scene", "a scene's objects on the terrain at full geometry: frame time, image");
   auto a = std::make_shared<SceneArgs>();
@@ -176,10 +177,10 @@ void add_objects_scene(CLI::App& objects) {
   cmd->add_option("--json", a->json, "write the figures as JSON");
   cmd->add_option("--out", a->out, "output directory (frame.png, scene.json)")
       ->capture_default_str();
-  cmd->callback([a] {
+  cmd->callback([a, &policy] {
     FullGeometryOptions o;
     std::tie(o.width, o.height) = parse_size(a->size, "--size");
-    check_outputs(a->out, {a->json});
+    check_outputs(policy, a->out, {a->json});
     const Terrain terrain = load_terrain_verbose(a->terrain);
     o.scene = a->scene;
     o.models_dir = a->models_dir;
@@ -187,8 +188,8 @@ void add_objects_scene(CLI::App& objects) {
     o.cache_dir = objects_cache_dir(a->cache);
     const FullGeometryResult r = run_full_geometry(o, terrain);
     print_cache_summary(r.representation_cache);
-    OutputDir out(a->out, output_policy());
-    report::write_full_geometry(r, out, a->json, output_policy());
+    OutputDir out(a->out, policy);
+    report::write_full_geometry(r, out, a->json, policy);
     out.commit();
     fmt::print(
         "{} instances of {} models, {} triangles at full geometry, on {} terrain triangles\n",
@@ -202,13 +203,13 @@ void add_objects_scene(CLI::App& objects) {
 
 }  // namespace
 
-void add_objects(CLI::App& app) {
+void add_objects(CLI::App& app, const OutputPolicy& policy) {
   auto* objects =
       app.add_subcommand("objects", "object models: info, representations, quality tables");
   objects->require_subcommand(1);
-  add_objects_info(*objects);
-  add_objects_table(*objects);
-  add_objects_scene(*objects);
+  add_objects_info(*objects, policy);
+  add_objects_table(*objects, policy);
+  add_objects_scene(*objects, policy);
 }
 
 }  // namespace terrasprite::cli

@@ -25,6 +25,7 @@
 #include "terrasprite/output/output_dir.h"
 #include "terrasprite/output/output_file.h"
 #include "terrasprite/output/video_writer.h"
+#include "terrasprite/report/json_writer.h"
 
 namespace terrasprite::cli {
 namespace {
@@ -88,13 +89,13 @@ std::pair<int, int> parse_frame_range(const std::string& text, int frames) {
 
 /// Refuses to replace a file the user did not ask us to replace (a video is
 /// never recognisably ours, so an existing one needs --overwrite).
-void check_video_target(const RenderOpts& o) {
+void check_video_target(const RenderOpts& o, const OutputPolicy& policy) {
   if (o.video.empty()) return;
   validate_video_options(o.video_opts);
-  if (std::filesystem::exists(o.video) && !output_policy().overwrite)
+  if (std::filesystem::exists(o.video) && !policy.overwrite)
     throw InputError(
         fmt::format("--video {}: file exists (pass --overwrite to replace it)", o.video));
-  check_output_file(o.video, output_policy());
+  check_output_file(o.video, policy);
 }
 
 // Linear depth as 16-bit PNG: value = metres / m_per_unit, sky = 65535.
@@ -116,7 +117,7 @@ struct Checked {
   CoarseMesh mesh = CoarseMesh::kUniform;
 };
 
-Checked check_options(const RenderOpts& o) {
+Checked check_options(const RenderOpts& o, const OutputPolicy& policy) {
   if (o.out.empty() && o.video.empty())
     throw InputError("--out: an output directory is required (or --video FILE.mp4)");
   if (o.out.empty() && (o.frames_png || o.depth))
@@ -127,8 +128,8 @@ Checked check_options(const RenderOpts& o) {
     throw InputError(fmt::format("--frames {}: must be between 1 and 1000000", o.frames));
   std::tie(c.first, c.last) = parse_frame_range(o.frame_range, o.frames);
   c.mode = parse_render_mode(o.mode);
-  check_outputs(o.out, {o.json});
-  check_video_target(o);
+  check_outputs(policy, o.out, {o.json});
+  check_video_target(o, policy);
   return c;
 }
 
@@ -164,11 +165,11 @@ struct FrameSinks {
 };
 
 void open_sinks(const RenderOpts& o, const Checked& c, const std::vector<Camera>& path,
-                FrameSinks& s) {
+                const OutputPolicy& policy, FrameSinks& s) {
   double far_max = 1.0;
   for (const Camera& cam : path) far_max = std::max(far_max, cam.far_m);
   s.m_per_unit = far_max / 65534.0;
-  if (!o.out.empty()) s.out.emplace(o.out, output_policy());
+  if (!o.out.empty()) s.out.emplace(o.out, policy);
   s.png = !o.no_images && (o.video.empty() || o.frames_png);
   if (!o.video.empty()) {
     s.video.emplace(o.video, c.w, c.h, o.video_opts);
@@ -240,8 +241,8 @@ nlohmann::json stats_json(const RenderOpts& o, const Checked& c, const RenderSta
   return j;
 }
 
-void run(const RenderOpts& o) {
-  Checked c = check_options(o);
+void run(const RenderOpts& o, const OutputPolicy& policy) {
+  Checked c = check_options(o, policy);
   Terrain terrain = load_terrain_verbose(o.terrain);
   std::vector<Camera> path = make_path(o.path, terrain.heights, o.frames, double(c.w) / c.h);
   const RenderStackOptions so = stack_options(o, c);
@@ -252,15 +253,16 @@ void run(const RenderOpts& o) {
     fmt::print(stderr, "note: --frame-range {}: LOD-sprite starts the range with a keyframe\n",
                o.frame_range);
   FrameSinks sinks;
-  open_sinks(o, c, path, sinks);
+  open_sinks(o, c, path, policy, sinks);
   double wall_ms = 0;
   const RenderRunResult run = fly_frames(o, c, stack.renderer(), path, sinks, wall_ms);
   const nlohmann::json j = stats_json(o, c, stack, terrain, run, wall_ms, sinks);
   if (sinks.out) {
-    write_json(j, sinks.out->file("stats.json"));  // JSON last: the directory is complete
+    // JSON last: the directory is complete
+    report::write_json(j, sinks.out->file("stats.json"), policy);
     sinks.out->commit();
   }
-  if (!o.json.empty()) write_json(j, o.json);
+  if (!o.json.empty()) report::write_json(j, o.json, policy);
   fmt::print("{}: {} frames {}x{} ({}), median {:.2f} ms/frame, {:.0f} ms in all on {} -> {}\n",
              o.mode, run.frames.size(), c.w, c.h, terrain.heights.name, run.median_ms, wall_ms,
              stack.device, sinks.out ? sinks.out->final_path().string() : o.video);
@@ -268,7 +270,7 @@ void run(const RenderOpts& o) {
 
 }  // namespace
 
-void add_render(CLI::App& app) {
+void add_render(CLI::App& app, const OutputPolicy& policy) {
   auto* cmd = app.add_subcommand("render",
                                  "render a camera path with one renderer: PNG frames + stats JSON");
   auto o = std::make_shared<RenderOpts>();
@@ -319,7 +321,7 @@ void add_render(CLI::App& app) {
                   "on: at each memory sample hand freed heap pages back to the OS (default on)")
       ->check(CLI::IsMember({"on", "off"}));
   add_objects_options(*cmd, o->objects);
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o, &policy] { run(*o, policy); });
 }
 
 }  // namespace terrasprite::cli

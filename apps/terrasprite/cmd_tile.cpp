@@ -94,13 +94,14 @@ bool use_strips(const std::string& mode, const TerrainOptions& t, bool insets) {
 }
 
 // The strip-wise path: the terrain never held at its final size.
-void tile_by_strips(const TerrainOptions& to, const TileWriteOptions& wo, const std::string& dir) {
+void tile_by_strips(const TerrainOptions& to, const TileWriteOptions& wo, const std::string& dir,
+                    const OutputPolicy& policy) {
   std::vector<std::string> warnings;
   const LargeTerrain t = load_large_terrain(to, &warnings);
   for (const auto& w : warnings) fmt::print(stderr, "warning: {}\n", w);
   std::optional<GeoTransform> geo = t.source.geo;
   if (t.resampled) geo.reset();  // the source's transform no longer fits the grid
-  OutputDir out(dir, output_policy());
+  OutputDir out(dir, policy);
   const StripWriteStats s =
       write_tiled_terrain_strips(terrain_rows(t), geo, out.partial().string(), wo);
   out.commit();
@@ -111,7 +112,7 @@ void tile_by_strips(const TerrainOptions& to, const TileWriteOptions& wo, const 
 
 }  // namespace
 
-void add_tile(CLI::App& app) {
+void add_tile(CLI::App& app, const OutputPolicy& policy) {
   auto* cmd = app.add_subcommand(
       "tile", "write a terrain as Cloud-Optimized GeoTIFFs of its pyramid (for bench stream)");
   struct Opts {
@@ -150,7 +151,7 @@ void add_tile(CLI::App& app) {
                   "never holding the terrain (auto: without --inset, when the in-memory writer "
                   "would need over half the memory or --resample is above 16385; up to 65537)")
       ->transform(CLI::IsMember({"auto", "always", "never"}, CLI::ignore_case));
-  cmd->callback([o] {
+  cmd->callback([o, &policy] {
     int lg = 0;
     while ((1 << lg) < o->tile_size) ++lg;
     if ((1 << lg) != o->tile_size || lg < 4 || lg > 9)
@@ -160,10 +161,10 @@ void add_tile(CLI::App& app) {
       throw InputError(fmt::format("--fine-levels {}: must be 1..8, with --inset", o->fine_levels));
     std::vector<InsetSpec> specs;
     for (const std::string& a : o->insets) specs.push_back(parse_inset(a));
-    check_outputs(o->out, {});
+    check_outputs(policy, o->out, {});
     const auto t0 = std::chrono::steady_clock::now();
     if (use_strips(o->strips, o->terrain, !specs.empty())) {
-      tile_by_strips(o->terrain, o->write, o->out);
+      tile_by_strips(o->terrain, o->write, o->out, policy);
       print_summary(o->out, lg, t0);
       return;
     }
@@ -176,7 +177,7 @@ void add_tile(CLI::App& app) {
       if (t.heights.resampled_to) geo.reset();  // the source's transform no longer fits the grid
       GridGeo g;
       if (!specs.empty()) geo = add_insets(t.heights, o->terrain.dem, specs, o->write.insets, g);
-      out = std::make_unique<OutputDir>(o->out, output_policy());
+      out = std::make_unique<OutputDir>(o->out, policy);
       if (o->fine_levels > 0)  // DIR/fine first: the base's bounds must cover it
         o->write.fine =
             write_fine_insets(t, g, specs, o->fine_levels, o->write, out->partial().string());

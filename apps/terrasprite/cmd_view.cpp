@@ -13,6 +13,7 @@
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/experiment/render_stack.h"
+#include "terrasprite/report/json_writer.h"
 #include "terrasprite/sprite/sprite_renderer.h"
 #include "terrasprite/voxel/voxel_renderer.h"
 #include "terrasprite/warp/warp.h"
@@ -96,7 +97,7 @@ Camera start_camera(const Heightfield& h, double aspect) {
   return c;
 }
 
-void run(ViewOpts& o) {
+void run(ViewOpts& o, const OutputPolicy& policy) {
   auto [w, h] = parse_size(o.size, "--size");
   viewer::ViewerOptions& v = o.viewer;
   v.width = w;
@@ -134,7 +135,7 @@ void run(ViewOpts& o) {
             stack_options(s, w, h, lighting, async_keyframes, context, pyramid.get()));
       });
   nlohmann::json j = viewer::stats_json(stats);
-  if (!o.stats.empty()) write_json(j, o.stats);
+  if (!o.stats.empty()) report::write_json(j, o.stats, policy);
   fmt::print("view {}: {} frames, median {:.1f} fps, 1% low {:.1f} fps, latency p95 {:.0f} ms\n",
              to_string(stats.mode), stats.frames, double(j["fps_median"]), double(j["fps_low_1pct"]),
              double(j["latency_ms_p95"]));
@@ -142,7 +143,7 @@ void run(ViewOpts& o) {
 
 }  // namespace
 
-void add_view(CLI::App& app) {
+void add_view(CLI::App& app, const OutputPolicy& policy) {
   auto* cmd = app.add_subcommand(
       "view", "fly the terrain in a window (F1: keys); --script for measured, scripted runs");
   auto o = std::make_shared<ViewOpts>();
@@ -184,7 +185,7 @@ void add_view(CLI::App& app) {
                 "(default off: on llvmpipe the window then waits for the renderer)");
   cmd->add_option("--screenshot-dir", o->viewer.screenshot_dir,
                   "where F2 screenshots and F5 recordings go (default .)");
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o, &policy] { run(*o, policy); });
 }
 
 }  // namespace terrasprite::cli

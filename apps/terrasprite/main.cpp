@@ -42,18 +42,19 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   // Accepted after any sub-command too (fallthrough): it governs every output it writes.
   app.fallthrough();
-  app.add_flag("--overwrite", terrasprite::cli::output_policy().overwrite,
+  terrasprite::OutputPolicy policy;  // outlives the parse, whose callbacks read it
+  app.add_flag("--overwrite", policy.overwrite,
                "replace existing outputs that terrasprite did not write (never a directory "
                "holding the working directory, a device or a link)");
-  terrasprite::cli::add_info(app);
-  terrasprite::cli::add_render(app);
-  terrasprite::cli::add_compare(app);
-  terrasprite::cli::add_tile(app);
-  terrasprite::cli::add_objects(app);
-  terrasprite::cli::add_bench(app);
-  terrasprite::cli::add_demo(app);
+  terrasprite::cli::add_info(app, policy);
+  terrasprite::cli::add_render(app, policy);
+  terrasprite::cli::add_compare(app, policy);
+  terrasprite::cli::add_tile(app, policy);
+  terrasprite::cli::add_objects(app, policy);
+  terrasprite::cli::add_bench(app, policy);
+  terrasprite::cli::add_demo(app, policy);
 #ifdef TS_HAVE_VIEWER
-  terrasprite::cli::add_view(app);
+  terrasprite::cli::add_view(app, policy);
 #endif
   int rc = 0;
   std::string error;

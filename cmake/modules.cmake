@@ -57,3 +57,13 @@ function(ts_check_modules_cover_src)
     endif()
   endforeach()
 endfunction()
+
+# Code that only parses, checks and calls the library (the CLI, the tests):
+# -O1 compiles it in about two thirds of -O3's time (CLI11 and GoogleTest
+# expand to much code), and none of it is on a hot path. The library keeps
+# the build type's flags. docs/results/2026-12-07-build-times.md.
+function(ts_light_optimisation target)
+  if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+    target_compile_options(${target} PRIVATE $<$<CONFIG:Release>:-O1>)
+  endif()
+endfunction()

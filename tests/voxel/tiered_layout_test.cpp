@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The tiered polar plane layout (issue 13): near the vertical vanishing point
+// The tiered polar plane layout: near the vertical vanishing point
 // only every s-th column is sampled. Every pixel must still find both of its
 // columns' samples, the layout must save samples where V is in view, and the
 // straight-down view must stay as close to the supersampled reference as the

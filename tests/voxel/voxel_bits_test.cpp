@@ -1,11 +1,10 @@
 // SPDX-License-Identifier: MIT
 // The coherent voxel renderer's images, bit for bit: FNV-1a hashes of colour
 // and depth for small static views at several pitches and rolls (both plane
-// layouts: slope-indexed and polar, wrapped and not), recorded from the
-// renderer before its resample pass was reorganised for speed (issue 13);
-// the views whose vanishing point is near or in the image (-45, -60, -90)
-// re-recorded for the tiered polar layout (SSIM against the supersampled
-// reference unchanged to 4 digits: tests/voxel/tiered_layout_test.cpp).
+// layouts: slope-indexed and polar, wrapped and not). The views whose
+// vanishing point is near or in the image (-45, -60, -90) use the tiered polar
+// layout, whose quality against the supersampled reference
+// tests/voxel/tiered_layout_test.cpp checks.
 // A speed change must keep these; a deliberate change of the images must
 // record new ones (TS_PRINT_VOXEL_HASHES=1 prints them).
 #include <gtest/gtest.h>

@@ -8,6 +8,7 @@
 
 #include "terrasprite/experiment/stream.h"
 #include "terrasprite/report/stream_report.h"
+#include "terrasprite/voxel/voxel_renderer.h"
 #include "test_util.h"
 
 namespace terrasprite {

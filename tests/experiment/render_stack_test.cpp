@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "terrasprite/common/error.h"
+#include "experiment_test_util.h"
 #include "terrasprite/experiment/render_mode.h"
 #include "terrasprite/experiment/render_run.h"
 #include "terrasprite/experiment/render_stack.h"
@@ -22,12 +23,7 @@ TEST(RenderMode, EveryNameParsesBackToItsMode) {
   }
 }
 
-Terrain tiny_terrain() {
-  TerrainOptions o;
-  o.synthetic_size = 33;
-  o.erosion_passes = 0;
-  return load_terrain(o);
-}
+Terrain tiny_terrain() { return tiny_synthetic_terrain(33); }
 
 Camera overview(const Terrain& t, double aspect) {
   const double e = t.heights.extent();

@@ -7,18 +7,14 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "experiment_test_util.h"
 #include "terrasprite/experiment/voxel.h"
 #include "terrasprite/report/voxel_report.h"
 
 namespace terrasprite {
 namespace {
 
-Terrain tiny_terrain() {
-  TerrainOptions o;
-  o.synthetic_size = 65;
-  o.erosion_passes = 0;
-  return load_terrain(o);
-}
+Terrain tiny_terrain() { return tiny_synthetic_terrain(65); }
 
 VoxelBenchOptions tiny_options() {
   VoxelBenchOptions o;

@@ -7,18 +7,14 @@
 #include <nlohmann/json.hpp>
 
 #include "terrasprite/common/error.h"
+#include "experiment_test_util.h"
 #include "terrasprite/experiment/warp.h"
 #include "terrasprite/report/warp_report.h"
 
 namespace terrasprite {
 namespace {
 
-Terrain tiny_terrain() {
-  TerrainOptions o;
-  o.synthetic_size = 65;
-  o.erosion_passes = 0;
-  return load_terrain(o);
-}
+Terrain tiny_terrain() { return tiny_synthetic_terrain(65); }
 
 WarpBenchOptions tiny_options() {
   WarpBenchOptions o;

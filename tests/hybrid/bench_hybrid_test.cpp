@@ -13,25 +13,16 @@
 #include <thread>
 #include <vector>
 
+#include "hybrid_test_util.h"
 #include "test_util.h"
 
 namespace {
-
-std::string small_scene(const std::string& data) {
-  return R"({"models": [
-    {"name": "teapot", "file": ")" +
-         data + R"(/models_scans/teapot.obj", "up": "y", "height_m": 4},
-    {"name": "tree", "file": ")" +
-         data + R"(/models_kenney_nature/tree_oak_fall.glb", "up": "y", "height_m": 6}],
-  "scatter": [{"model": "teapot", "count": 6}, {"model": "tree", "count": 6}],
-  "scatter_defaults": {"seed": 3, "region": [-300, -300, 300, 300], "max_slope_deg": 45, "min_spacing_m": 6}})";
-}
 
 TEST(BenchHybrid, ReducedWalkthroughJsonContract) {
   const std::string data = tstest::shared_data();
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
   tstest::TempDir dir;
-  std::ofstream(dir / "scene.json") << small_scene(data);
+  std::ofstream(dir / "scene.json") << tstest::small_hybrid_scene(data);
   const std::string args =
       "bench hybrid --scene " + (dir / "scene.json") +
       " --size 160x90 --frames 10 --score-every 2 --target-ms 40 --table-sizes 64"

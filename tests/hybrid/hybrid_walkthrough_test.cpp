@@ -14,20 +14,11 @@
 #include "terrasprite/output/output_dir.h"
 #include "terrasprite/report/hybrid_report.h"
 #include "terrasprite/report/json_writer.h"
+#include "hybrid_test_util.h"
 #include "test_util.h"
 
 namespace {
 using namespace terrasprite;
-
-std::string small_scene(const std::string& data) {
-  return R"({"models": [
-    {"name": "teapot", "file": ")" +
-         data + R"(/models_scans/teapot.obj", "up": "y", "height_m": 4},
-    {"name": "tree", "file": ")" +
-         data + R"(/models_kenney_nature/tree_oak_fall.glb", "up": "y", "height_m": 6}],
-  "scatter": [{"model": "teapot", "count": 6}, {"model": "tree", "count": 6}],
-  "scatter_defaults": {"seed": 3, "region": [-300, -300, 300, 300], "max_slope_deg": 45, "min_spacing_m": 6}})";
-}
 
 HybridBenchOptions reduced_options(const tstest::TempDir& dir) {
   HybridBenchOptions o;
@@ -64,7 +55,7 @@ TEST(HybridWalkthrough, ReducedRunInProcess) {
   const std::string data = tstest::shared_data();
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
   tstest::TempDir dir;
-  std::ofstream(dir / "scene.json") << small_scene(data);
+  std::ofstream(dir / "scene.json") << tstest::small_hybrid_scene(data);
   const HybridBenchOptions o = reduced_options(dir);
   const Terrain terrain = load_terrain(TerrainOptions{});
   const HybridBenchResult r = run_hybrid(o, {terrain, {}, {}});

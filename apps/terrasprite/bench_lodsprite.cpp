@@ -34,7 +34,7 @@ std::vector<T> list_of(const std::string& text, const char* option) {
 }
 
 // The command line as given; run_options() turns it into LodspriteOptions.
-struct Opts {
+struct LodspriteBenchArgs {
   TerrainOptions terrain;
   LodspriteOptions config;
   std::string size = "512x512";
@@ -51,7 +51,7 @@ struct Opts {
 };
 
 // The keyframe triggers, the coarse mesh and the path.
-void add_trigger_options(CLI::App& cmd, Opts& o) {
+void add_trigger_options(CLI::App& cmd, LodspriteBenchArgs& o) {
   cmd.add_option("--lod-quads", o.config.lod_quads, "coarse grid quads per side (default 16)");
   cmd.add_option("--mesh", o.mesh,
                  "the sprite's coarse mesh: uniform (default, the --lod-quads grid) | adaptive "
@@ -93,7 +93,7 @@ void add_trigger_options(CLI::App& cmd, Opts& o) {
 }
 
 // The cache, the async display, shading, the comparisons, sweeps and outputs.
-void add_pass_options(CLI::App& cmd, Opts& o) {
+void add_pass_options(CLI::App& cmd, LodspriteBenchArgs& o) {
   cmd.add_flag_function(
       "--cache",
       [&o](std::int64_t) {
@@ -140,7 +140,7 @@ void add_pass_options(CLI::App& cmd, Opts& o) {
 }
 
 // The options the run needs from the command line; InputError for bad values.
-LodspriteOptions run_options(const Opts& o) {
+LodspriteOptions run_options(const LodspriteBenchArgs& o) {
   LodspriteOptions c = o.config;
   std::tie(c.width, c.height) = parse_size(o.size, "--size");
   c.metric = lodsprite::parse_metric(o.metric);
@@ -169,7 +169,7 @@ void add_bench_lodsprite(CLI::App& bench, const OutputPolicy& policy) {
   auto* cmd = bench.add_subcommand("lodsprite",
                                    "LOD-sprite vs full resolution vs plain LOD: the paper's "
                                    "reproduction (JSON + plots + index.html)");
-  auto o = std::make_shared<Opts>();
+  auto o = std::make_shared<LodspriteBenchArgs>();
   o->terrain.resample = 513;  // the paper's 512 x 512 quads
   add_terrain_options(*cmd, o->terrain);
   add_trigger_options(*cmd, *o);

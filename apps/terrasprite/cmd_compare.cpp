@@ -18,7 +18,7 @@ namespace terrasprite::cli {
 
 namespace {
 
-struct Opts {
+struct CompareArgs {
   std::string reference, test;
   std::string metrics = "psnr,ssim,msssim,flip";
   bool metrics_given = false;
@@ -66,7 +66,7 @@ std::string db_text(double v) {
   return std::isinf(v) ? std::string("inf") : fmt::format("{:.3f} dB", v);
 }
 
-void run(const Opts& o, const OutputPolicy& policy) {
+void run(const CompareArgs& o, const OutputPolicy& policy) {
   const Wanted want = parse_metrics(o.metrics);
   check_outputs(policy, "", {o.json, o.diff, o.flip_map});
   if ((want.flip || !o.flip_map.empty()) && !(std::isfinite(o.ppd) && o.ppd > 0 && o.ppd <= 1000))
@@ -141,7 +141,7 @@ void run(const Opts& o, const OutputPolicy& policy) {
 void add_compare(CLI::App& app, const OutputPolicy& policy) {
   auto* cmd = app.add_subcommand(
       "compare", "quality metrics of TEST against REFERENCE: PSNR, SSIM, MS-SSIM, FLIP");
-  auto o = std::make_shared<Opts>();
+  auto o = std::make_shared<CompareArgs>();
   cmd->add_option("reference", o->reference,
                   "reference image (8/16-bit grey, RGB or RGBA; alpha ignored)")
       ->required();

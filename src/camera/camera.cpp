@@ -8,9 +8,6 @@
 #include "terrasprite/terrain/heightfield.h"
 
 namespace terrasprite {
-namespace {
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
-}
 
 Camera Camera::look_at(glm::dvec3 eye, glm::dvec3 target, double fov_y_deg, double aspect,
                        double yaw_hint_deg) {
@@ -21,20 +18,20 @@ Camera Camera::look_at(glm::dvec3 eye, glm::dvec3 target, double fov_y_deg, doub
   glm::dvec3 d = target - eye;
   double len = glm::length(d);
   d = len > 0 ? d / len : glm::dvec3(0, 1, 0);
-  c.pitch_deg = std::asin(std::clamp(d.z, -1.0, 1.0)) / kDeg;
+  c.pitch_deg = std::asin(std::clamp(d.z, -1.0, 1.0)) / kRadiansPerDegree;
   double horizontal = std::hypot(d.x, d.y);
-  c.yaw_deg = horizontal > 1e-9 ? std::atan2(d.x, d.y) / kDeg : yaw_hint_deg;
+  c.yaw_deg = horizontal > 1e-9 ? std::atan2(d.x, d.y) / kRadiansPerDegree : yaw_hint_deg;
   return c;
 }
 
 glm::dvec3 Camera::forward() const {
-  double y = yaw_deg * kDeg, p = pitch_deg * kDeg;
+  double y = yaw_deg * kRadiansPerDegree, p = pitch_deg * kRadiansPerDegree;
   return {std::cos(p) * std::sin(y), std::cos(p) * std::cos(y), std::sin(p)};
 }
 
 // Right and up before roll: right is horizontal, up completes the frame.
 static void unrolled_basis(const Camera& c, glm::dvec3& r0, glm::dvec3& u0) {
-  double y = c.yaw_deg * kDeg;
+  double y = c.yaw_deg * kRadiansPerDegree;
   r0 = {std::cos(y), -std::sin(y), 0.0};
   u0 = glm::cross(r0, c.forward());
 }
@@ -42,14 +39,14 @@ static void unrolled_basis(const Camera& c, glm::dvec3& r0, glm::dvec3& u0) {
 glm::dvec3 Camera::right() const {
   glm::dvec3 r0, u0;
   unrolled_basis(*this, r0, u0);
-  double a = roll_deg * kDeg;
+  double a = roll_deg * kRadiansPerDegree;
   return std::cos(a) * r0 - std::sin(a) * u0;
 }
 
 glm::dvec3 Camera::up() const {
   glm::dvec3 r0, u0;
   unrolled_basis(*this, r0, u0);
-  double a = roll_deg * kDeg;
+  double a = roll_deg * kRadiansPerDegree;
   return std::cos(a) * u0 + std::sin(a) * r0;
 }
 
@@ -72,15 +69,15 @@ glm::dmat4 Camera::view() const {
 }
 
 glm::dmat4 Camera::projection() const {
-  return glm::perspectiveRH_NO(fov_y_deg * kDeg, aspect, near_m, far_m);
+  return glm::perspectiveRH_NO(fov_y_deg * kRadiansPerDegree, aspect, near_m, far_m);
 }
 
 double Camera::pixel_angle(int height_px) const {
-  return fov_y_deg * kDeg / height_px;
+  return fov_y_deg * kRadiansPerDegree / height_px;
 }
 
 glm::dvec3 Camera::ray_direction(double px, double py, int width, int height) const {
-  double t = std::tan(fov_y_deg * kDeg * 0.5);
+  double t = std::tan(fov_y_deg * kRadiansPerDegree * 0.5);
   double x = (2.0 * px / width - 1.0) * t * aspect;
   double y = (1.0 - 2.0 * py / height) * t;
   return glm::normalize(forward() + x * right() + y * up());

@@ -15,7 +15,6 @@
 namespace terrasprite {
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 // Positions and targets farther than this from the terrain centre (metres) are
 // a mistake (degrees for metres, a stray exponent), not a flight.
 constexpr double kMaxCoordinateM = 1e7;
@@ -42,7 +41,7 @@ void set_orientation(Camera& c, const glm::dquat& q) {
   c.pitch_deg = tmp.pitch_deg;
   c.roll_deg = 0;
   glm::dvec3 r0 = c.right(), u0 = c.up();
-  c.roll_deg = std::atan2(glm::dot(u, r0), glm::dot(u, u0)) / kDeg;
+  c.roll_deg = std::atan2(glm::dot(u, r0), glm::dot(u, u0)) / kRadiansPerDegree;
 }
 
 glm::dvec3 vec3_of(const nlohmann::json& j, const std::string& where) {

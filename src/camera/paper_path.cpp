@@ -10,7 +10,6 @@
 
 namespace terrasprite {
 namespace {
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 constexpr double kPaperFrames = 460.0;
 }  // namespace
 
@@ -33,7 +32,7 @@ std::vector<Camera> paper_path(const Heightfield& h, int frames, double aspect, 
       distance = 1.3 * E - (1.3 - 0.35) * E * (s - 360.0) / 99.0;
     }
     // Azimuth 0 puts the camera south of the centre looking north; the orbit runs anticlockwise.
-    double el = elevation * kDeg, az = azimuth * kDeg;
+    double el = elevation * kRadiansPerDegree, az = azimuth * kRadiansPerDegree;
     glm::dvec3 dir_to_cam(std::sin(az) * std::cos(el), -std::cos(az) * std::cos(el), std::sin(el));
     glm::dvec3 eye = centre + distance * dir_to_cam;
     double ground = h.sample(eye.x, eye.y);

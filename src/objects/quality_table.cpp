@@ -17,6 +17,7 @@
 #include <tuple>
 
 #include "gl/render_target.h"
+#include "terrasprite/common/elapsed.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/common/stats.h"
 #include "terrasprite/quality/quality.h"
@@ -27,10 +28,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr double kFovDeg = 20.0;
 constexpr double kPsnrCap = 100.0;
-
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 void check(const TableOptions& o) {
   if (o.kinds.empty() || o.sizes_px.empty())

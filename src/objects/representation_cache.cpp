@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "terrasprite/common/cache_dir.h"
+#include "terrasprite/common/elapsed.h"
 #include "terrasprite/common/error.h"
 
 namespace terrasprite {
@@ -21,10 +22,6 @@ namespace {
 constexpr std::uint32_t kFormatVersion = 1;
 constexpr char kMagic[8] = {'T', 'S', 'R', 'E', 'P', 'C', '0', '1'};
 constexpr std::size_t kHeader = 8 + 4 + 8;  // magic, version, payload size; then a zstd frame
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Little helpers for the chain's flat layout: a count, then the raw array.
 template <class T>

@@ -16,10 +16,6 @@ namespace {
 
 constexpr const char* kMagic = "terrasprite-cog-bounds 1";
 
-int cells_at(int n0, int level) {
-  return int((std::int64_t(std::max(1, n0 - 1)) + (std::int64_t(1) << level) - 1) >> level);
-}
-
 std::string file_of(const std::string& dir, const std::string& key) {
   std::uint64_t h = 1469598103934665603ull;  // FNV-1a
   for (unsigned char c : key) h = (h ^ c) * 1099511628211ull;
@@ -54,7 +50,7 @@ bool load_cog_bounds(const std::string& dir, const std::string& key, int W, int 
   if (!f.read(reinterpret_cast<char*>(range), sizeof range)) return false;
   std::vector<std::vector<float>> levels;
   for (int L = bound_from; L < bound_levels; ++L) {
-    std::vector<float>& v = levels.emplace_back(std::size_t(cells_at(W, L)) * cells_at(H, L));
+    std::vector<float>& v = levels.emplace_back(std::size_t(TerrainGrid::bound_cells(W, L)) * TerrainGrid::bound_cells(H, L));
     if (!f.read(reinterpret_cast<char*>(v.data()), std::streamsize(v.size() * sizeof(float))))
       return false;
   }

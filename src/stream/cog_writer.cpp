@@ -24,7 +24,7 @@ namespace terrasprite {
 namespace {
 
 // One level of max-height bounds over cells, row-major, as TileBlock::bound.
-struct BoundLevel {
+struct BoundGrid {
   int w = 0, h = 0;  // cells
   std::vector<float> bound;
 };
@@ -41,12 +41,12 @@ const TileBlock& whole_level(const TerrainTiles& terrain, int level) {
 // The bounds of `terrain` raised by `cell_max` (per level-0 cell, the highest
 // sample of a finer surface inside it): each level takes the max over its
 // cells, dilated by one cell as the pyramid's own bounds are.
-std::vector<BoundLevel> raise_bounds(const TerrainTiles& terrain,
+std::vector<BoundGrid> raise_bounds(const TerrainTiles& terrain,
                                      const std::vector<float>& cell_max) {
-  std::vector<BoundLevel> out;
+  std::vector<BoundGrid> out;
   for (int L = 0; L < terrain.grid().bound_levels; ++L) {
     const TileBlock& b = whole_level(terrain, L);
-    BoundLevel m{b.w - 1, b.h - 1, {}};
+    BoundGrid m{b.w - 1, b.h - 1, {}};
     for (int y = 0; y < m.h; ++y)
       m.bound.insert(m.bound.end(), b.bound + std::ptrdiff_t(y) * b.bound_stride,
                      b.bound + std::ptrdiff_t(y) * b.bound_stride + m.w);
@@ -57,7 +57,7 @@ std::vector<BoundLevel> raise_bounds(const TerrainTiles& terrain,
   std::vector<float> raw = cell_max;  // undilated, cells of the current level
   int rw = out[0].w, rh = out[0].h;
   for (std::size_t k = 0; k < out.size(); ++k) {
-    BoundLevel& m = out[k];
+    BoundGrid& m = out[k];
     if (k > 0) {  // halve: a cell of level k covers 2 x 2 cells of level k - 1
       std::vector<float> next(std::size_t(m.w) * m.h, -std::numeric_limits<float>::infinity());
       for (int b = 0; b < rh; ++b)
@@ -99,8 +99,8 @@ void write_tiled_terrain(const TerrainTiles& terrain, const std::optional<GeoTra
     colors.push_back({mem_source(b.color, b.w, b.h, "Byte", 4, 4), b.w, b.h});
   }
   // Fine levels: the base's bounds raised to cover the inset's samples.
-  const std::vector<BoundLevel> raised =
-      o.fine ? raise_bounds(terrain, o.fine->base_cell_max) : std::vector<BoundLevel>{};
+  const std::vector<BoundGrid> raised =
+      o.fine ? raise_bounds(terrain, o.fine->base_cell_max) : std::vector<BoundGrid>{};
   std::vector<const float*> bound_data;
   for (int L = 0; L < grid.bound_levels; ++L) {
     const TileBlock& b = whole_level(terrain, L);

@@ -128,7 +128,7 @@ struct RenderLevel {
 // One bound level: its last three cell rows (max over each cell's samples),
 // its bound rows (dilated by one cell) on their way to its file, and the
 // highest bound of each tile.
-struct BoundLevel {
+struct BoundRows {
   int w = 0, h = 0;                         // cells
   std::array<std::vector<float>, 3> cells;  // cell row b at b % 3
   std::vector<float> coarser;               // the coarser level's cell row being made
@@ -173,7 +173,7 @@ class PyramidStrips {
         cw = (cw + 1) / 2;
         ch = (ch + 1) / 2;
       }
-      BoundLevel& b = bounds_.emplace_back();
+      BoundRows& b = bounds_.emplace_back();
       b.w = cw;
       b.h = ch;
       for (auto& r : b.cells) r.resize(std::size_t(cw));
@@ -206,7 +206,7 @@ class PyramidStrips {
       l.hfile->close();
       l.cfile->close();
     }
-    for (BoundLevel& b : bounds_) {
+    for (BoundRows& b : bounds_) {
       b.band->flush();
       if (b.band->rows_done() != b.h) throw std::logic_error("strip pyramid: bound rows missing");
       b.file->close();
@@ -218,7 +218,7 @@ class PyramidStrips {
   std::vector<LevelSource> sources(const char* kind) const {
     std::vector<LevelSource> out;
     if (std::string(kind) == "bound") {
-      for (const BoundLevel& b : bounds_) out.push_back({b.file->path(), b.w, b.h});
+      for (const BoundRows& b : bounds_) out.push_back({b.file->path(), b.w, b.h});
     } else {
       for (const RenderLevel& l : levels_)
         out.push_back(
@@ -228,7 +228,7 @@ class PyramidStrips {
   }
   std::vector<std::vector<float>> tile_max() const {
     std::vector<std::vector<float>> out;
-    for (const BoundLevel& b : bounds_) out.push_back(b.tile_max);
+    for (const BoundRows& b : bounds_) out.push_back(b.tile_max);
     return out;
   }
 
@@ -271,7 +271,7 @@ class PyramidStrips {
   void level0_cells(int j, const float* h) {
     const int w = levels_[0].w;
     if (j > 0) {
-      BoundLevel& b0 = bounds_[0];
+      BoundRows& b0 = bounds_[0];
       float* cells = b0.cells[std::size_t((j - 1) % 3)].data();
       for_columns(b0.w, [&](int a0, int a1) {
         for (int a = a0; a < a1; ++a)
@@ -286,7 +286,7 @@ class PyramidStrips {
   // Cell row b of bound level k is in its ring: emit the bound rows it
   // completes, and the coarser cell row when it completes one.
   void push_cells(int k, int b) {
-    BoundLevel& bl = bounds_[std::size_t(k)];
+    BoundRows& bl = bounds_[std::size_t(k)];
     const int T = 1 << tile_log2_;
     while (bl.next < bl.h && std::min(bl.next + 1, bl.h - 1) <= b) {
       const int e = bl.next++;
@@ -308,7 +308,7 @@ class PyramidStrips {
       bl.band->commit_row();
     }
     if (std::size_t(k) + 1 < bounds_.size() && (b % 2 == 1 || b == bl.h - 1)) {
-      BoundLevel& cl = bounds_[std::size_t(k) + 1];
+      BoundRows& cl = bounds_[std::size_t(k) + 1];
       const float* r0 = bl.cells[std::size_t((b & ~1) % 3)].data();
       const float* r1 = bl.cells[std::size_t(b % 3)].data();
       float* out = cl.cells[std::size_t((b / 2) % 3)].data();
@@ -324,7 +324,7 @@ class PyramidStrips {
 
   int tile_log2_;
   std::vector<RenderLevel> levels_;
-  std::vector<BoundLevel> bounds_;
+  std::vector<BoundRows> bounds_;
   std::vector<float> prev0_;  // level-0 row j - 1
 };
 

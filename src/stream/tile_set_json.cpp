@@ -18,11 +18,6 @@ namespace {
 constexpr const char* kFormat = "terrasprite-tiles";
 constexpr int kVersion = 1;
 
-int cells_at(int n0, int level) {
-  const int c0 = std::max(1, n0 - 1);
-  return int((std::int64_t(c0) + (std::int64_t(1) << level) - 1) >> level);
-}
-
 // Opens `path` and checks its size and overview count; throws InputError.
 void check_raster(const std::string& path, int w, int h, int overviews, int bands) {
   detail::GdalErrorCapture capture;
@@ -41,10 +36,10 @@ void check_raster(const std::string& path, int w, int h, int overviews, int band
 }  // namespace
 
 int TileSetInfo::tiles_cells_w(int level) const {
-  return cells_at(grid.width, level);
+  return TerrainGrid::bound_cells(grid.width, level);
 }
 int TileSetInfo::tiles_cells_h(int level) const {
-  return cells_at(grid.height, level);
+  return TerrainGrid::bound_cells(grid.height, level);
 }
 
 std::vector<std::vector<float>> tile_maxima(const TerrainGrid& g,
@@ -53,7 +48,7 @@ std::vector<std::vector<float>> tile_maxima(const TerrainGrid& g,
   std::vector<std::vector<float>> out;
   const int T = 1 << tile_log2;
   for (int L = 0; L < g.bound_levels; ++L) {
-    const int cw = cells_at(g.width, L), ch = cells_at(g.height, L);
+    const int cw = TerrainGrid::bound_cells(g.width, L), ch = TerrainGrid::bound_cells(g.height, L);
     const int nx = (cw + T - 1) / T, ny = (ch + T - 1) / T;
     std::vector<float> maxes;
     maxes.reserve(std::size_t(nx) * ny);
@@ -116,7 +111,7 @@ void write_tile_set_json(const TerrainGrid& g, const std::vector<std::vector<flo
   nlohmann::json levels = nlohmann::json::array();
   const int T = 1 << o.tile_log2;
   for (int L = 0; L < g.bound_levels; ++L) {
-    const int cw = cells_at(g.width, L), ch = cells_at(g.height, L);
+    const int cw = TerrainGrid::bound_cells(g.width, L), ch = TerrainGrid::bound_cells(g.height, L);
     const int nx = (cw + T - 1) / T, ny = (ch + T - 1) / T;
     levels.push_back({{"level", L},
                       {"samples", {cw + 1, ch + 1}},

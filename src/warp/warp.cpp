@@ -105,14 +105,13 @@ WarpedFrame warp_frame(const Frame& real, const Camera& target, int width, int h
 
 Camera with_margin(const Camera& camera, int width, int height, int margin_x, int margin_y) {
   Camera c = camera;
-  constexpr double kDeg = 3.14159265358979323846 / 180.0;
-  const double t = std::tan(camera.fov_y_deg * kDeg * 0.5);
+  const double t = std::tan(camera.fov_y_deg * kRadiansPerDegree * 0.5);
   const int wm = width + 2 * margin_x, hm = height + 2 * margin_y;
   // Same focal length in pixels: tan grows with the image's half-height;
   // the horizontal focal length must match too, which fixes the aspect.
   const double fx = width / (2.0 * t * camera.aspect);
   const double tm = t * double(hm) / double(height);
-  c.fov_y_deg = 2.0 * std::atan(tm) / kDeg;
+  c.fov_y_deg = 2.0 * std::atan(tm) / kRadiansPerDegree;
   c.aspect = double(wm) / (2.0 * tm * fx);
   return c;
 }

@@ -2,8 +2,12 @@
 // Perspective camera shared by every renderer (GL and voxel).
 #pragma once
 #include <glm/glm.hpp>
+#include <numbers>
 
 namespace terrasprite {
+
+// Degrees to radians: camera angles are stored in degrees.
+inline constexpr double kRadiansPerDegree = std::numbers::pi / 180.0;
 
 struct Heightfield;
 

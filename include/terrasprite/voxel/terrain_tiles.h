@@ -4,6 +4,7 @@
 // in-memory pyramid (VoxelTerrain) answers every tile; a streaming source
 // answers the resident ones and lets the caller fall back to a coarser level.
 #pragma once
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -44,6 +45,11 @@ struct TerrainGrid {
   static int level_size(int n0, int level) {
     if (level < 0) return (n0 - 1) * (1 << -level) + 1;
     return ((n0 - 1 + (1 << level) - 1) >> level) + 1;
+  }
+  /// Cells of bound level `level` (>= 0) along a side of n0 level-0 samples:
+  /// ceil((n0 - 1) / 2^level), and at least one.
+  static int bound_cells(int n0, int level) {
+    return int((std::int64_t(std::max(1, n0 - 1)) + (std::int64_t(1) << level) - 1) >> level);
   }
   int level_width(int level) const { return level_size(width, level); }
   int level_height(int level) const { return level_size(height, level); }

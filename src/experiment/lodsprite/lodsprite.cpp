@@ -203,14 +203,14 @@ LodspriteFrame frame_row(int i, const FrameResult& lod, const FrameResult& sprit
 }
 
 // The per-frame series the summaries are taken over.
-struct Series {
+struct FrameSeries {
   std::vector<double> full_ms, lod_ms, sprite_ms, key_ms, spr_ms, decision_ms;
   std::vector<double> lod_psnr, lod_ssim, lod_flip, sp_psnr, sp_ssim, sp_flip;
   std::vector<double> sp_psnr_sprite_only, lod_psnr_sprite_only;
   int keyframes = 0, ssim_above = 0, ssim_above_sprite_frames = 0, scored_sprite_frames = 0;
 };
 
-void add_to_series(const LodspriteFrame& row, Series& s) {
+void add_to_series(const LodspriteFrame& row, FrameSeries& s) {
   s.sprite_ms.push_back(row.ms);
   s.lod_ms.push_back(row.lod_ms);
   s.decision_ms.push_back(row.decision_cpu_ms);
@@ -235,10 +235,10 @@ void add_to_series(const LodspriteFrame& row, Series& s) {
 }
 
 // The per-frame rows (into r.per_frame) and the series of their figures.
-Series collect_frames(const MainRun& m, int n, LodspriteResult& r) {
+FrameSeries collect_frames(const MainRun& m, int n, LodspriteResult& r) {
   const RendererRun &full = m.run.run("full"), &lod = m.run.run("lod"),
                     &sprite = m.run.run("sprite");
-  Series s;
+  FrameSeries s;
   std::size_t next_ref = 0;
   int current_key = 0;
   for (int i = 0; i < n; ++i) {
@@ -265,7 +265,7 @@ int stalls(const std::vector<double>& v) {
 }
 
 // Totals, medians and mean scores of each renderer; the speed-up and its bound.
-void summarize(const Series& s, int n, LodspriteResult& r) {
+void summarize_series(const FrameSeries& s, int n, LodspriteResult& r) {
   const int scored = int(s.full_ms.size());
   r.reference_frames = scored;
   // Every frame's reference drawn: the measured total; else the sampled
@@ -367,7 +367,7 @@ LodspriteResult run_lodsprite(const LodspriteOptions& c, const Terrain& terrain)
 
   LodspriteResult r;
   describe_run(c, terrain, gl.renderer(), sprite, n, every, r);
-  summarize(collect_frames(main_run, n, r), n, r);
+  summarize_series(collect_frames(main_run, n, r), n, r);
   speedup_and_bound(r);
 
   const StageContext stages{.options = c,

@@ -14,6 +14,7 @@
 #include "in_memory_peer.h"
 #include "stream/cog_source.h"
 #include "terrasprite/camera/camera_path.h"
+#include "terrasprite/common/elapsed.h"
 #include "terrasprite/common/process_memory.h"
 #include "terrasprite/common/stats.h"
 #include "terrasprite/experiment/experiment.h"
@@ -26,10 +27,6 @@ namespace {
 using stream_bench::ChildReply;
 using stream_bench::InMemoryPeer;
 using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 /// The ray caster over the streaming cache: each draw first lets the cache
 /// update (install finished reads, queue the footprint; never waits), and

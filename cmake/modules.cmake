@@ -20,6 +20,7 @@ function(ts_module name)
     PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>
     PRIVATE ${PROJECT_SOURCE_DIR}/src)
   target_compile_options(${t} PRIVATE ${TS_WARNINGS})
+  ts_unity(${t} 0)
   target_link_libraries(${t} PUBLIC ${M_PUBLIC} PRIVATE ${M_PRIVATE})
   set(TS_MODULES ${TS_MODULES} ${t} PARENT_SCOPE)
   set(TS_MODULE_DIRS ${TS_MODULE_DIRS} ${M_DIRS} PARENT_SCOPE)
@@ -58,12 +59,27 @@ function(ts_check_modules_cover_src)
   endforeach()
 endfunction()
 
-# Code that only parses, checks and calls the library (the CLI, the tests):
+# Code that only parses, checks and calls the library (the CLI, the tests)
+# or writes its results (the report writers):
 # -O1 compiles it in about two thirds of -O3's time (CLI11 and GoogleTest
-# expand to much code), and none of it is on a hot path. The library keeps
+# expand to much code), and none of it is on a hot path. The other modules keep
 # the build type's flags. docs/results/2026-12-07-build-times.md.
 function(ts_light_optimisation target)
   if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     target_compile_options(${target} PRIVATE $<$<CONFIG:Release>:-O1>)
+  endif()
+endfunction()
+
+# With TERRASPRITE_UNITY, `target`'s sources compile as unity files of
+# `batch` sources each (0: one file for all): the heavy third-party headers
+# (nlohmann/json, CLI11, fmt, TBB, the standard library) are parsed and their
+# templates generated once per unity file instead of once per source, which
+# takes the cold build to a fraction of its time
+# (docs/results/2026-12-07-unity-build.md). Sources with their own compile
+# options (ts_fast_sqrt, ts_no_fp_traps) stay separate. The code stays valid
+# without it: the sanitizer build compiles every source alone.
+function(ts_unity target batch)
+  if(TERRASPRITE_UNITY)
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${batch})
   endif()
 endfunction()

@@ -176,9 +176,11 @@ void run_bench_hybrid(HybridCommand& c, const OutputPolicy& policy) {
                        std::ref(progress)});
   switch (r.mode) {
     case HybridMode::kQualityDiagnosis:
-      return report::write_json(r.quality_diagnosis, c.quality_diagnosis, policy);
+      return report::write_json(report::quality_diagnosis_json(r.quality_diagnosis),
+                                c.quality_diagnosis, policy);
     case HybridMode::kBudgetSweep:
-      return report::write_json(r.budget_sweep, c.budget_sweep, policy);
+      return report::write_json(report::budget_sweep_json(r.budget_sweep), c.budget_sweep,
+                                policy);
     case HybridMode::kWalkthrough:
       break;
   }

@@ -295,6 +295,59 @@ nlohmann::json context_calibration_json(const std::vector<ContextCalibration>& r
   return j;
 }
 
+nlohmann::json quality_diagnosis_json(const std::vector<DiagnosisRow>& rows) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const DiagnosisRow& d : rows) {
+    nlohmann::json row = {{"condition", diagnosis_condition_name(d.condition)},
+                          {"checkpoint", d.checkpoint},
+                          {"bucket", d.bucket},
+                          {"instances", d.instances},
+                          {"covered_px", d.covered_px},
+                          {"theta_deg", d.theta_deg},
+                          {"size_px", d.size_px},
+                          {"representation", d.representation},
+                          {"predicted", d.predicted},
+                          {"measured", d.measured},
+                          {"ms", d.ms},
+                          {"ms_full", d.ms_full}};
+    if (d.predicted_context) row["predicted_context"] = *d.predicted_context;
+    out.push_back(std::move(row));
+  }
+  return out;
+}
+
+nlohmann::json budget_sweep_json(const std::vector<BudgetSweepRow>& rows) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const BudgetSweepRow& b : rows) {
+    nlohmann::json row = {{"checkpoint", b.checkpoint},
+                          {"scenario", b.scenario},
+                          {"fraction", b.fraction},
+                          {"budget_ms", b.budget_ms},
+                          {"predicted_ms", b.predicted_ms},
+                          {"ms", b.ms},
+                          {"full_ms", b.full_ms},
+                          {"full_predicted_ms", b.full_predicted_ms},
+                          {"terrain_ms", b.terrain_ms},
+                          {"expected_ssim", b.expected_ssim},
+                          {"ssim_objects", b.ssim_objects},
+                          {"ssim", b.ssim},
+                          {"triangles", b.triangles},
+                          {"by_kind", b.by_kind}};
+    if (b.cost_split) {
+      nlohmann::json& split = row["cost_split"] = nlohmann::json::array();
+      for (const CostSplitRow& k : *b.cost_split)
+        split.push_back({{"kind", object_kind_name(k.kind)},
+                         {"instances", k.instances},
+                         {"draw_calls", k.draw_calls},
+                         {"predicted_ms", k.predicted_ms},
+                         {"alone_ms", k.alone_ms},
+                         {"in_frame_ms", k.in_frame_ms}});
+    }
+    out.push_back(std::move(row));
+  }
+  return out;
+}
+
 std::string hybrid_summary_text(const HybridBenchResult& r) {
   const double target_ms = r.target_ms;
   std::string t;

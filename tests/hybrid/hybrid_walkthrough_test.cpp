@@ -51,6 +51,82 @@ TEST(HybridNames, ScenarioAndConditionNamesRoundTrip) {
   EXPECT_FALSE(parse_diagnosis_condition("scene2"));
 }
 
+TEST(HybridWalkthrough, BudgetSweepRowsPerCheckpointScenarioAndFraction) {
+  const std::string data = tstest::shared_data();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
+  tstest::TempDir dir;
+  std::ofstream(dir / "scene.json") << tstest::small_hybrid_scene(data);
+  HybridBenchOptions o = reduced_options(dir);
+  o.mode = HybridMode::kBudgetSweep;
+  o.budget_fractions = {0.25, 1.0};
+  o.cost_split = 1;
+  const Terrain terrain = load_terrain(TerrainOptions{});
+  const HybridBenchResult r = run_hybrid(o, {terrain, {}, {}});
+
+  EXPECT_EQ(r.mode, HybridMode::kBudgetSweep);
+  EXPECT_TRUE(r.scenarios.empty());
+  ASSERT_FALSE(r.budget_sweep.empty());
+  std::set<std::string> checkpoints, scenarios;
+  for (const BudgetSweepRow& row : r.budget_sweep) {
+    checkpoints.insert(row.checkpoint);
+    scenarios.insert(row.scenario);
+    EXPECT_TRUE(row.fraction == 0.25 || row.fraction == 1.0) << row.fraction;
+    EXPECT_NEAR(row.budget_ms, row.fraction * row.full_predicted_ms, 1e-9);
+    EXPECT_GE(row.ssim_objects, 0.0);
+    EXPECT_LE(row.ssim_objects, 1.0);
+    EXPECT_LE(row.ssim, 1.0);
+    ASSERT_TRUE(row.cost_split.has_value());
+    int drawn = 0;
+    for (const CostSplitRow& k : *row.cost_split) {
+      EXPECT_EQ(k.instances, row.by_kind[std::size_t(k.kind)]);
+      drawn += k.instances;
+    }
+    EXPECT_EQ(drawn, row.by_kind[0] + row.by_kind[1] + row.by_kind[2]);
+  }
+  EXPECT_EQ(r.budget_sweep.size(), checkpoints.size() * scenarios.size() * 2);
+
+  const nlohmann::json j = report::budget_sweep_json(r.budget_sweep);
+  ASSERT_EQ(j.size(), r.budget_sweep.size());
+  EXPECT_EQ(j[0]["scenario"], r.budget_sweep[0].scenario);
+  EXPECT_EQ(j[0]["by_kind"].size(), 3u);
+  EXPECT_TRUE(j[0]["cost_split"].is_array());
+}
+
+TEST(HybridWalkthrough, QualityDiagnosisRowsPerGroupAndRepresentation) {
+  const std::string data = tstest::shared_data();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
+  tstest::TempDir dir;
+  std::ofstream(dir / "scene.json") << tstest::small_hybrid_scene(data);
+  HybridBenchOptions o = reduced_options(dir);
+  o.mode = HybridMode::kQualityDiagnosis;
+  o.diagnosis_conditions = {DiagnosisCondition::kScene};
+  o.width = 64;  // every group, representation and checkpoint is drawn: keep them small
+  o.height = 36;
+  o.msaa = 1;
+  const Terrain terrain = load_terrain(TerrainOptions{});
+  const HybridBenchResult r = run_hybrid(o, {terrain, {}, {}});
+
+  EXPECT_EQ(r.mode, HybridMode::kQualityDiagnosis);
+  ASSERT_FALSE(r.quality_diagnosis.empty());
+  std::set<std::string> representations;
+  for (const DiagnosisRow& row : r.quality_diagnosis) {
+    EXPECT_EQ(row.condition, DiagnosisCondition::kScene);
+    EXPECT_GT(row.instances, 0u);
+    EXPECT_GE(row.measured, 0.0);
+    EXPECT_LE(row.measured, 1.0);
+    EXPECT_GT(row.predicted, 0.0);
+    EXPECT_LE(row.predicted, 1.0);
+    EXPECT_FALSE(row.predicted_context);  // no tables in context asked for
+    representations.insert(row.representation);
+  }
+  EXPECT_GT(representations.size(), 1u);
+
+  const nlohmann::json j = report::quality_diagnosis_json(r.quality_diagnosis);
+  ASSERT_EQ(j.size(), r.quality_diagnosis.size());
+  EXPECT_EQ(j[0]["condition"], "scene");
+  EXPECT_FALSE(j[0].contains("predicted_context"));
+}
+
 TEST(HybridWalkthrough, ReducedRunInProcess) {
   const std::string data = tstest::shared_data();
   if (data.empty()) GTEST_SKIP() << "../shared/data is absent";
@@ -71,7 +147,8 @@ TEST(HybridWalkthrough, ReducedRunInProcess) {
   EXPECT_EQ(r.instances, 12);
   EXPECT_GT(r.full_triangles_max, 0);
   EXPECT_FALSE(r.quality_context);
-  EXPECT_TRUE(r.quality_diagnosis.is_null());
+  EXPECT_TRUE(r.quality_diagnosis.empty());
+  EXPECT_TRUE(r.budget_sweep.empty());
   EXPECT_FALSE(r.calibration.empty());
 
   ASSERT_EQ(r.scenarios.size(), 6u);

@@ -18,6 +18,11 @@ nlohmann::json hybrid_json(const HybridBenchResult& r);
 /// The tables in context as JSON rows (model, kind, level, resolution,
 /// error_scale, predicted, measured, pixels).
 nlohmann::json context_calibration_json(const std::vector<ContextCalibration>& rows);
+/// The quality diagnosis's rows as a JSON array (`--quality-diagnosis`).
+nlohmann::json quality_diagnosis_json(const std::vector<DiagnosisRow>& rows);
+/// The budget sweep's rows as a JSON array (`--budget-sweep`); a row's
+/// `cost_split` is there when it was measured.
+nlohmann::json budget_sweep_json(const std::vector<BudgetSweepRow>& rows);
 /// Writes frames_<scenario>.dat per scenario, plots.gp and its figures
 /// (gnuplot; a failure is a note in index.html), the Figure 6 images,
 /// table2.md and index.html into `out`. Throws InputError naming a file

@@ -18,7 +18,6 @@
 #include <cmath>
 #include <functional>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <tuple>
 
@@ -193,8 +192,8 @@ double predicted_ssim(const std::vector<Item>& items,
 /// `rounds` of differences taken within one round (the machine's pace
 /// drifts between rounds), next to its prediction. `objects` selects as it
 /// did for `st` at every draw (fixed budget, no hysteresis).
-nlohmann::json cost_split(Shooter& shooter, HybridObjects& objects, const Camera& cam,
-                          const HybridFrameStats& st, int rounds) {
+std::vector<CostSplitRow> cost_split(Shooter& shooter, HybridObjects& objects, const Camera& cam,
+                                     const HybridFrameStats& st, int rounds) {
   using Kinds = std::array<bool, 3>;
   std::vector<Kinds> masks;
   const auto mask_index = [&](const Kinds& m) {  // added on first use
@@ -231,15 +230,12 @@ nlohmann::json cost_split(Shooter& shooter, HybridObjects& objects, const Camera
     }
   }
   objects.set_drawn_kinds(all);
-  nlohmann::json out = nlohmann::json::array();
+  std::vector<CostSplitRow> out;
   for (const Split& sp : splits) {
     const std::size_t k = sp.kind;
-    out.push_back({{"kind", object_kind_name(ObjectKind(k))},
-                   {"instances", st.instances_by_kind[k]},
-                   {"draw_calls", st.draws_by_kind[k]},
-                   {"predicted_ms", st.predicted_by_kind_ms[k]},
-                   {"alone_ms", summarize(alone[k]).median},
-                   {"in_frame_ms", summarize(in_frame[k]).median}});
+    out.push_back({ObjectKind(k), st.instances_by_kind[k], st.draws_by_kind[k],
+                   st.predicted_by_kind_ms[k], summarize(alone[k]).median,
+                   summarize(in_frame[k]).median});
   }
   return out;
 }
@@ -326,7 +322,7 @@ struct DiagnosisTables {
 /// a row per representation (appended to `out`, and printed on stderr).
 void diagnose_group(const QualityDiagnosisInput& in, Shooter& shooter, const DiagnosisSpot& at,
                     const std::string& bucket, const std::vector<Item>& items,
-                    const DiagnosisTables& t, nlohmann::json& out) {
+                    const DiagnosisTables& t, std::vector<DiagnosisRow>& out) {
   const std::string condition = diagnosis_condition_name(at.condition);
   const std::string& cp = at.checkpoint.name;
   const bool every = bucket == "all";
@@ -351,22 +347,23 @@ void diagnose_group(const QualityDiagnosisInput& in, Shooter& shooter, const Dia
     }
     const auto [measured, covered] = masked_ssim(ref, test, at.bare);
     const double predicted = predicted_ssim(items, rep_of, t.interp);
-    nlohmann::json row = {{"condition", condition},
-                          {"checkpoint", cp},
-                          {"bucket", bucket},
-                          {"instances", items.size()},
-                          {"covered_px", covered},
-                          {"theta_deg", wsum > 0 ? theta / wsum : 0.0},
-                          {"size_px", wsum > 0 ? size / wsum : 0.0},
-                          {"representation", u.label()},
-                          {"predicted", predicted},
-                          {"measured", measured},
-                          {"ms", test.ms},
-                          {"ms_full", ref.ms}};
+    DiagnosisRow row{at.condition,
+                     cp,
+                     bucket,
+                     items.size(),
+                     covered,
+                     wsum > 0 ? theta / wsum : 0.0,
+                     wsum > 0 ? size / wsum : 0.0,
+                     u.label(),
+                     predicted,
+                     measured,
+                     std::nullopt,
+                     test.ms,
+                     ref.ms};
     std::string in_context;
     if (in.context_tables) {
       const double p = predicted_ssim(items, rep_of, t.interp_context);
-      row["predicted_context"] = p;
+      row.predicted_context = p;
       in_context = fmt::format(" (in context {:.3f})", p);
     }
     out.push_back(row);
@@ -404,11 +401,11 @@ std::vector<SweepRun> sweep_runs(const BudgetSweepInput& in) {
 
 }  // namespace
 
-nlohmann::json diagnose_hybrid_quality(const QualityDiagnosisInput& in) {
+std::vector<DiagnosisRow> diagnose_hybrid_quality(const QualityDiagnosisInput& in) {
   const DiagnosisTables tables{
       diagnosis_uniforms(in.tables), interpolators(in.tables),
       in.context_tables ? interpolators(*in.context_tables) : Interpolators{}};
-  nlohmann::json out = nlohmann::json::array();
+  std::vector<DiagnosisRow> out;
   for (const DiagnosisCondition condition : in.conditions) {
     const int scale = condition == DiagnosisCondition::kScene4 ? 4 : 1;
     const int h = in.height * scale;
@@ -493,8 +490,8 @@ std::vector<ContextCalibration> calibrate_tables_in_context(const QualityContext
   return report;
 }
 
-nlohmann::json quality_budget_sweep(const BudgetSweepInput& in) {
-  nlohmann::json out = nlohmann::json::array();
+std::vector<BudgetSweepRow> quality_budget_sweep(const BudgetSweepInput& in) {
+  std::vector<BudgetSweepRow> out;
   Shooter shooter(in.ground, in.width, in.height, in.terrain_quads, false, in.samples);
   // The budget fractions are of full geometry's predicted time.
   const HybridScenario full_scenario = walk_scenario(WalkScenario::kFull, false);
@@ -523,20 +520,9 @@ nlohmann::json quality_budget_sweep(const BudgetSweepInput& in) {
                                  ? 1.0
                                  : quality::ssim(ref.color.view(), test.color.view(), so).ssim;
         const HybridFrameStats& st = objects.last();
-        out.push_back({{"checkpoint", cp.name},
-                       {"scenario", sc.name},
-                       {"fraction", f},
-                       {"budget_ms", o.target_ms},
-                       {"predicted_ms", st.predicted_ms},
-                       {"ms", test.ms},
-                       {"full_ms", ref.ms},
-                       {"full_predicted_ms", full_predicted},
-                       {"terrain_ms", bare.ms},
-                       {"expected_ssim", st.expected_ssim},
-                       {"ssim_objects", measured},
-                       {"ssim", whole},
-                       {"triangles", st.triangles},
-                       {"by_kind", st.instances_by_kind}});
+        out.push_back({cp.name, sc.name, f, o.target_ms, st.predicted_ms, test.ms, ref.ms,
+                       full_predicted, bare.ms, st.expected_ssim, measured, whole,
+                       st.triangles, st.instances_by_kind, std::nullopt});
         fmt::print(stderr,
                    "{} {:34} budget {:.2f} x full ({:6.1f} ms): predicted {:6.1f} ms, measured "
                    "{:6.1f} ms (full {:6.1f}, terrain {:5.1f}); expected SSIM {:.3f}, objects "
@@ -546,15 +532,15 @@ nlohmann::json quality_budget_sweep(const BudgetSweepInput& in) {
                    st.instances_by_kind[1], st.instances_by_kind[2]);
         if (in.cost_split_rounds > 0) {
           const HybridFrameStats drawn = st;  // the draws below select again
-          nlohmann::json split = cost_split(shooter, objects, cam, drawn, in.cost_split_rounds);
-          for (const nlohmann::json& k : split)
+          std::vector<CostSplitRow> split =
+              cost_split(shooter, objects, cam, drawn, in.cost_split_rounds);
+          for (const CostSplitRow& k : split)
             fmt::print(stderr,
                        "  {:10} x {:3} in {:2} calls: predicted {:6.2f} ms, alone {:6.2f} ms, in "
                        "the frame {:6.2f} ms\n",
-                       k["kind"].get<std::string>(), k["instances"].get<int>(),
-                       k["draw_calls"].get<int>(), k["predicted_ms"].get<double>(),
-                       k["alone_ms"].get<double>(), k["in_frame_ms"].get<double>());
-          out.back()["cost_split"] = std::move(split);
+                       object_kind_name(k.kind), k.instances, k.draw_calls, k.predicted_ms,
+                       k.alone_ms, k.in_frame_ms);
+          out.back().cost_split = std::move(split);
         }
       }
   }

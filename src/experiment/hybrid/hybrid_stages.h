@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <map>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -69,7 +68,7 @@ struct QualityDiagnosisInput {
 };
 /// Per checkpoint, on-screen size bucket and representation: the tables'
 /// predicted SSIM against the one measured.
-nlohmann::json diagnose_hybrid_quality(const QualityDiagnosisInput& in);
+std::vector<DiagnosisRow> diagnose_hybrid_quality(const QualityDiagnosisInput& in);
 
 /// What calibrate_tables_in_context needs.
 struct QualityContextInput {
@@ -113,6 +112,6 @@ struct BudgetSweepInput {
 /// scenario selects once under a fixed budget (a fraction of full
 /// geometry's predicted frame time) and is scored against full geometry
 /// (object-masked and whole-frame SSIM) and timed (median of 3).
-nlohmann::json quality_budget_sweep(const BudgetSweepInput& in);
+std::vector<BudgetSweepRow> quality_budget_sweep(const BudgetSweepInput& in);
 
 }  // namespace terrasprite::hybrid_bench

@@ -348,8 +348,8 @@ void run_walkthrough(const Bench& b, const HybridOptions& ho, HybridRenderer& te
 }
 
 /// Quality against fixed budgets at each checkpoint (pm and mixed-optimal).
-nlohmann::json budget_sweep(const Bench& b, const HybridOptions& ho,
-                            const std::vector<QualityTable>* raw_tables) {
+std::vector<BudgetSweepRow> budget_sweep(const Bench& b, const HybridOptions& ho,
+                                         const std::vector<QualityTable>* raw_tables) {
   std::vector<HybridScenario> swept;
   for (WalkScenario id : {WalkScenario::kPm, WalkScenario::kMixedOptimal})
     swept.push_back(walk_scenario(id, b.o.occlusion_cull));

@@ -11,7 +11,6 @@
 #pragma once
 #include <array>
 #include <functional>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -187,6 +186,43 @@ struct ContextCalibration {
   double pixels = 0;                   ///< pixels the observations covered
 };
 
+/// A row of the quality diagnosis (HybridMode::kQualityDiagnosis): one
+/// on-screen size group of instances at one checkpoint, drawn with one
+/// uniform representation, against full geometry.
+struct DiagnosisRow {
+  DiagnosisCondition condition = DiagnosisCondition::kScene;
+  std::string checkpoint;
+  std::string bucket;          ///< the size group ("all", or a size range)
+  std::size_t instances = 0;
+  std::size_t covered_px = 0;  ///< pixels of the object mask
+  double theta_deg = 0, size_px = 0;  ///< pixel-weighted means over the group
+  std::string representation;         ///< the uniform representation's label
+  double predicted = 1, measured = 1; ///< the tables' SSIM and the measured one
+  std::optional<double> predicted_context;  ///< the tables in context, when measured
+  double ms = 0, ms_full = 0;               ///< the frame, and full geometry's
+};
+
+/// One kind of representation in a swept frame, timed (the budget sweep's
+/// cost split): alone over the terrain and as its share of the whole frame.
+struct CostSplitRow {
+  ObjectKind kind = ObjectKind::kMesh;
+  int instances = 0, draw_calls = 0;
+  double predicted_ms = 0, alone_ms = 0, in_frame_ms = 0;
+};
+
+/// A row of the budget sweep (HybridMode::kBudgetSweep): one scenario at one
+/// checkpoint under a fixed budget, a fraction of full geometry's predicted
+/// frame time.
+struct BudgetSweepRow {
+  std::string checkpoint, scenario;
+  double fraction = 0, budget_ms = 0, predicted_ms = 0;
+  double ms = 0, full_ms = 0, full_predicted_ms = 0, terrain_ms = 0;
+  double expected_ssim = 1, ssim_objects = 1, ssim = 1;
+  long long triangles = 0;
+  std::array<int, 3> by_kind{};  ///< drawn instances by ObjectKind
+  std::optional<std::vector<CostSplitRow>> cost_split;  ///< with HybridBenchOptions::cost_split
+};
+
 struct HybridBenchResult {
   HybridMode mode = HybridMode::kWalkthrough;
   std::string gl_renderer;
@@ -208,8 +244,8 @@ struct HybridBenchResult {
   std::string figure6_checkpoint;  ///< empty when no checkpoint has HybridBenchOptions::figure6
   /// Figure 6: the images at that checkpoint, full first, by scenario.
   std::vector<std::pair<WalkScenario, Image>> figure6;
-  /// kQualityDiagnosis's rows, kBudgetSweep's document; null in other modes.
-  nlohmann::json quality_diagnosis, budget_sweep;
+  std::vector<DiagnosisRow> quality_diagnosis;  ///< kQualityDiagnosis's rows
+  std::vector<BudgetSweepRow> budget_sweep;     ///< kBudgetSweep's rows
 
   /// The scenario `s`'s result, or null when the run had none.
   const HybridScenarioResult* scenario(WalkScenario s) const;

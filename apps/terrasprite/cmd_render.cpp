@@ -211,7 +211,7 @@ nlohmann::json stats_json(const RenderOpts& o, const Checked& c, const RenderSta
   nlohmann::json frames = nlohmann::json::array();
   for (const RenderFrameRecord& s : run.frames)
     frames.push_back({{"frame", s.frame},
-                      {"class", run.classes[s.cls]},
+                      {"class", frame_class_name(s.cls)},
                       {"ms", s.ms},
                       {"gpu_ms", s.gpu_ms},
                       {"triangles", s.triangles}});

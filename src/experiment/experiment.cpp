@@ -12,11 +12,11 @@ namespace terrasprite {
 namespace {
 
 template <typename Value>
-Summary summarize_frames(const std::vector<FrameResult>& frames, const std::string& cls,
+Summary summarize_frames(const std::vector<FrameResult>& frames, std::optional<FrameClass> cls,
                          Value value, bool valid_only = false) {
   std::vector<double> v;
   for (const FrameResult& f : frames)
-    if (cls.empty() || f.cls == cls)
+    if (!cls || f.cls == *cls)
       if (std::optional<double> x = value(f)) v.push_back(*x);
   return valid_only ? summarize_valid(v) : summarize(v);
 }
@@ -33,16 +33,16 @@ FrameResult result_of(int frame, const Frame& f) {
 
 }  // namespace
 
-Summary RendererRun::ms(const std::string& cls) const {
+Summary RendererRun::ms(std::optional<FrameClass> cls) const {
   return summarize_frames(frames, cls, [](const FrameResult& f) { return std::optional(f.ms); });
 }
 
-Summary RendererRun::gpu_ms(const std::string& cls) const {
+Summary RendererRun::gpu_ms(std::optional<FrameClass> cls) const {
   return summarize_frames(
       frames, cls, [](const FrameResult& f) { return std::optional(f.gpu_ms); }, true);
 }
 
-Summary RendererRun::quality(const std::string& metric, const std::string& cls) const {
+Summary RendererRun::quality(const std::string& metric, std::optional<FrameClass> cls) const {
   return summarize_frames(frames, cls, [&](const FrameResult& f) -> std::optional<double> {
     if (!f.quality) return std::nullopt;
     if (metric == "psnr") return f.quality->psnr;
@@ -57,7 +57,7 @@ Summary RendererRun::quality(const std::string& metric, const std::string& cls) 
   });
 }
 
-Summary RendererRun::counter(const std::string& key, const std::string& cls) const {
+Summary RendererRun::counter(const std::string& key, std::optional<FrameClass> cls) const {
   return summarize_frames(frames, cls, [&](const FrameResult& f) -> std::optional<double> {
     auto it = f.counters.find(key);
     if (it == f.counters.end()) return std::nullopt;
@@ -65,7 +65,7 @@ Summary RendererRun::counter(const std::string& key, const std::string& cls) con
   });
 }
 
-int RendererRun::count(const std::string& cls) const {
+int RendererRun::count(FrameClass cls) const {
   return int(std::count_if(frames.begin(), frames.end(),
                            [&](const FrameResult& f) { return f.cls == cls; }));
 }

@@ -21,10 +21,9 @@ RenderRunResult run_render(Renderer& renderer, std::span<const Camera> path,
         if (o.on_frame) o.on_frame(o.first_frame + local, f);
       },
       [&](const FrameStats& s) {
-        auto k = std::find(r.classes.begin(), r.classes.end(), s.cls);
-        if (k == r.classes.end()) k = r.classes.insert(k, s.cls);
-        r.frames.push_back({o.first_frame + s.frame, std::uint8_t(k - r.classes.begin()), s.ms,
-                            s.gpu_ms, s.triangles});
+        if (std::find(r.classes.begin(), r.classes.end(), s.cls) == r.classes.end())
+          r.classes.push_back(s.cls);
+        r.frames.push_back({o.first_frame + s.frame, s.cls, s.ms, s.gpu_ms, s.triangles});
         ms.push_back(s.ms);
         const int done = int(r.frames.size());
         if (done % o.memory_every == 0) {

@@ -45,7 +45,7 @@ void GlRenderer::begin_output() {
   gl::clear_to_sky();
 }
 
-Frame GlRenderer::make_frame(const Camera& camera, const gl::FrameTime& time, const char* cls,
+Frame GlRenderer::make_frame(const Camera& camera, const gl::FrameTime& time, FrameClass cls,
                              long long triangles) const {
   Frame f;
   const GlTarget t = output();

@@ -30,7 +30,7 @@ Frame HybridRenderer::draw(const Camera& camera) {
   Frame f = terrain_->draw(camera);
   scene_.set_objects(nullptr);
   if (objects_) objects_->feedback(f.ms);
-  f.cls = name_;
+  f.cls = FrameClass::kObjects;
   return f;
 }
 

@@ -38,7 +38,7 @@ nlohmann::json score_json(const QualityScore& q) {
 
 nlohmann::json frame_json(const LodspriteFrame& f) {
   return {{"frame", f.frame},
-          {"class", to_string(f.cls)},
+          {"class", frame_class_name(f.cls)},
           {"ms", f.ms},
           {"gpu_ms", f.gpu_ms},
           {"reference", f.reference},
@@ -252,7 +252,7 @@ nlohmann::json demo_stats_json(const LodspriteResult& r) {
   nlohmann::json frames = nlohmann::json::array();
   for (const LodspriteFrame& p : r.per_frame)
     frames.push_back({{"frame", p.frame},
-                      {"class", to_string(p.cls)},
+                      {"class", frame_class_name(p.cls)},
                       {"ms", p.ms},
                       {"error_px", p.error_px},
                       {"error_px_exact", p.error_px_exact},

@@ -393,7 +393,11 @@ Frame SpriteRenderer::draw_as(const Camera& camera, Decision d) {
   const gl::FrameTime t = timer().end();
   s.last = e;
   s.last_was_key = key;
-  return make_frame(camera, t, key ? "key" : has_keyframe() ? "sprite" : "lod", triangles);
+  return make_frame(camera, t,
+                    key              ? FrameClass::kKey
+                    : has_keyframe() ? FrameClass::kSprite
+                                     : FrameClass::kLod,
+                    triangles);
 }
 
 void SpriteRenderer::read_back(Frame& f, ReadBack what) {

@@ -278,7 +278,7 @@ void Loop::present(std::optional<RenderedFrame>& f, Clock::time_point now) {
     }
     info_.render_ms = f->frame.ms;
     info_.triangles = f->frame.triangles;
-    info_.cls = f->landed ? f->frame.cls + " (keyframe landed)" : f->frame.cls;
+    info_.cls = std::string(frame_class_name(f->frame.cls)) + (f->landed ? " (keyframe landed)" : "");
     info_.error_px = f->error_px;
     info_.keyframes = f->keyframes;
     info_.device = f->device;
@@ -325,14 +325,14 @@ void Loop::present(std::optional<RenderedFrame>& f, Clock::time_point now) {
     const double ms = seconds(swapped - last_new_swap_) * 1000;
     stats_.frame_ms.push_back(ms);
     info_.history.push_back(
-        {float(ms), f->frame.cls == "key" || f->frame.cls == "voxel" || f->landed});
+        {float(ms), f->frame.cls == FrameClass::kKey || f->frame.cls == FrameClass::kVoxel || f->landed});
     if (info_.history.size() > 240) info_.history.pop_front();
     double sum = 0;
     for (const auto& s : info_.history) sum += s.ms;
     info_.fps = sum > 0 ? 1000.0 * double(info_.history.size()) / sum : 0;
   }
   stats_.render_ms.push_back(f->frame.ms);
-  ++stats_.classes[f->frame.cls];
+  ++stats_.classes[frame_class_name(f->frame.cls)];
   stats_.keyframes_landed += f->landed;
   if (f->landed && f->keyframes) stats_.keyframe_ms.push_back(f->keyframes->last_keyframe_ms);
   if (!begun_) begin(swapped);

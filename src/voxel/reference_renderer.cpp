@@ -134,7 +134,7 @@ Frame VoxelReference::draw(const Camera& cam) {
   Frame out;
   out.color = Image(s.w, s.h);
   out.depth.assign(static_cast<std::size_t>(s.w) * s.h, Frame::kSky);
-  out.cls = "reference";
+  out.cls = FrameClass::kReference;
   out.camera = cam;
   const auto start = std::chrono::steady_clock::now();
   const VoxelTerrain::Data& d = s.terrain.data();

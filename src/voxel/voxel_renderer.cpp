@@ -128,7 +128,7 @@ Frame VoxelRenderer::draw(const Camera& camera) {
 
 void VoxelRenderer::draw_into(const Camera& camera, Frame& out) {
   out.prepare_for_overwrite(s_->w, s_->h);  // both passes write every pixel
-  out.cls = "voxel";
+  out.cls = FrameClass::kVoxel;
   out.camera = camera;
   const auto start = std::chrono::steady_clock::now();
   s_->arena.execute([&] {

@@ -71,7 +71,7 @@ const WarpedFrame& Warper::warp(const Frame& real, const Camera& target, int wid
   r.holes.resize(n);
   r.source_x.resize(options.keep_sources ? n : 0);
   r.source_y.resize(options.keep_sources ? n : 0);
-  r.frame.cls = "warp";
+  r.frame.cls = FrameClass::kWarp;
   r.frame.camera = target;
   const warp::Reference ref(real);
   const warp::Pinhole out(target, width, height);

@@ -24,7 +24,7 @@ class FakeRenderer final : public Renderer {
     log_.push_back(name_ + " draw");
     last_ = int(c.position.x) + offset_;
     Frame f;
-    f.cls = last_ % 2 ? "odd" : "even";
+    f.cls = last_ % 2 ? FrameClass::kKey : FrameClass::kSprite;
     f.ms = double(last_);
     f.width_px = 4;
     f.height_px = 4;
@@ -99,8 +99,8 @@ TEST(Experiment, DrawsReadsAndScoresInOrderAgainstTheReference) {
   // Times and classes come from the frames: a draws 1, 11, 21, 31.
   EXPECT_EQ(ra.ms().median, 16.0) << "median of 1, 11, 21, 31";
   EXPECT_EQ(ra.ms().p90, 31.0) << "nearest rank: the 4th of 4";
-  EXPECT_EQ(ra.count("odd"), 4);
-  EXPECT_EQ(r.run("b").count("even"), 2);
+  EXPECT_EQ(ra.count(FrameClass::kKey), 4);  // the odd frames
+  EXPECT_EQ(r.run("b").count(FrameClass::kSprite), 2);  // the even frames
   EXPECT_THROW(r.run("nobody"), std::out_of_range);
 }
 

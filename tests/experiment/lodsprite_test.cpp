@@ -67,7 +67,9 @@ TEST(RunLodsprite, FrameClassesAndKeyframesAgree) {
       EXPECT_LT(f.keyframe, f.frame);
     EXPECT_EQ(f.key(), f.trigger.has_value());
     EXPECT_TRUE(f.reference);
-    if (f.key()) EXPECT_DOUBLE_EQ(f.sprite.ssim, 1.0);  // the reference frame itself
+    if (f.key()) {
+      EXPECT_DOUBLE_EQ(f.sprite.ssim, 1.0);  // the reference frame itself
+    }
     EXPECT_GT(f.sprite.ssim, 0.0);
     EXPECT_LE(f.sprite.ssim, 1.0);
   }
@@ -124,7 +126,7 @@ TEST(RunLodsprite, BadOptionsNameTheOption) {
   EXPECT_THROW(parse_metric("fancy"), InputError);
   EXPECT_THROW(parse_shading("glossy"), InputError);
   EXPECT_EQ(parse_metric("contrast"), ErrorMetric::kContrast);
-  EXPECT_STREQ(to_string(FrameClass::kKey), "key");
+  EXPECT_STREQ(frame_class_name(FrameClass::kKey), "key");
 }
 
 }  // namespace

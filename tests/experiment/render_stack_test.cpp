@@ -47,7 +47,7 @@ TEST(RenderStack, VoxelAloneDrawsAtTheOutputSize) {
   const Frame f = s.renderer().render(overview(t, 40.0 / 30), ReadBack::kColor);
   EXPECT_EQ(f.color.width, 40);
   EXPECT_EQ(f.color.height, 30);
-  EXPECT_EQ(f.cls, "voxel");
+  EXPECT_EQ(f.cls, FrameClass::kVoxel);
 }
 
 TEST(RenderStack, VoxelWithAWarpDrawsRealFramesWithTheMarginAndWarpsBetween) {
@@ -66,14 +66,15 @@ TEST(RenderStack, VoxelWithAWarpDrawsRealFramesWithTheMarginAndWarpsBetween) {
   EXPECT_EQ(s.margin_y, 2);  // 0.05 x 30 = 1.5, rounded away from zero
   ASSERT_TRUE(s.warp);
   const Camera c = overview(t, 40.0 / 30);
-  std::vector<std::string> classes;
+  std::vector<FrameClass> classes;
   for (int i = 0; i < 4; ++i) {
     const Frame f = s.renderer().render(c, ReadBack::kColor);
     EXPECT_EQ(f.color.width, 40);
     EXPECT_EQ(f.color.height, 30);
     classes.push_back(f.cls);
   }
-  EXPECT_EQ(classes, (std::vector<std::string>{"voxel", "warp", "warp", "voxel"}));
+  EXPECT_EQ(classes, (std::vector<FrameClass>{FrameClass::kVoxel, FrameClass::kWarp,
+                                              FrameClass::kWarp, FrameClass::kVoxel}));
 }
 
 TEST(RenderStack, AWarpMarginOutOfRangeIsRefused) {
@@ -107,10 +108,10 @@ TEST(RenderRun, NumbersFramesFromTheRangeStartAndSamplesMemoryEveryN) {
   const RenderRunResult r = run_render(s.renderer(), path, o);
   EXPECT_EQ(handed, (std::vector<int>{3, 4, 5, 6, 7}));
   ASSERT_EQ(r.frames.size(), 5u);
-  EXPECT_EQ(r.classes, (std::vector<std::string>{"voxel", "warp"}));
+  EXPECT_EQ(r.classes, (std::vector<FrameClass>{FrameClass::kVoxel, FrameClass::kWarp}));
   for (std::size_t i = 0; i < r.frames.size(); ++i) {
     EXPECT_EQ(r.frames[i].frame, int(i) + 3);
-    EXPECT_EQ(r.frames[i].cls, i % 2);  // real, warp, real, ...
+    EXPECT_EQ(r.frames[i].cls, i % 2 ? FrameClass::kWarp : FrameClass::kVoxel);
   }
   ASSERT_EQ(r.memory.samples.size(), 3u);  // at 0, 2 and 4 frames drawn
   EXPECT_EQ(r.memory.samples[2].first, 4);

@@ -114,7 +114,7 @@ TEST(Golden, Sprite) {
     fit_clip_planes(moved, terrain().heights);
     r.render_keyframe(key);
     Frame f = r.render_sprite(moved);
-    ASSERT_EQ(f.cls, "sprite");
+    ASSERT_EQ(f.cls, FrameClass::kSprite);
     check_golden("sprite_" + std::to_string(k), f.color);
   }
 }

@@ -79,7 +79,7 @@ TEST(SceneObjects, SpriteFramesShowObjectsKeyframesHoldTerrainOnly) {
   // from the keyframe, so they match a full render of the same view.
   cam.position += glm::dvec3(15, 0, 0);
   const ts::Frame sprite = with.render_sprite(cam);
-  EXPECT_EQ(sprite.cls, "sprite");
+  EXPECT_EQ(sprite.cls, ts::FrameClass::kSprite);
   ts::MeshRenderer full(scene, 96, 96, 0);
   const ts::Frame reference = full.render(cam);
   int red_sprite = 0, red_full = 0;

@@ -73,7 +73,7 @@ TEST(Render, CheckerboardSeenStraightDownLandsOnExpectedPixels) {
   EXPECT_NEAR(f.depth[128 * 256 + 128], z, 1e-3 * z);
   EXPECT_NEAR(f.depth[5 * 256 + 250], z, 1e-3 * z);
   EXPECT_EQ(f.triangles, 2LL * 64 * 64);
-  EXPECT_EQ(f.cls, "full");
+  EXPECT_EQ(f.cls, FrameClass::kFull);
 }
 
 TEST(Render, SkyWhereNothingIsDrawn) {

@@ -172,7 +172,7 @@ TEST(AdaptiveMesh, SpriteRendererDrawsTheKeyframesMesh) {
   EXPECT_EQ(r.error(path[0]).paper_px, 0.0);
   const Frame key = r.render_keyframe(path[0]);
   const Frame same = r.render_sprite(path[0]);
-  EXPECT_EQ(same.cls, "sprite");
+  EXPECT_EQ(same.cls, FrameClass::kSprite);
   EXPECT_EQ(same.triangles, r.grid().triangle_count());
   EXPECT_GT(psnr(key.color, same.color), 30.0);
   const std::uint64_t first = r.grid().serial;

@@ -160,7 +160,7 @@ TEST(AsyncSprite, ShutsDownCleanlyMidKeyframe) {
     r.draw(path[0]);
     r.draw(path[3]);
     r.reset();
-    EXPECT_EQ(r.draw(path[1]).cls, "key");
+    EXPECT_EQ(r.draw(path[1]).cls, FrameClass::kKey);
     r.draw(path[3]);
     r.wait_for_keyframe();
     r.draw(path[3]);
@@ -179,7 +179,7 @@ TEST(AsyncSprite, FirstKeyframeFromTheWorkerDrawsPlainLodMeanwhile) {
   const std::vector<Camera> path = paper_path(t.heights, 8, 1.0);
   SpriteRenderer r(scene, 96, 96, {.async_context = &gl, .async_first_keyframe = true});
   const Frame first = r.render(path[0]);
-  EXPECT_EQ(first.cls, "lod");
+  EXPECT_EQ(first.cls, FrameClass::kLod);
   EXPECT_FALSE(r.has_keyframe());
   EXPECT_EQ(r.async_stats().requested, 1);
   MeshRenderer full(scene, 96, 96, 0);
@@ -188,7 +188,7 @@ TEST(AsyncSprite, FirstKeyframeFromTheWorkerDrawsPlainLodMeanwhile) {
   EXPECT_LE(coverage(first.color).black, want.black + 0.01);
   r.wait_for_keyframe();
   const Frame next = r.render(path[1]);
-  EXPECT_EQ(next.cls, "sprite");
+  EXPECT_EQ(next.cls, FrameClass::kSprite);
   EXPECT_TRUE(r.has_keyframe());
   EXPECT_TRUE(r.last_landed());
   EXPECT_EQ(r.async_stats().used, 1);

@@ -31,13 +31,13 @@ Flight fly(SpriteRenderer& r, const std::vector<Camera>& path, std::size_t budge
   const SpriteOptions& o = r.options();
   for (const Camera& c : path) {
     const Frame frame = r.draw(c);
-    f.keyframes += frame.cls == "key";
+    f.keyframes += frame.cls == FrameClass::kKey;
     if (budget > 0) {
       EXPECT_LE(r.keyframe_bytes_held(), budget);
     }
     if (r.last_cache_hit()) {
       ++f.hits;
-      EXPECT_EQ(frame.cls, "sprite");
+      EXPECT_EQ(frame.cls, FrameClass::kSprite);
       const SpriteError e = r.error(c);  // against the reused keyframe
       EXPECT_LE(e.value(o.metric), o.cache_accept * o.threshold_px);
       EXPECT_FALSE(r.trigger_for(e).has_value());

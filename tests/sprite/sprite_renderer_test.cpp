@@ -57,8 +57,8 @@ TEST(SpriteRenderer, SpriteFromTheKeyframeCameraMatchesTheKeyframe) {
     Camera c = tilted_view(t.heights, pitch);
     Frame key = r.render_keyframe(c);
     Frame sprite = r.render_sprite(c);
-    EXPECT_EQ(key.cls, "key");
-    EXPECT_EQ(sprite.cls, "sprite");
+    EXPECT_EQ(key.cls, FrameClass::kKey);
+    EXPECT_EQ(sprite.cls, FrameClass::kSprite);
     EXPECT_GT(psnr(key.color, sprite.color), 40.0) << pitch;
     EXPECT_LT(sprite.triangles, key.triangles);
   }
@@ -82,7 +82,7 @@ TEST(SpriteRenderer, KeyframesFramedWiderAndDenserShowTheSameView) {
       rs(scene, 128, 128, dense);
   const Camera c = tilted_view(t.heights, -50.0);
   const Frame k0 = r0.render_keyframe(c), km = rm.render_keyframe(c), ks = rs.render_keyframe(c);
-  EXPECT_EQ(km.cls, "key");
+  EXPECT_EQ(km.cls, FrameClass::kKey);
   EXPECT_GT(psnr(k0.color, km.color), 45.0);  // the same pixels, up to the projection's rounding
   EXPECT_GT(psnr(k0.color, ks.color), 28.0);  // resampled from 1.5x as many pixels
   EXPECT_EQ(rm.keyframe_camera().position, c.position);
@@ -229,14 +229,15 @@ TEST(SpriteRenderer, KeyframeTriggerFiresWhenTheThresholdIsExceededAndNotBefore)
       const SpriteError before = r.error(path[i]);
       Frame f = r.draw(path[i]);
       const bool expect_key = i == 0 || before.value(m) > o.threshold_px;
-      EXPECT_EQ(f.cls, expect_key ? "key" : "sprite") << i << " error " << before.value(m);
+      EXPECT_EQ(f.cls, expect_key ? FrameClass::kKey : FrameClass::kSprite)
+          << i << " error " << before.value(m);
       if (i > 0) {
         EXPECT_DOUBLE_EQ(r.last_error().value(m), before.value(m));
       }
-      if (f.cls == "sprite") {
+      if (f.cls == FrameClass::kSprite) {
         EXPECT_LE(r.last_error().value(m), o.threshold_px);
       }
-      keys += f.cls == "key";
+      keys += f.cls == FrameClass::kKey;
     }
     EXPECT_GT(keys, 1);
     EXPECT_LT(keys, 120);

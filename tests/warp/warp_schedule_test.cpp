@@ -61,7 +61,7 @@ TEST(WarpSchedule, VoxelDrawIntoAReusedFrameMatchesDraw) {
     r.draw_into(fx.camera(i, W, H), reused);
     EXPECT_EQ(reused.color.rgba, fresh.color.rgba) << i;
     EXPECT_TRUE(same_bits(reused.depth, fresh.depth)) << i;
-    EXPECT_EQ(reused.cls, "voxel");
+    EXPECT_EQ(reused.cls, FrameClass::kVoxel);
     EXPECT_EQ(reused.width(), W);
   }
 }
@@ -87,7 +87,7 @@ TEST(WarpSchedule, ReusedFramesMatchFreshOnesAndRealFramesAreTheCrop) {
       EXPECT_EQ(reused.color.rgba, fresh.color.rgba) << what;
       EXPECT_TRUE(same_bits(reused.depth, fresh.depth)) << what;
       EXPECT_EQ(reused.cls, fresh.cls) << what;
-      EXPECT_EQ(reused.cls, i % 3 == 0 ? "voxel" : "warp") << what;
+      EXPECT_EQ(reused.cls, i % 3 == 0 ? FrameClass::kVoxel : FrameClass::kWarp) << what;
       if (i % 3 != 0) continue;
       // A real frame: the margin render warped back to its own camera.
       const Frame real = big_a.render(with_margin(c, W, H, M, M));

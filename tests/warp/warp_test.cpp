@@ -123,7 +123,7 @@ TEST(Warp, StaticCameraReturnsTheRealFrame) {
     WarpOptions o;
     o.method = m;
     const WarpedFrame wf = warp_frame(real, c, W, H, o);
-    EXPECT_EQ(wf.frame.cls, "warp");
+    EXPECT_EQ(wf.frame.cls, FrameClass::kWarp);
     EXPECT_EQ(wf.hole_fraction, 0.0) << to_string(m);
     // The central W x H pixels of the real frame, bit for bit.
     int differ = 0;
@@ -386,7 +386,7 @@ TEST(Warp, WarperReuseMatchesAFreshWarp) {
     EXPECT_TRUE(same_bits(reused.frame.depth, fresh.frame.depth)) << what;
     EXPECT_EQ(reused.holes, fresh.holes) << what;
     EXPECT_EQ(reused.hole_fraction, fresh.hole_fraction) << what;
-    EXPECT_EQ(reused.frame.cls, "warp");
+    EXPECT_EQ(reused.frame.cls, FrameClass::kWarp);
     EXPECT_TRUE(same_bits(reused.source_x, fresh.source_x)) << what;
     EXPECT_TRUE(same_bits(reused.source_y, fresh.source_y)) << what;
   }

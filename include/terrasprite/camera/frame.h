@@ -23,6 +23,14 @@ constexpr bool has(ReadBack set, ReadBack flag) {
   return (unsigned(set) & unsigned(flag)) != 0;
 }
 
+/// What drew a frame: the renderer, and for LOD-sprite whether it is a
+/// keyframe (kKey), a sprite (kSprite) or plain LOD before the first keyframe
+/// (kLod). kReference: the voxel caster's supersampled reference; kObjects:
+/// a hybrid-objects frame.
+enum class FrameClass : std::uint8_t { kFull, kLod, kKey, kSprite, kVoxel, kWarp, kReference, kObjects };
+/// "full", "lod", "key", "sprite", "voxel", "warp", "reference", "objects".
+const char* frame_class_name(FrameClass c);
+
 /// A rendered frame: what it cost, the camera it was drawn with and, once read
 /// back, its colour and linear depth. Rows top to bottom. A renderer's draw()
 /// fills everything but colour and depth (a CPU renderer fills those too);
@@ -35,7 +43,7 @@ struct Frame {
   double gpu_ms = -1.0;             ///< GL timer-query time, or -1 when unavailable
   long long triangles = 0;          ///< triangles submitted (0 for non-raster renderers)
   int width_px = 0, height_px = 0;  ///< the drawn image's size, also before read-back
-  std::string cls;                  ///< frame class: full, lod, key, sprite, voxel, warp
+  FrameClass cls = FrameClass::kFull;
   /// The camera the frame was rendered with (its view() and projection(),
   /// near/far included), so a later stage (warp, quality) can reproject it.
   Camera camera;

@@ -60,7 +60,7 @@ struct QualityScore {
 /// One renderer's figures for one frame.
 struct FrameResult {
   int frame = 0;
-  std::string cls;     ///< the renderer's frame class: full, lod, key, sprite, voxel, warp, ...
+  FrameClass cls = FrameClass::kFull;
   double ms = 0;       ///< the draw's time, pipeline drained
   double gpu_ms = -1;  ///< GL timer query, -1 = no result
   long long triangles = 0;
@@ -77,15 +77,15 @@ struct RendererRun {
   std::vector<FrameResult> frames;
 
   /// Draw time of every frame (or of class `cls` only).
-  Summary ms(const std::string& cls = "") const;
+  Summary ms(std::optional<FrameClass> cls = std::nullopt) const;
   /// GL timer times, "no result" (-1) skipped.
-  Summary gpu_ms(const std::string& cls = "") const;
+  Summary gpu_ms(std::optional<FrameClass> cls = std::nullopt) const;
   /// A quality figure ("psnr", "ssim", "flip", or a key of QualityScore::figures)
   /// over the scored frames (of class `cls`); non-finite values are skipped.
-  Summary quality(const std::string& metric, const std::string& cls = "") const;
+  Summary quality(const std::string& metric, std::optional<FrameClass> cls = std::nullopt) const;
   /// A counter over the frames that have it.
-  Summary counter(const std::string& key, const std::string& cls = "") const;
-  int count(const std::string& cls) const;
+  Summary counter(const std::string& key, std::optional<FrameClass> cls = std::nullopt) const;
+  int count(FrameClass cls) const;
 };
 
 struct ExperimentResult {

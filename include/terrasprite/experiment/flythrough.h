@@ -16,7 +16,7 @@ namespace terrasprite {
 /// What a run keeps of each frame.
 struct FrameStats {
   int frame = 0;
-  std::string cls;
+  FrameClass cls = FrameClass::kFull;
   double ms = 0;
   double gpu_ms = -1;
   long long triangles = 0;

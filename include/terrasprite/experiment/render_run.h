@@ -28,13 +28,13 @@ struct RenderRunOptions {
 
 struct RenderFrameRecord {
   int frame = 0;         ///< the run's index
-  std::uint8_t cls = 0;  ///< index into RenderRunResult::classes
+  FrameClass cls = FrameClass::kFull;
   double ms = 0, gpu_ms = -1;
   long long triangles = 0;
 };
 
 struct RenderRunResult {
-  std::vector<std::string> classes;  ///< frame classes in the order first drawn
+  std::vector<FrameClass> classes;  ///< frame classes in the order first drawn
   std::vector<RenderFrameRecord> frames;
   double median_ms = 0;
   /// (frames drawn, RSS MiB) at the start and every memory_every frames,

@@ -51,7 +51,7 @@ class GlRenderer : public Renderer {
   /// to the sky colour and far depth.
   void begin_output();
   /// A frame of this renderer's size drawn with `camera`, timed `time`.
-  Frame make_frame(const Camera& camera, const gl::FrameTime& time, const char* cls,
+  Frame make_frame(const Camera& camera, const gl::FrameTime& time, FrameClass cls,
                    long long triangles) const;
   gl::RenderTarget& own_target();
   gl::FrameTimer& timer();

@@ -4,10 +4,6 @@
 
 namespace terrasprite::lodsprite {
 
-const char* to_string(FrameClass c) {
-  return c == FrameClass::kKey ? "key" : "sprite";
-}
-
 const char* to_string(SweepMethod m) {
   return m == SweepMethod::kMainRun ? "main run" : "separate timed pass";
 }

@@ -19,12 +19,6 @@
 
 namespace terrasprite::lodsprite {
 
-/// A displayed frame's class: a keyframe (the full-resolution mesh) or a
-/// sprite frame (the coarse mesh textured from the keyframe).
-enum class FrameClass { kKey, kSprite };
-/// "key", "sprite".
-const char* to_string(FrameClass c);
-
 /// Where a sweep point's sprite figures come from.
 enum class SweepMethod {
   kMainRun,       ///< the main run's, at the main setting

@@ -68,6 +68,8 @@ const Row kRows[] = {
     {"render " SMALL "--frames 1 --out o --size 64x-4294967232", "--size 64x-4294967232"},
     {"render " SMALL "--frames 1 --out o --size 16x", "--size 16x"},
     {"render " SMALL "--frames 0 --size 16x16 --out o", "--frames 0"},
+    {"bench render " SMALL "--frames 2147483647 --size 16x16",
+     "--frames: Value 2147483647 not in range"},
     {"render " SMALL "--frames 4294967297 --size 16x16 --out o", "--frames"},
     {"info --erosion -1", "--erosion -1"},
     {"info --erosion 1000000", "--erosion 1000000"},

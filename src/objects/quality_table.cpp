@@ -36,8 +36,9 @@ void check(const TableOptions& o) {
     if (s < kMinTableSizePx || s > kMaxTableSizePx)
       throw InputError(
           fmt::format("--sizes-px: {} is outside {}..{}", s, kMinTableSizePx, kMaxTableSizePx));
-  if (!(o.angle_step_deg > 0 && o.angle_step_deg <= 180))
-    throw InputError(fmt::format("--angle-step: {} is outside (0, 180]", o.angle_step_deg));
+  if (!(o.angle_step_deg >= kMinTableAngleStepDeg && o.angle_step_deg <= 180))
+    throw InputError(fmt::format("--angle-step: {} is outside {}..180 degrees", o.angle_step_deg,
+                                 kMinTableAngleStepDeg));
   check_headings(o.headings_deg, "table headings");
 }
 

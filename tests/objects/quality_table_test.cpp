@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <span>
@@ -176,6 +177,12 @@ TEST(QualityTable, SizesFromFourPixelsAndNoneOutsideTheRange) {
     EXPECT_THROW(ts::measure_quality_table(gl, o), ts::InputError) << bad;
   }
   o.sizes_px = {ts::kMinTableSizePx};
+  // A view step under a degree would draw millions of views: refused, as is NaN.
+  for (double bad : {0.001, ts::kMinTableAngleStepDeg / 2, 180.5, std::nan("")}) {
+    o.angle_step_deg = bad;
+    EXPECT_THROW(ts::measure_quality_table(gl, o), ts::InputError) << bad;
+  }
+  o.angle_step_deg = 90;
   const ts::QualityTable t = ts::measure_quality_table(gl, o);
   ASSERT_FALSE(t.representations.empty());
   ASSERT_EQ(t.representations[0].samples.size(), 5u);

@@ -17,6 +17,10 @@ namespace terrasprite {
 /// pixels (the walkthrough's far instances: a table whose smallest size is
 /// 16 px predicts them from the 16 px samples).
 constexpr int kMinTableSizePx = 4, kMaxTableSizePx = 2048;
+/// The finest view step a table samples, degrees: at 1 degree a table
+/// already draws 360 x 90 views per size and heading; a finer step only
+/// multiplies the time and the memory.
+constexpr double kMinTableAngleStepDeg = 1.0;
 
 struct TableOptions {
   std::vector<ObjectKind> kinds{ObjectKind::kMesh, ObjectKind::kRelief, ObjectKind::kOctahedral};
@@ -24,7 +28,7 @@ struct TableOptions {
   std::vector<int> sizes_px{400, 200, 100, 50, 25};         ///< on-screen bounding-sphere diameter
   /// phi in [0, 360), theta in [0, 90] (or [0, 180]); straight above (theta 0)
   /// and below (180) are sampled once, at phi 0.
-  double angle_step_deg = 30.0;
+  double angle_step_deg = 30.0;  ///< kMinTableAngleStepDeg..180
   bool full_sphere = false;  ///< theta up to 180 (from below too)
   /// Compass headings, degrees in [0, 360), the model is drawn at. The sun
   /// is fixed in the world and an instance's heading turns its normals, so

@@ -5,10 +5,12 @@
 #include <unistd.h>
 #include <zstd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <memory>
 
 #include "terrasprite/common/cache_dir.h"
 #include "terrasprite/common/elapsed.h"
@@ -22,6 +24,32 @@ namespace {
 constexpr std::uint32_t kFormatVersion = 1;
 constexpr char kMagic[8] = {'T', 'S', 'R', 'E', 'P', 'C', '0', '1'};
 constexpr std::size_t kHeader = 8 + 4 + 8;  // magic, version, payload size; then a zstd frame
+
+/// Decompresses the one zstd frame `in`, which claims `size` bytes, into
+/// `out`, growing it as data arrives: a damaged size field claiming
+/// terabytes allocates no more than the frame yields. False when the frame
+/// is corrupt (its checksum included), holds another size or has bytes after it.
+bool decompress_frame(std::string_view in, std::uint64_t size, std::string& out) {
+  constexpr std::uint64_t kFirstChunk = 1 << 20;
+  const std::unique_ptr<ZSTD_DCtx, std::size_t (*)(ZSTD_DCtx*)> d(ZSTD_createDCtx(),
+                                                                  ZSTD_freeDCtx);
+  ZSTD_inBuffer src{in.data(), in.size(), 0};
+  out.clear();
+  std::size_t done = 0;
+  for (;;) {
+    if (done == out.size() && out.size() < size)
+      out.resize(std::size_t(std::min<std::uint64_t>(
+          size, std::max<std::uint64_t>(kFirstChunk, 2 * std::uint64_t(out.size())))));
+    ZSTD_outBuffer dst{out.data(), out.size(), done};
+    const std::size_t read_before = src.pos;
+    const std::size_t ret = ZSTD_decompressStream(d.get(), &dst, &src);
+    if (ZSTD_isError(ret)) return false;
+    const bool progress = dst.pos != done || src.pos != read_before;
+    done = dst.pos;
+    if (ret == 0) return done == size && src.pos == src.size;
+    if (!progress) return false;  // input used up, or more output than claimed
+  }
+}
 
 // Little helpers for the chain's flat layout: a count, then the raw array.
 template <class T>
@@ -153,17 +181,16 @@ std::optional<std::string> RepresentationCache::read(
     problem = "not a terrasprite cache entry";
   } else if (version != kFormatVersion) {
     problem = "another format version";
+  } else if (size >= ZSTD_CONTENTSIZE_ERROR) {
+    problem = "no payload size";
   } else if (ZSTD_getFrameContentSize(r.in.data(), r.in.size()) != size ||
              ZSTD_findFrameCompressedSize(r.in.data(), r.in.size()) != r.in.size()) {
     problem = "truncated";
-  } else {
-    payload.resize(size);
+  } else if (!decompress_frame(r.in, size, payload)) {
     // The frame carries a checksum of its content: corruption fails here.
-    const std::size_t n = ZSTD_decompress(payload.data(), size, r.in.data(), r.in.size());
-    if (ZSTD_isError(n) || n != size)
-      problem = "checksum mismatch or corrupt data";
-    else if (check)
-      problem = check(payload);
+    problem = "checksum mismatch or corrupt data";
+  } else if (check) {
+    problem = check(payload);
   }
   if (problem) {
     fmt::print(stderr, "warning: ignoring the cache entry {}: {}; building it again\n", f.string(),

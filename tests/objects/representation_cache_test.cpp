@@ -6,12 +6,16 @@
 #include "terrasprite/objects/representation_cache.h"
 
 #include <gtest/gtest.h>
+#include <zstd.h>
 
 #include <filesystem>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 
 #include "gl/render_target.h"
 #include "object_test_util.h"
+#include "test_util.h"
 #include "terrasprite/gl/gl_context.h"
 #include "terrasprite/objects/object_renderer.h"
 
@@ -121,6 +125,51 @@ TEST_F(RepresentationCaching, DamagedEntryIsRebuiltAndReplaced) {
   EXPECT_EQ(draw(flipped, relief).rgba, built.rgba);
   EXPECT_NE(testing::internal::GetCapturedStderr().find("checksum"), std::string::npos);
   EXPECT_EQ(flipped.stats().rejected, 1);
+}
+
+// An entry whose size field is zstd's "unknown" (2^64 - 1) over a frame that
+// records no size, and one whose size field claims a terabyte: each is
+// refused with a warning and reads as absent (to be built again), without
+// allocating what the header claims.
+TEST(RepresentationCacheEntry, AnImpossibleSizeIsRefusedNotAllocated) {
+  tstest::TempDir dir;
+  const ts::RepresentationCache cache(dir.path, "key", "model");
+  const std::string payload(1000, 'x');
+  cache.write("what", payload);
+  ASSERT_EQ(cache.read("what"), payload);
+  std::string bytes;
+  {
+    std::ifstream in(cache.file("what"), std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  ASSERT_GT(bytes.size(), 20u);
+  const std::string header = bytes.substr(0, 12);  // magic and version
+
+  std::string frame(ZSTD_compressBound(payload.size()), '\0');
+  ZSTD_CCtx* c = ZSTD_createCCtx();
+  ZSTD_CCtx_setParameter(c, ZSTD_c_contentSizeFlag, 0);
+  ZSTD_CCtx_setParameter(c, ZSTD_c_checksumFlag, 1);
+  ZSTD_outBuffer out{frame.data(), frame.size(), 0};
+  ZSTD_inBuffer in{payload.data(), payload.size(), 0};
+  ASSERT_EQ(ZSTD_compressStream2(c, &out, &in, ZSTD_e_end), 0u);
+  ZSTD_freeCCtx(c);
+  frame.resize(out.pos);
+
+  const auto entry = [&](std::uint64_t size, const std::string& body) {
+    std::string e = header;
+    e.append(reinterpret_cast<const char*>(&size), sizeof size);
+    std::ofstream(cache.file("what"), std::ios::binary | std::ios::trunc) << e + body;
+  };
+  entry(ZSTD_CONTENTSIZE_UNKNOWN, frame);
+  testing::internal::CaptureStderr();
+  EXPECT_FALSE(cache.read("what"));
+  EXPECT_NE(testing::internal::GetCapturedStderr().find("no payload size"), std::string::npos);
+
+  entry(std::uint64_t(1) << 40, bytes.substr(20));  // the valid frame, a terabyte claimed
+  testing::internal::CaptureStderr();
+  EXPECT_FALSE(cache.read("what"));
+  EXPECT_NE(testing::internal::GetCapturedStderr().find("truncated"), std::string::npos);
+  EXPECT_EQ(cache.stats().rejected, 2);
 }
 
 TEST_F(RepresentationCaching, DisabledCacheWritesNothing) {

@@ -12,6 +12,7 @@
 #include <random>
 
 #include "terrasprite/common/error.h"
+#include "terrasprite/common/input_file.h"
 #include "terrasprite/terrain/grid_mesh.h"
 
 namespace terrasprite {
@@ -193,9 +194,7 @@ ObjectLayout parse_object_layout(const std::string& text, const std::string& nam
 }
 
 ObjectLayout load_object_layout(const std::string& path, const Heightfield& heights) {
-  std::ifstream in(path);
-  if (!in) fail(path, "cannot read the scene file");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string text = read_input_text(path, "scene file");
   return parse_object_layout(text, path, std::filesystem::path(path).parent_path().string(),
                              heights);
 }

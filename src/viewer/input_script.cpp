@@ -4,11 +4,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "terrasprite/common/error.h"
+#include "terrasprite/common/input_file.h"
 #include "viewer/input_event.h"
 
 namespace terrasprite::viewer {
@@ -94,10 +93,7 @@ InputEvent parse_event(const nlohmann::json& e, const std::string& where) {
 }  // namespace
 
 std::vector<ScriptEvent> load_input_script(const std::string& file) {
-  namespace fs = std::filesystem;
-  if (!fs::exists(file)) throw InputError(fmt::format("{}: no such script file", file));
-  std::ifstream in(file);
-  nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  nlohmann::json j = nlohmann::json::parse(read_input_text(file, "script file"), nullptr, false);
   if (j.is_discarded() || !j.is_object())
     throw InputError(fmt::format("{}: not a JSON object (expected {{\"events\": [...]}})", file));
   if (!j.contains("events") || !j["events"].is_array())

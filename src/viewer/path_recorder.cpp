@@ -9,6 +9,7 @@
 
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/common/error.h"
+#include "terrasprite/common/input_file.h"
 
 namespace terrasprite::viewer {
 
@@ -43,8 +44,7 @@ void PathRecorder::write(const std::string& file) const {
 
 PathPlayer::PathPlayer(const std::string& file, const Heightfield& heights, double aspect) {
   // Two passes: the file's time span, then samples at 100 per second of it.
-  std::ifstream in(file);
-  nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  nlohmann::json j = nlohmann::json::parse(read_input_text(file, "path file"), nullptr, false);
   double t0 = 0, t1 = 0;
   if (!j.is_discarded() && j.is_object() && j.contains("keyframes") && j["keyframes"].is_array() &&
       !j["keyframes"].empty()) {

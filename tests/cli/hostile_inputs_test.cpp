@@ -70,6 +70,9 @@ const Row kRows[] = {
     {"render " SMALL "--frames 0 --size 16x16 --out o", "--frames 0"},
     {"bench render " SMALL "--frames 2147483647 --size 16x16",
      "--frames: Value 2147483647 not in range"},
+    // Input files that are directories.
+    {"view --script mydata", "mydata: is a directory, not a script file"},
+    {"objects scene --scene mydata", "mydata: is a directory, not a scene file"},
     {"render " SMALL "--frames 4294967297 --size 16x16 --out o", "--frames"},
     {"info --erosion -1", "--erosion -1"},
     {"info --erosion 1000000", "--erosion 1000000"},

@@ -1,0 +1,14 @@
+// SPDX-License-Identifier: MIT
+// Reading a text file the user named (a scene, a script, a recorded path).
+#pragma once
+#include <string>
+#include <string_view>
+
+namespace terrasprite {
+
+/// The whole of `path`, a `what` the user named (e.g. "scene file"). Throws
+/// InputError naming `path` when it does not exist, is a directory or
+/// another non-regular file, or cannot be read.
+std::string read_input_text(const std::string& path, std::string_view what);
+
+}  // namespace terrasprite

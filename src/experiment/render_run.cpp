@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "terrasprite/experiment/render_run.h"
 
-#include <algorithm>
-
 #include "terrasprite/common/stats.h"
 #include "terrasprite/experiment/flythrough.h"
 
@@ -21,8 +19,6 @@ RenderRunResult run_render(Renderer& renderer, std::span<const Camera> path,
         if (o.on_frame) o.on_frame(o.first_frame + local, f);
       },
       [&](const FrameStats& s) {
-        if (std::find(r.classes.begin(), r.classes.end(), s.cls) == r.classes.end())
-          r.classes.push_back(s.cls);
         r.frames.push_back({o.first_frame + s.frame, s.cls, s.ms, s.gpu_ms, s.triangles});
         ms.push_back(s.ms);
         const int done = int(r.frames.size());

@@ -34,7 +34,6 @@ struct RenderFrameRecord {
 };
 
 struct RenderRunResult {
-  std::vector<FrameClass> classes;  ///< frame classes in the order first drawn
   std::vector<RenderFrameRecord> frames;
   double median_ms = 0;
   /// (frames drawn, RSS MiB) at the start and every memory_every frames,

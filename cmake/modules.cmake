@@ -6,20 +6,18 @@
 set(TS_MODULES "")
 
 # One precompiled header of the standard and third-party headers most
-# sources include, built once and reused by every module, the CLI and the
-# tests (ts_pch_reuse): with a module compiled as one unity file, parsing
-# them is still a fifth of its time, and a header built per target would
-# cost as much as it saves. Only headers that need no link dependency of
-# their own; sources with their own flags (ts_fast_sqrt, ts_no_fp_traps)
-# compile without it, as GCC refuses a header built under other flags.
+# sources include, built once and reused by every module: with a module
+# compiled as one unity file, parsing them is still a fifth of its time, and
+# a header built per target would cost as much as it saves. Only headers
+# that need no link dependency of their own. GCC refuses a header built
+# under other flags, so sources with their own (ts_fast_sqrt,
+# ts_no_fp_traps) and the executables (-fPIE, the header is -fPIC) compile
+# without it.
 add_library(ts_pch OBJECT ${PROJECT_SOURCE_DIR}/cmake/pch.cpp)
 target_link_libraries(ts_pch PRIVATE fmt::fmt nlohmann_json::nlohmann_json TBB::tbb glm::glm)
 target_precompile_headers(ts_pch PRIVATE <algorithm> <cmath> <functional> <map> <memory>
   <optional> <string> <vector> <fmt/format.h> <nlohmann/json.hpp> <tbb/parallel_for.h>
   <glm/glm.hpp>)
-function(ts_pch_reuse target)
-  target_precompile_headers(${target} REUSE_FROM ts_pch)
-endfunction()
 set(TS_MODULE_DIRS "")
 function(ts_module name)
   cmake_parse_arguments(M "" "" "DIRS;PUBLIC;PRIVATE" ${ARGN})
@@ -37,7 +35,7 @@ function(ts_module name)
     PRIVATE ${PROJECT_SOURCE_DIR}/src)
   target_compile_options(${t} PRIVATE ${TS_WARNINGS})
   ts_unity(${t} 0)
-  ts_pch_reuse(${t})
+  target_precompile_headers(${t} REUSE_FROM ts_pch)
   target_link_libraries(${t} PUBLIC ${M_PUBLIC} PRIVATE ${M_PRIVATE})
   set(TS_MODULES ${TS_MODULES} ${t} PARENT_SCOPE)
   set(TS_MODULE_DIRS ${TS_MODULE_DIRS} ${M_DIRS} PARENT_SCOPE)

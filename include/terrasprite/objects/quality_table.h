@@ -18,7 +18,7 @@ namespace terrasprite {
 /// 16 px predicts them from the 16 px samples).
 constexpr int kMinTableSizePx = 4, kMaxTableSizePx = 2048;
 /// The finest view step a table samples, degrees: at 1 degree a table
-/// already draws 360 x 90 views per size and heading; a finer step only
+/// already draws about 360 x 90 views per size and heading; a finer step only
 /// multiplies the time and the memory.
 constexpr double kMinTableAngleStepDeg = 1.0;
 

@@ -109,6 +109,21 @@ void check_lod_quads(int quads, const Heightfield& h, const char* option) {
                                  option, quads, most, h.width, h.height));
 }
 
+void require_finite_numbers(CLI::App& app) {
+  const CLI::Validator finite(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end != text.c_str() && !std::isfinite(v)) return text + " is not a finite number";
+        return {};
+      },
+      "", "finite");
+  for (CLI::Option* opt : app.get_options())
+    if (opt->get_type_name().rfind("FLOAT", 0) == 0) opt->check(finite);
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    require_finite_numbers(*sub);
+}
+
 std::vector<double> parse_list(const std::string& text, const char* option) {
   std::vector<double> out;
   std::stringstream ss(text);
@@ -127,7 +142,7 @@ std::vector<double> parse_list(const std::string& text, const char* option) {
 std::vector<int> int_list(const std::string& text, const char* option) {
   std::vector<int> out;
   for (double v : parse_list(text, option)) {
-    if (v != std::floor(v) || v <= 0)
+    if (v != std::floor(v) || v <= 0 || v > std::numeric_limits<int>::max())
       throw InputError(fmt::format("{}: {} is not a positive whole number", option, v));
     out.push_back(int(v));
   }

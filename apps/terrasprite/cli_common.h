@@ -27,6 +27,12 @@ void add_terrain_options(CLI::App& cmd, TerrainOptions& o);
 /// Loads the terrain, printing loader warnings on stderr (one line each).
 Terrain load_terrain_verbose(const TerrainOptions& o);
 
+/// Every floating-point option of `app` and its sub-commands (at any depth)
+/// refuses NaN and infinities ("--tolerance: nan is not a finite number"):
+/// CLI11 parses them as numbers and its Range checks let NaN through. Call
+/// once, after every option is added.
+void require_finite_numbers(CLI::App& app);
+
 /// "WxH" -> {w, h}; throws InputError naming `option` for a zero, negative,
 /// absurd (> 16384) or malformed size.
 std::pair<int, int> parse_size(const std::string& text, const char* option);

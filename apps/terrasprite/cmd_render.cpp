@@ -77,14 +77,15 @@ nlohmann::json memory_json(const RenderRunResult& r, int every, bool trim) {
 /// "A:B" -> [A, B) within [0, frames]; empty text: the whole run.
 std::pair<int, int> parse_frame_range(const std::string& text, int frames) {
   if (text.empty()) return {0, frames};
-  int a = 0, b = 0;
+  long long a = 0, b = 0;
   char colon = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &a, &colon, &b, &extra) != 3 || colon != ':')
+  if (std::sscanf(text.c_str(), "%lld%c%lld%c", &a, &colon, &b, &extra) != 3 || colon != ':')
     throw InputError(fmt::format("--frame-range {}: expected A:B (frames A to B-1)", text));
+  // Compared as 64-bit numbers, so a value past int's range is refused, never wrapped.
   if (a < 0 || b <= a || b > frames)
     throw InputError(
         fmt::format("--frame-range {}: need 0 <= A < B <= --frames ({})", text, frames));
-  return {a, b};
+  return {int(a), int(b)};
 }
 
 /// Refuses to replace a file the user did not ask us to replace (a video is

@@ -56,6 +56,7 @@ int main(int argc, char** argv) {
 #ifdef TS_HAVE_VIEWER
   terrasprite::cli::add_view(app, policy);
 #endif
+  terrasprite::cli::require_finite_numbers(app);
   int rc = 0;
   std::string error;
   try {

@@ -11,7 +11,8 @@
 
 namespace terrasprite {
 
-std::string read_input_text(const std::string& path, std::string_view what) {
+std::string read_input_text(const std::string& path, std::string_view what,
+                            std::uintmax_t max_bytes) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
@@ -19,6 +20,10 @@ std::string read_input_text(const std::string& path, std::string_view what) {
   if (fs::is_directory(st)) throw InputError(fmt::format("{}: is a directory, not a {}", path, what));
   if (!fs::is_regular_file(st))
     throw InputError(fmt::format("{}: is not a regular file (a {} is expected)", path, what));
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (!ec && size > max_bytes)
+    throw InputError(fmt::format("{}: {} bytes, more than a {} may hold ({} MB)", path, size, what,
+                                 max_bytes >> 20));
   std::ifstream in(path, std::ios::binary);
   std::string text;
   if (in) text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());

@@ -90,7 +90,7 @@ const Row kRows[] = {
      "--terrain-sizes 8194: sizes must be whole, 2..8193"},
     // Heights that are not finite after scaling, degenerate spacing.
     {"info --dem small.asc --z-scale 1e300", "after scale, offset and --z-scale is not a finite"},
-    {"info --dem small.asc --z-scale nan", "--z-scale nan"},
+    {"info --dem small.asc --z-scale nan", "--z-scale: nan"},
     {"info --dem small.asc --spacing 1e-300", "--spacing 1e-300"},
     {"info --dem tinycell.asc", "sample spacing"},
     {"info --dem float64.tif", "float64.tif: height"},
@@ -107,6 +107,13 @@ const Row kRows[] = {
     {"info " SMALL "--texture junk.tif", "junk.tif: not a readable image"},
     {"compare img.png nosuch.png", "nosuch.png: no such file"},
     {"compare img.png small.asc --ppd 0", "--ppd 0"},
+    // Floating options are finite; whole numbers are never wrapped.
+    {"bench replay-controller . --tolerance nan", "--tolerance: nan is not a finite number"},
+    {"bench hybrid --p95-aim nan", "--p95-aim: nan is not a finite number"},
+    {"bench hybrid --cull-px nan", "--cull-px: nan is not a finite number"},
+    {RENDER "--out o --frame-range 4294967297:4294967298", "--frame-range 4294967297:4294967298"},
+    {"bench voxel " SMALL "--frames 1 --size 16x16 --terrain-sizes 4294967297 --out o",
+     "--terrain-sizes"},
     // Usage.
     {"render --no-such-option", "--no-such-option"},
     {"info --nodata abc", "--nodata"},

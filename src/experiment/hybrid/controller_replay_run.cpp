@@ -7,12 +7,12 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "terrasprite/common/error.h"
+#include "terrasprite/common/input_file.h"
 #include "terrasprite/common/stats.h"
 
 namespace terrasprite {
@@ -51,6 +51,23 @@ std::vector<double> frame_row(const std::string& line, const std::string& file, 
   return v;
 }
 
+/// The frame of a row. A drawn frame's time is a finite positive number; its
+/// prediction and budget are NaN on frames drawn without a selection, and
+/// finite and non-negative otherwise.
+RecordedFrame recorded_frame(const std::vector<double>& v,
+                             const std::map<std::string, std::size_t>& column,
+                             const std::string& file, int row) {
+  const RecordedFrame f{v[column.at("ms")], v[column.at("predicted_ms")], v[column.at("budget_ms")]};
+  if (!std::isfinite(f.ms) || f.ms <= 0)
+    throw InputError(fmt::format("{}: line {}: ms {}: a frame time must be finite and positive",
+                                 file, row, f.ms));
+  for (const auto& [name, x] : {std::pair{"predicted_ms", f.predicted_ms}, {"budget_ms", f.budget_ms}})
+    if (!std::isnan(x) && !(std::isfinite(x) && x >= 0))
+      throw InputError(fmt::format("{}: line {}: {} {}: must be finite and non-negative, or NaN",
+                                   file, row, name, x));
+  return f;
+}
+
 /// Fraction of `v` at or under 1.1 (a p95 within +10% of the target).
 double within_10pct(const std::vector<double>& v) {
   int n = 0;
@@ -87,8 +104,7 @@ ReplaySeries replay_series(const std::string& run, WalkScenario scenario, double
 }  // namespace
 
 std::vector<RecordedFrame> read_recorded_frames(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(fmt::format("{}: cannot read the file", file));
+  std::istringstream in(read_input_text(file, "frames file"));
   std::string line;
   if (!std::getline(in, line)) throw InputError(fmt::format("{}: empty, no header", file));
   const std::map<std::string, std::size_t> column = frame_columns(line, file);
@@ -99,22 +115,18 @@ std::vector<RecordedFrame> read_recorded_frames(const std::string& file) {
     if (v.size() != column.size())
       throw InputError(fmt::format("{}: line {}: {} fields, the header names {}", file, row,
                                    v.size(), column.size()));
-    out.push_back({v[column.at("ms")], v[column.at("predicted_ms")], v[column.at("budget_ms")]});
+    out.push_back(recorded_frame(v, column, file, row));
   }
   return out;
 }
 
 double recorded_target_ms(const std::string& run_dir) {
   const std::string file = (std::filesystem::path(run_dir) / "hybrid.json").string();
-  std::ifstream in(file);
-  if (!in) throw InputError(fmt::format("{}: cannot read the file (a bench hybrid --out?)", file));
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const std::exception& e) {
-    throw InputError(fmt::format("{}: not JSON ({})", file, e.what()));
-  }
-  if (!j.contains("target_ms") || !j["target_ms"].is_number() || !(j["target_ms"] > 0))
+  const nlohmann::json j = nlohmann::json::parse(read_input_text(file, "bench hybrid result"),
+                                                 nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded()) throw InputError(fmt::format("{}: not JSON", file));
+  if (!j.is_object() || !j.contains("target_ms") || !j["target_ms"].is_number() ||
+      !(j["target_ms"] > 0) || !std::isfinite(j["target_ms"].get<double>()))
     throw InputError(fmt::format("{}: no positive target_ms", file));
   return j["target_ms"].get<double>();
 }

@@ -23,6 +23,7 @@
 #include "stream/cog_bounds_cache.h"
 #include "terrain/gdal_util.h"
 #include "terrasprite/common/error.h"
+#include "terrasprite/terrain/terrain.h"
 
 namespace terrasprite {
 namespace {
@@ -398,6 +399,7 @@ TileSetInfo open_cog(const std::string& path, const std::string& texture, int ti
   if (!set.geo)
     fmt::print(stderr, "terrasprite: warning: {}: no georeferencing; assuming 30 m spacing\n",
                path);
+  check_spacing(path, g.spacing_x, g.spacing_y);
   int has_nodata = 0;
   const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
   if (!texture.empty()) {
@@ -428,6 +430,8 @@ TileSetInfo open_cog(const std::string& path, const std::string& texture, int ti
   }
   g.tile_log2 = tile_log2;
   compute_bounds(set, *in, has_nodata != 0, nodata, std::max(1LL, held_bound_cells));
+  check_height_range(path, g.min_height, g.max_height,
+                     "tag its nodata value (gdal_edit.py -a_nodata) or fix its scale");
   const int T = 1 << tile_log2;
   for (int L = 0; L < g.bound_levels; ++L) {
     const int cw = set.tiles_cells_w(L), ch = set.tiles_cells_h(L);

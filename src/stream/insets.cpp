@@ -50,6 +50,42 @@ std::vector<float> distance_to_void(const std::vector<float>& v, int w, int h) {
   return d;
 }
 
+// Refuses an inset GDAL would place by guesswork: without a geotransform or
+// a CRS it would be assumed to lie in the base's CRS.
+void check_inset_georeferencing(GDALDatasetH src, const std::string& path) {
+  double gt[6];
+  const char* wkt = GDALGetProjectionRef(src);
+  if (GDALGetGeoTransform(src, gt) != CE_None || !wkt || !*wkt)
+    throw InputError(fmt::format(
+        "{}: an inset needs georeferencing with a CRS (set one with gdal_edit.py -a_srs)", path));
+}
+
+// The value an untagged inset uses for its holes, as the base loader detects
+// them (a typical sentinel as its lowest value on at least 0.1% of pixels);
+// warns on stderr when one is found. Empty when tagged or none.
+std::string untagged_sentinel(GDALDatasetH src, const std::string& path) {
+  GDALRasterBandH band = GDALGetRasterBand(src, 1);
+  int has_nodata = 0;
+  GDALGetRasterNoDataValue(band, &has_nodata);
+  if (has_nodata) return {};
+  double minmax[2] = {0, 0};
+  if (GDALComputeRasterMinMax(band, FALSE, minmax) != CE_None) return {};
+  for (double sentinel : {-32768.0, -32767.0, -9999.0}) {
+    if (minmax[0] != sentinel) continue;
+    GUIntBig hist[1] = {0};
+    GDALGetRasterHistogramEx(band, sentinel - 0.5, sentinel + 0.5, 1, hist, FALSE, FALSE, nullptr,
+                             nullptr);
+    const double pixels = double(GDALGetRasterXSize(src)) * GDALGetRasterYSize(src);
+    if (double(hist[0]) * 1000 < pixels) return {};
+    fmt::print(stderr,
+               "terrasprite: warning: {}: {} pixels hold {:g}, a typical nodata sentinel, but the "
+               "inset tags no nodata; treating them as holes\n",
+               path, hist[0], sentinel);
+    return fmt::format("{:g}", sentinel);
+  }
+  return {};
+}
+
 // The inset warped into `wkt` (bilinear, its own resolution), NaN where it has no data.
 Warped warp(const InsetSpec& s, const std::string& wkt) {
   detail::ensure_gdal();
@@ -57,9 +93,18 @@ Warped warp(const InsetSpec& s, const std::string& wkt) {
   GDALDatasetH src =
       GDALOpenEx(s.path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
   if (!src) throw InputError(fmt::format("{}: cannot open: {}", s.path, capture.last()));
-  const char* argv[] = {"-of", "MEM",     "-t_srs",     wkt.c_str(), "-r",   "bilinear",
-                        "-ot", "Float32", "-dstnodata", "nan",       nullptr};
-  GDALWarpAppOptions* opts = GDALWarpAppOptionsNew(const_cast<char**>(argv), nullptr);
+  try {
+    check_inset_georeferencing(src, s.path);
+  } catch (...) {
+    GDALClose(src);
+    throw;
+  }
+  const std::string sentinel = untagged_sentinel(src, s.path);
+  std::vector<const char*> argv = {"-of", "MEM",     "-t_srs",     wkt.c_str(), "-r",   "bilinear",
+                                   "-ot", "Float32", "-dstnodata", "nan"};
+  if (!sentinel.empty()) argv.insert(argv.end(), {"-srcnodata", sentinel.c_str()});
+  argv.push_back(nullptr);
+  GDALWarpAppOptions* opts = GDALWarpAppOptionsNew(const_cast<char**>(argv.data()), nullptr);
   if (!opts) {
     GDALClose(src);
     throw InputError(fmt::format("{}: cannot set up the reprojection: {}", s.path, capture.last()));

@@ -11,6 +11,8 @@
 
 #include "terrain/gdal_util.h"
 #include "terrasprite/common/error.h"
+#include "terrasprite/common/input_file.h"
+#include "terrasprite/terrain/terrain.h"
 
 namespace terrasprite {
 namespace {
@@ -125,67 +127,126 @@ void write_tile_set_json(const TerrainGrid& g, const std::vector<std::vector<flo
   if (!f) throw InputError(fmt::format("{}: cannot write", path));
 }
 
+namespace {
+
+// Largest side of a tile set's level 0: keeps every sample index and count
+// within 32 bits (tile writes 2^15 + 1 today; a margin of 32x).
+constexpr int kMaxTileSetSide = (1 << 20) + 1;
+
+// A whole number of tiles.json within [lo, hi] (a float or a huge integer is
+// refused before any conversion).
+long long whole(const nlohmann::json& v, const std::string& path, const char* what, long long lo,
+                long long hi) {
+  if (!v.is_number_integer() || (v.is_number_unsigned() && v.get<unsigned long long>() >
+                                                               (unsigned long long)hi))
+    throw InputError(fmt::format("{}: {} must be a whole number in {} .. {}", path, what, lo, hi));
+  const long long x = v.get<long long>();
+  if (x < lo || x > hi)
+    throw InputError(
+        fmt::format("{}: {} {} must be a whole number in {} .. {}", path, what, x, lo, hi));
+  return x;
+}
+
+// The level-0 grid of tiles.json, checked: sizes, spacing, height range, tiles.
+void parse_grid(const nlohmann::json& j, const std::string& path, TerrainGrid& g) {
+  g.width = int(whole(j.at("samples").at(0), path, "samples[0]", 2, kMaxTileSetSide));
+  g.height = int(whole(j.at("samples").at(1), path, "samples[1]", 2, kMaxTileSetSide));
+  g.spacing_x = j.at("spacing_m")[0];
+  g.spacing_y = j.at("spacing_m")[1];
+  check_spacing(path, g.spacing_x, g.spacing_y);
+  g.min_height = j.at("height_min");
+  g.max_height = j.at("height_max");
+  check_height_range(path, g.min_height, g.max_height);
+  g.finest_level = 0;
+  g.coarsest_level = int(whole(j.at("coarsest_level"), path, "coarsest_level", 0, 30));
+  g.bound_levels = int(whole(j.at("bound_levels"), path, "bound_levels", 1, 31));
+  const int T = int(whole(j.at("tile_cells"), path, "tile_cells", 2, 1 << 10));
+  g.tile_log2 = 0;
+  while (g.tile_log2 < 10 && (1 << g.tile_log2) < T) ++g.tile_log2;
+  if ((1 << g.tile_log2) != T || g.tile_log2 < 1 || g.bound_levels < 1 || g.bound_levels > 31 ||
+      g.coarsest_level < 0 || g.coarsest_level >= g.bound_levels ||
+      int(j.at("levels").size()) != g.bound_levels)
+    throw InputError(fmt::format("{}: inconsistent grid or levels", path));
+}
+
+// Each level's tile table: exactly the tiles its cells need, a finite bound each.
+void parse_levels(const nlohmann::json& j, const std::string& path, TileSetInfo& t) {
+  const int T = 1 << t.grid.tile_log2;
+  for (const auto& l : j.at("levels")) {
+    const int L = int(t.tiles_x.size());
+    const int nx = (t.tiles_cells_w(L) + T - 1) / T, ny = (t.tiles_cells_h(L) + T - 1) / T;
+    const long long jx = whole(l.at("tiles").at(0), path, "tiles[0]", 0, kMaxTileSetSide);
+    const long long jy = whole(l.at("tiles").at(1), path, "tiles[1]", 0, kMaxTileSetSide);
+    if (jx != nx || jy != ny)
+      throw InputError(fmt::format(
+          "{}: level {} lists {} x {} tiles; its {} x {} cells need {} x {} tiles of {}", path, L,
+          jx, jy, t.tiles_cells_w(L), t.tiles_cells_h(L), nx, ny, T));
+    t.tiles_x.push_back(nx);
+    t.tiles_y.push_back(ny);
+    t.tile_max.push_back(l.at("tile_max_height").get<std::vector<float>>());
+    if (t.tile_max.back().size() != std::size_t(nx) * std::size_t(ny))
+      throw InputError(
+          fmt::format("{}: tile_max_height of level {} has the wrong length", path, L));
+    for (float m : t.tile_max.back())
+      if (!(std::abs(m) <= kMaxAbsHeightM))
+        throw InputError(fmt::format(
+            "{}: tile_max_height of level {} holds {:g}, not a finite height within {:g} m", path,
+            L, m, kMaxAbsHeightM));
+  }
+}
+
+std::optional<FineLevelsInfo> parse_fine(const nlohmann::json& j, const std::string& path,
+                                         const TerrainGrid& g) {
+  if (!j.contains("fine")) return std::nullopt;
+  const auto& fj = j["fine"];
+  FineLevelsInfo fi;
+  fi.levels = int(whole(fj.at("levels"), path, "fine.levels", 1, 12));
+  fi.origin_x = int(whole(fj.at("origin").at(0), path, "fine.origin[0]", 0, 1 << 30));
+  fi.origin_y = int(whole(fj.at("origin").at(1), path, "fine.origin[1]", 0, 1 << 30));
+  for (const auto& bits : fj.at("present")) {
+    const std::string b = bits.get<std::string>();
+    auto& lv = fi.present.emplace_back(b.size());
+    for (std::size_t i = 0; i < b.size(); ++i) lv[i] = b[i] == '1';
+  }
+  if (fi.levels < 1 || fi.levels > 12 || int(fi.present.size()) != fi.levels ||
+      g.bound_levels + fi.levels > 31 || fi.origin_x < 0 || fi.origin_y < 0 ||
+      (fi.origin_x | fi.origin_y) % ((1 << g.tile_log2) << (fi.levels - 1)) != 0)
+    throw InputError(fmt::format("{}: inconsistent fine levels", path));
+  return fi;
+}
+
+std::optional<GeoTransform> parse_geo(const nlohmann::json& j, const std::string& path) {
+  if (!j.contains("geotransform")) return std::nullopt;
+  GeoTransform gt;
+  for (int k = 0; k < 6; ++k) {
+    gt.gt[k] = j["geotransform"].at(std::size_t(k));
+    if (!std::isfinite(gt.gt[k]))
+      throw InputError(fmt::format("{}: geotransform[{}] is not a finite number", path, k));
+  }
+  gt.wkt = j.value("srs_wkt", "");
+  return gt;
+}
+
+}  // namespace
+
 TileSetInfo read_tile_set(const std::string& dir) {
   detail::ensure_gdal();
   const std::string path = dir + "/tiles.json";
-  std::ifstream f(path);
-  if (!f)
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(
         fmt::format("{}: cannot open (is {} a directory written by terrasprite tile?)", path, dir));
+  const std::string text = read_input_text(path, "tile set description");
   TileSetInfo t;
   t.dir = dir;
   try {
-    const nlohmann::json j = nlohmann::json::parse(f);
-    if (j.at("format") != kFormat || j.at("version") != kVersion)
+    const nlohmann::json j = nlohmann::json::parse(text);
+    if (!j.is_object() || j.value("format", "") != kFormat || j.value("version", 0) != kVersion)
       throw InputError(fmt::format("{}: not a terrasprite tile set of version {}", path, kVersion));
-    TerrainGrid& g = t.grid;
-    g.width = j.at("samples")[0];
-    g.height = j.at("samples")[1];
-    g.spacing_x = j.at("spacing_m")[0];
-    g.spacing_y = j.at("spacing_m")[1];
-    g.min_height = j.at("height_min");
-    g.max_height = j.at("height_max");
-    g.finest_level = 0;
-    g.coarsest_level = j.at("coarsest_level");
-    g.bound_levels = j.at("bound_levels");
-    const int T = j.at("tile_cells");
-    g.tile_log2 = 0;
-    while ((1 << g.tile_log2) < T) ++g.tile_log2;
-    if (g.width < 2 || g.height < 2 || (1 << g.tile_log2) != T || g.bound_levels < 1 ||
-        g.bound_levels > 31 || g.coarsest_level < 0 || g.coarsest_level >= g.bound_levels ||
-        int(j.at("levels").size()) != g.bound_levels)
-      throw InputError(fmt::format("{}: inconsistent grid or levels", path));
-    for (const auto& l : j.at("levels")) {
-      t.tiles_x.push_back(l.at("tiles")[0]);
-      t.tiles_y.push_back(l.at("tiles")[1]);
-      t.tile_max.push_back(l.at("tile_max_height").get<std::vector<float>>());
-      if (t.tile_max.back().size() != std::size_t(t.tiles_x.back()) * t.tiles_y.back())
-        throw InputError(fmt::format("{}: tile_max_height of level {} has the wrong length", path,
-                                     int(t.tile_max.size()) - 1));
-    }
-    if (j.contains("fine")) {
-      const auto& fj = j["fine"];
-      FineLevelsInfo fi;
-      fi.levels = fj.at("levels");
-      fi.origin_x = fj.at("origin")[0];
-      fi.origin_y = fj.at("origin")[1];
-      for (const auto& bits : fj.at("present")) {
-        const std::string b = bits.get<std::string>();
-        auto& lv = fi.present.emplace_back(b.size());
-        for (std::size_t i = 0; i < b.size(); ++i) lv[i] = b[i] == '1';
-      }
-      if (fi.levels < 1 || fi.levels > 12 || int(fi.present.size()) != fi.levels ||
-          g.bound_levels + fi.levels > 31 ||
-          (fi.origin_x | fi.origin_y) % ((1 << g.tile_log2) << (fi.levels - 1)) != 0)
-        throw InputError(fmt::format("{}: inconsistent fine levels", path));
-      t.fine = std::move(fi);
-    }
-    if (j.contains("geotransform")) {
-      GeoTransform gt;
-      for (int k = 0; k < 6; ++k) gt.gt[k] = j["geotransform"][k];
-      gt.wkt = j.value("srs_wkt", "");
-      t.geo = gt;
-    }
+    parse_grid(j, path, t.grid);
+    parse_levels(j, path, t);
+    t.fine = parse_fine(j, path, t.grid);
+    t.geo = parse_geo(j, path);
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: malformed: {}", path, e.what()));
   }
@@ -193,7 +254,6 @@ TileSetInfo read_tile_set(const std::string& dir) {
   check_raster(t.height_file(), g.width, g.height, g.coarsest_level, 1);
   check_raster(t.color_file(), g.width, g.height, g.coarsest_level, 3);
   check_raster(t.bound_file(), t.tiles_cells_w(0), t.tiles_cells_h(0), g.bound_levels - 1, 1);
-  std::error_code ec;
   for (const std::string& p : {t.height_file(), t.color_file(), t.bound_file()})
     t.bytes_on_disk += (long long)std::filesystem::file_size(p, ec);
   if (t.fine) {

@@ -50,10 +50,6 @@ void register_drape(Image& tex, std::array<double, 4>& tex_rect, const std::stri
   detail::fill_transparent_texels(tex, tex_rect, heights);
 }
 
-// Bounds on what a terrain may be. Heights: beyond 10,000 km from sea level
-// is an encoding or unit mistake; spacing: a micrometre to 1,000 km per sample.
-constexpr double kMaxAbsHeightM = 1e7;
-constexpr double kMinSpacingM = 1e-6, kMaxSpacingM = 1e6;
 // The synthetic grid's full-resolution mesh must fit the renderer's 4 GiB of
 // buffers (about 48 bytes a sample): 8193 x 8193 is the largest power of two
 // plus one that does. Erosion costs one pass over the grid each.
@@ -81,11 +77,7 @@ void check_options(const TerrainOptions& o) {
 
 // After every scale and offset: finite heights within bounds, a real extent.
 void check_heights(const Heightfield& h) {
-  if (!(h.spacing_x >= kMinSpacingM && h.spacing_x <= kMaxSpacingM && h.spacing_y >= kMinSpacingM &&
-        h.spacing_y <= kMaxSpacingM))
-    throw InputError(
-        fmt::format("{}: sample spacing {:g} x {:g} m is outside {:g} .. {:g} m (give --spacing)",
-                    h.name, h.spacing_x, h.spacing_y, kMinSpacingM, kMaxSpacingM));
+  check_spacing(h.name, h.spacing_x, h.spacing_y);
   for (std::size_t p = 0; p < h.heights.size(); ++p)
     if (!(std::abs(h.heights[p]) <= kMaxAbsHeightM))
       throw InputError(fmt::format(
@@ -132,6 +124,23 @@ void make_texture(const TerrainOptions& o, const Heightfield& source, const Heig
 }
 
 }  // namespace
+
+void check_spacing(const std::string& name, double spacing_x, double spacing_y) {
+  auto ok = [](double s) { return s >= kMinSpacingM && s <= kMaxSpacingM; };
+  if (!ok(spacing_x) || !ok(spacing_y))
+    throw InputError(
+        fmt::format("{}: sample spacing {:g} x {:g} m is outside {:g} .. {:g} m (give --spacing)",
+                    name, spacing_x, spacing_y, kMinSpacingM, kMaxSpacingM));
+}
+
+void check_height_range(const std::string& name, double lowest, double highest,
+                        const std::string& hint) {
+  if (!(std::abs(lowest) <= kMaxAbsHeightM && std::abs(highest) <= kMaxAbsHeightM &&
+        lowest <= highest))
+    throw InputError(fmt::format("{}: heights {:g} .. {:g} m are not finite heights within {:g} m{}",
+                                 name, lowest, highest, kMaxAbsHeightM,
+                                 hint.empty() ? "" : "; " + hint));
+}
 
 Terrain load_terrain(const TerrainOptions& o, std::vector<std::string>* warnings) {
   check_options(o);

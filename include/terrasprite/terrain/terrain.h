@@ -43,6 +43,21 @@ struct TerrainOptions {
   int erosion_passes = 2;     ///< synthetic terrain erosion passes, 0 .. 100
 };
 
+/// Bounds on what a terrain may be, wherever it comes from (a DEM, a tile set,
+/// a COG). Heights: beyond 10,000 km from sea level is an encoding or unit
+/// mistake; spacing: a micrometre to 1,000 km per sample.
+inline constexpr double kMaxAbsHeightM = 1e7;
+inline constexpr double kMinSpacingM = 1e-6, kMaxSpacingM = 1e6;
+
+/// Throws InputError naming `name` unless both sample spacings lie within
+/// kMinSpacingM .. kMaxSpacingM (NaN and infinities refused).
+void check_spacing(const std::string& name, double spacing_x, double spacing_y);
+
+/// Throws InputError naming `name` unless lowest <= highest and both are
+/// finite heights within kMaxAbsHeightM; `hint` ends the message when given.
+void check_height_range(const std::string& name, double lowest, double highest,
+                        const std::string& hint = {});
+
 /// Loads (or synthesises) heights, applies resampling and exaggeration, and
 /// builds the drape texture. Throws InputError naming the input on bad data
 /// or options: heights that are not finite or beyond 1e7 m after every scale,

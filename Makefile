@@ -11,7 +11,7 @@ PACKAGES := build-essential cmake pkg-config git \
   libgdal-dev libstb-dev libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev \
   libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox ffmpeg python3 python3-skimage \
   libmeshoptimizer-dev libtinyobjloader-dev libtinygltf-dev libglfw3-dev libimgui-dev \
-  xvfb xauth clang-14 libclang-rt-14-dev libzstd-dev ninja-build
+  xvfb xauth clang-14 libclang-rt-14-dev libzstd-dev zlib1g-dev ninja-build
 
 .PHONY: all deps build build-all build-tests demo test test-asan consumer fuzz fuzz-seeds fuzz-run clean
 

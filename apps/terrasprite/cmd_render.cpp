@@ -88,14 +88,11 @@ std::pair<int, int> parse_frame_range(const std::string& text, int frames) {
   return {int(a), int(b)};
 }
 
-/// Refuses to replace a file the user did not ask us to replace (a video is
-/// never recognisably ours, so an existing one needs --overwrite).
+/// Refuses to replace a file the user did not ask us to replace (a video
+/// terrasprite wrote carries its mark and may be replaced).
 void check_video_target(const RenderOpts& o, const OutputPolicy& policy) {
   if (o.video.empty()) return;
   validate_video_options(o.video_opts);
-  if (std::filesystem::exists(o.video) && !policy.overwrite)
-    throw InputError(
-        fmt::format("--video {}: file exists (pass --overwrite to replace it)", o.video));
   check_output_file(o.video, policy);
 }
 

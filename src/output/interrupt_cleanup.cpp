@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// SIGINT/SIGTERM handled by a thread in sigwait(), not a signal handler, so
+// SIGINT/SIGTERM/SIGHUP handled by a thread in sigwait(), not a signal handler, so
 // the clean-up may use the filesystem library and a mutex safely.
 #include "terrasprite/output/interrupt_cleanup.h"
 
@@ -39,7 +39,10 @@ Registry& registry() {
       fs::remove_all(p, ec);
     removed += (removed.empty() ? "" : ", ") + p.string();
   }
-  const char* name = sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal";
+  const char* name = sig == SIGINT    ? "SIGINT"
+                     : sig == SIGTERM ? "SIGTERM"
+                     : sig == SIGHUP  ? "SIGHUP (the terminal closed)"
+                                      : "a signal";
   fmt::print(stderr, "terrasprite: interrupted by {}; {}\n", name,
              removed.empty() ? std::string("no partial output to remove")
                              : "removed partial output " + removed);
@@ -54,7 +57,12 @@ void install_interrupt_cleanup() {
   sigemptyset(&set);
   sigaddset(&set, SIGINT);
   sigaddset(&set, SIGTERM);
+  sigaddset(&set, SIGHUP);
   pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  // Past a file-size limit a write then fails with EFBIG, which every writer
+  // reports as an error (and the partial output goes), instead of the signal
+  // ending the process with the partial output left behind.
+  signal(SIGXFSZ, SIG_IGN);
   registry();  // constructed before the thread can need it
   std::thread([set] {
     int sig = 0;

@@ -111,7 +111,11 @@ OutputDir::OutputDir(const std::string& dir, OutputPolicy policy) : policy_(poli
     throw InputError(fmt::format("{}: cannot create output directory {} ({})", dir,
                                  partial_.string(), ec ? ec.message() : "it already exists"));
   guard_ = std::make_unique<CleanupOnInterrupt>(partial_);
-  std::ofstream(partial_ / kOutputMarker) << generator_name() << "\n";
+  std::ofstream marker(partial_ / kOutputMarker);
+  marker << generator_name() << "\n";
+  marker.close();
+  if (!marker)
+    throw InputError(fmt::format("{}: cannot write in output directory {}", dir, partial_.string()));
 }
 
 OutputDir::~OutputDir() {

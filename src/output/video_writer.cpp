@@ -5,6 +5,7 @@
 #include "terrasprite/output/video_writer.h"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -14,6 +15,7 @@
 #include <array>
 #include <cassert>
 #include <cerrno>
+#include <chrono>
 #include <condition_variable>
 #include <cstdlib>
 #include <cstring>
@@ -28,6 +30,7 @@
 
 #include "terrasprite/common/error.h"
 #include "terrasprite/output/interrupt_cleanup.h"
+#include "terrasprite/output/output_file.h"
 
 extern char** environ;
 
@@ -46,6 +49,21 @@ std::string ffmpeg_program(const VideoOptions& o) {
   return env && *env ? env : "ffmpeg";
 }
 
+/// Whether the (non-blocking) pipe `fd` can take bytes within `seconds`, or
+/// has failed (the write then says how); false when the reader is stuck.
+bool pipe_accepts_within(int fd, double seconds) {
+  pollfd p{fd, POLLOUT, 0};
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    const int n = ::poll(&p, 1, int(std::max<long long>(0, left.count())));
+    if (n > 0) return true;
+    if (n == 0) return false;
+    if (errno != EINTR) return true;
+  }
+}
+
 /// The last non-empty line ffmpeg wrote on stderr (its error), or "".
 std::string last_line(const std::string& file) {
   std::ifstream in(file);
@@ -62,6 +80,9 @@ void validate_video_options(const VideoOptions& o, const std::string& option) {
     throw InputError(fmt::format("{} --fps {}: must be in (0, 1000]", option, o.fps));
   if (o.crf < 0 || o.crf > 51)
     throw InputError(fmt::format("{} --crf {}: must be between 0 and 51", option, o.crf));
+  if (!(o.stall_seconds > 0 && o.stall_seconds <= 86400))
+    throw InputError(
+        fmt::format("{}: stall_seconds {:g}: must be in (0, 86400]", option, o.stall_seconds));
   if (std::find(kPresets.begin(), kPresets.end(), o.preset) == kPresets.end())
     throw InputError(
         fmt::format("{} --preset {}: not an x264 preset (ultrafast .. placebo)", option, o.preset));
@@ -82,7 +103,9 @@ struct VideoWriter::Impl {
   bool closing = false;
   std::string write_error;  // set by the writer thread; empty while all is well
   std::thread writer;
-  std::optional<CleanupOnInterrupt> guard;  // the partial file goes on SIGINT / SIGTERM
+  std::optional<CleanupOnInterrupt> guard;      // the partial file goes on an interrupt
+  std::optional<CleanupOnInterrupt> log_guard;  // and so does ffmpeg's log
+  double stall_s = 60;
 
   void spawn(const VideoOptions& o);
   void write_loop();
@@ -117,6 +140,8 @@ void VideoWriter::Impl::spawn(const VideoOptions& o) {
                                          std::to_string(o.crf),
                                          "-pix_fmt",
                                          "yuv420p",
+                                         "-metadata",
+                                         "comment=" + generator_name(),
                                          "-movflags",
                                          "+faststart",
                                          "-f",
@@ -133,6 +158,7 @@ void VideoWriter::Impl::spawn(const VideoOptions& o) {
   std::string log_tmpl = (fs::temp_directory_path() / "terrasprite_ffmpeg_XXXXXX").string();
   int log_fd = mkstemp(log_tmpl.data());
   log = log_fd >= 0 ? log_tmpl : "";
+  if (!log.empty()) log_guard.emplace(log);
 
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
@@ -150,6 +176,7 @@ void VideoWriter::Impl::spawn(const VideoOptions& o) {
                                  file, prog, std::strerror(rc)));
   }
   pipe_fd = fds[1];
+  fcntl(pipe_fd, F_SETFL, fcntl(pipe_fd, F_GETFL) | O_NONBLOCK);
 }
 
 // Runs on the writer thread. SIGPIPE is blocked here so a dead encoder turns
@@ -171,8 +198,15 @@ void VideoWriter::Impl::write_loop() {
     cv.notify_all();
     std::size_t done = 0;
     while (done < buf.size()) {
+      if (!pipe_accepts_within(pipe_fd, stall_s)) {
+        std::lock_guard lock(m);
+        write_error = fmt::format("ffmpeg read nothing for {:g} s", stall_s);
+        queue.clear();
+        cv.notify_all();
+        return;
+      }
       ssize_t n = ::write(pipe_fd, buf.data() + done, buf.size() - done);
-      if (n < 0 && errno == EINTR) continue;
+      if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
       if (n <= 0) {
         const std::string why = std::strerror(errno);
         timespec zero{0, 0};
@@ -213,6 +247,7 @@ void VideoWriter::Impl::discard() {
   fs::remove(partial, ec);
   if (!log.empty()) fs::remove(log, ec);
   log.clear();
+  log_guard.reset();
 }
 
 void VideoWriter::Impl::fail(const std::string& why) {
@@ -234,14 +269,23 @@ VideoWriter::VideoWriter(std::string file, int width, int height, const VideoOpt
   fs::path dir = fs::path(s.file).parent_path();
   if (!dir.empty() && !fs::is_directory(dir))
     throw InputError(fmt::format("{}: directory {} does not exist", s.file, dir.string()));
-  s.partial = s.file + ".partial";
+  s.partial = create_temp_beside(s.file);
+  if (s.partial.empty())
+    throw InputError(fmt::format("{}: cannot write in its directory ({})", s.file,
+                                 std::strerror(errno)));
   s.width = width;
   s.height = height;
   s.enc_w = width + (width & 1);
   s.enc_h = height + (height & 1);
   s.queue_cap = std::size_t(std::max(1, options.queue_frames));
   s.guard.emplace(s.partial);
-  s.spawn(options);
+  s.stall_s = options.stall_seconds;
+  try {
+    s.spawn(options);
+  } catch (...) {
+    s.discard();
+    throw;
+  }
   s.writer = std::thread([&s] { s.write_loop(); });
 }
 

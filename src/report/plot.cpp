@@ -14,7 +14,8 @@ namespace terrasprite::report {
 void write_text(const std::string& path, const std::string& text) {
   std::ofstream f(path);
   f << text;
-  if (!f) throw InputError(fmt::format("{}: cannot write", path));
+  f.close();  // a write the buffer held fails here (a full disk, a file-size limit)
+  if (!f) throw InputError(fmt::format("{}: cannot write (disk full or file too large?)", path));
 }
 
 std::string run_gnuplot(const std::string& dir, const std::string& script) {

@@ -5,8 +5,12 @@
 #include <gdal.h>
 #include <stb_image.h>
 #include <stb_image_write.h>
+#include <zlib.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include "terrain/gdal_util.h"
@@ -137,10 +141,55 @@ Image load_image(const std::string& path) {
   throw InputError(fmt::format("{}: not a readable image ({})", path, gdal_error));
 }
 
+namespace {
+
+void append_big_endian(std::string& out, std::uint32_t v) {
+  for (int shift = 24; shift >= 0; shift -= 8) out.push_back(char((v >> shift) & 0xff));
+}
+
+// A PNG tEXt chunk `keyword` = `text`.
+std::string text_chunk(const std::string& keyword, const std::string& text) {
+  const std::string body = "tEXt" + keyword + '\0' + text;
+  std::string chunk;
+  append_big_endian(chunk, std::uint32_t(body.size() - 4));
+  chunk += body;
+  append_big_endian(chunk, std::uint32_t(crc32(crc32(0, nullptr, 0),
+                                               reinterpret_cast<const Bytef*>(body.data()),
+                                               uInt(body.size()))));
+  return chunk;
+}
+
+// The encoded PNG with its Software chunk after IHDR (the signature, 8 bytes,
+// and IHDR, 25 bytes, come first in every PNG).
+std::string png_bytes(const Image& image, const std::string& path) {
+  std::string png;
+  auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), std::size_t(size));
+  };
+  if (!stbi_write_png_to_func(append, &png, image.width, image.height, 4, image.rgba.data(),
+                              image.width * 4) ||
+      png.size() < 33)
+    throw InputError(fmt::format("{}: cannot encode the PNG", path));
+  png.insert(33, text_chunk("Software", kPngSoftware));
+  return png;
+}
+
+// Writes `bytes` to `path`, every write and the close checked.
+void write_all(const std::string& path, const std::string& bytes) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) throw InputError(fmt::format("{}: cannot write PNG ({})", path, std::strerror(errno)));
+  const bool written = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
+  const int write_errno = errno;
+  const bool closed = std::fclose(f) == 0;
+  if (!written || !closed)
+    throw InputError(fmt::format("{}: cannot write PNG ({})", path,
+                                 std::strerror(!written ? write_errno : errno)));
+}
+
+}  // namespace
+
 void save_png(const Image& image, const std::string& path) {
-  if (!stbi_write_png(path.c_str(), image.width, image.height, 4, image.rgba.data(),
-                      image.width * 4))
-    throw InputError(fmt::format("{}: cannot write PNG", path));
+  write_all(path, png_bytes(image, path));
 }
 
 void save_png16(std::span<const std::uint16_t> grey, int width, int height,

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <gdal.h>
+
 #include "test_util.h"
 
 namespace fs = std::filesystem;
@@ -142,7 +144,8 @@ TEST(CliOutputs, NeverRemovesAPartialItDidNotCreate) {
 
 TEST(CliOutputs, AnInterruptRemovesOnlyThisRunsPartial) {
   tstest::TempDir tmp;
-  for (const auto& [sig, status] : {std::pair{"INT", 130}, std::pair{"TERM", 143}}) {
+  for (const auto& [sig, status] :
+       {std::pair{"INT", 130}, std::pair{"TERM", 143}, std::pair{"HUP", 129}}) {
     const std::string out = tmp / (std::string("r") + sig);
     // Start a long render, wait for its partial directory, then signal it.
     const std::string script = fmt::format(
@@ -158,4 +161,86 @@ TEST(CliOutputs, AnInterruptRemovesOnlyThisRunsPartial) {
     EXPECT_FALSE(fs::exists(out + ".partial"));
     EXPECT_FALSE(fs::exists(out));
   }
+}
+
+namespace {
+
+// A PNG of the user's (written by GDAL, not terrasprite).
+void users_png(const fs::path& p) {
+  GDALAllRegister();
+  GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", 8, 8, 3, GDT_Byte, nullptr);
+  GDALClose(
+      GDALCreateCopy(GDALGetDriverByName("PNG"), p.c_str(), mem, FALSE, nullptr, nullptr, nullptr));
+  GDALClose(mem);
+  fs::remove(p.string() + ".aux.xml");
+}
+
+}  // namespace
+
+TEST(CliOutputs, RerunsReplaceTheirOwnImagesNeverTheUsers) {
+  tstest::TempDir tmp;
+  ASSERT_EQ(tstest::run_cli(kRender + "--out " + (tmp / "r")).status, 0);
+  const std::string frame = tmp / "r/frame_0000.png";
+  const std::string compare = "compare " + frame + " " + frame + " --diff ";
+  for (int run = 0; run < 2; ++run) {
+    const tstest::CliResult r = tstest::run_cli(compare + (tmp / "d.png"));
+    EXPECT_EQ(r.status, 0) << "run " << run << ": " << r.output;
+  }
+  users_png(tmp.path / "mine.png");
+  const std::string before = read(tmp.path / "mine.png");
+  expect_refused(tstest::run_cli(compare + (tmp / "mine.png")), "compare --diff mine.png",
+                 "mine.png: exists and was not written by terrasprite");
+  EXPECT_EQ(read(tmp.path / "mine.png"), before);
+}
+
+TEST(CliOutputs, RerunsReplaceTheirOwnVideosAndNeverTouchTheUsersPartial) {
+  if (!tstest::have_tool("ffmpeg")) GTEST_SKIP() << "no ffmpeg";
+  tstest::TempDir tmp;
+  std::ofstream(tmp / "v.mp4.partial") << "the user's";
+  const std::string render =
+      "render --synthetic-size 33 --mode lod --lod-quads 4 --frames 2 --size 16x16 --video ";
+  const std::string video = render + (tmp / "v.mp4");
+  for (int run = 0; run < 2; ++run) {
+    const tstest::CliResult r = tstest::run_cli(video);
+    EXPECT_EQ(r.status, 0) << "run " << run << ": " << r.output;
+  }
+  EXPECT_EQ(read(tmp.path / "v.mp4.partial"), "the user's");
+  // A failing encoder leaves the user's .partial too.
+  const tstest::CliResult bad =
+      tstest::run_cli_prefixed("env TERRASPRITE_FFMPEG=/bin/false", video + " --overwrite");
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_EQ(read(tmp.path / "v.mp4.partial"), "the user's");
+  // Another program's MP4 is the user's.
+  ASSERT_EQ(tstest::run_shell("ffmpeg -v error -f lavfi -i color=c=red:s=32x32:d=0.2 -y " +
+                              (tmp / "theirs.mp4"))
+                .status,
+            0);
+  expect_refused(tstest::run_cli(render + (tmp / "theirs.mp4")),
+                 "--video theirs.mp4", "theirs.mp4: exists and was not written by terrasprite");
+  expect_refused(tstest::run_cli(render + tmp.path.string()),
+                 "--video DIR", "is a directory, not an output file");
+  for (const auto& e : fs::directory_iterator(tmp.path))
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
+TEST(CliOutputs, AFileSizeLimitFailsTheRunAndLeavesNothingComplete) {
+  tstest::TempDir tmp;
+  // 16 KB a file: the PNG frames of 256 x 256 do not fit.
+  const std::string limited = "ulimit -f 16; ";
+  tstest::CliResult r = tstest::run_shell(
+      limited + TS_CLI + " render --synthetic-size 65 --frames 2 --size 256x256 --out " +
+      (tmp / "o"));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("cannot write PNG (File too large)"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(tmp / "o"));
+  EXPECT_FALSE(fs::exists(tmp / "o.partial"));
+  if (tstest::have_tool("ffmpeg")) {
+    r = tstest::run_shell(limited + TS_CLI +
+                          " render --synthetic-size 65 --frames 40 --size 256x256 --crf 0 --video " +
+                          (tmp / "v.mp4"));
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("v.mp4: video encoding failed"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(tmp / "v.mp4"));
+  }
+  for (const auto& e : fs::directory_iterator(tmp.path)) ADD_FAILURE() << "left " << e.path();
 }

@@ -143,7 +143,31 @@ TEST(VideoWriter, FailingEncoderThrowsOneLineAndLeavesNoFile) {
   }
   EXPECT_TRUE(threw);
   EXPECT_FALSE(fs::exists(tmp / "y.mp4"));
-  EXPECT_FALSE(fs::exists(tmp / "y.mp4.partial"));
+  for (const auto& e : fs::directory_iterator(tmp.path))
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
+TEST(VideoWriter, AnEncoderThatStopsReadingFailsInsteadOfHanging) {
+  tstest::TempDir tmp;
+  std::ofstream(tmp / "stuck.sh") << "#!/bin/sh\nexec sleep 60\n";
+  fs::permissions(tmp / "stuck.sh", fs::perms::owner_all);
+  VideoOptions o;
+  o.ffmpeg = tmp / "stuck.sh";
+  o.stall_seconds = 0.5;
+  try {
+    VideoWriter v(tmp / "s.mp4", 256, 256, o);
+    for (int t = 0; t < 40; ++t) v.push(gradient(256, 256, t));
+    v.finish();
+    FAIL() << "a stuck encoder was waited for";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("s.mp4: video encoding failed (ffmpeg read nothing for "
+                                         "0.5 s"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(tmp / "s.mp4"));
+  for (const auto& e : fs::directory_iterator(tmp.path))
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
 }
 
 TEST(VideoWriter, BadOptionsAreInputErrors) {

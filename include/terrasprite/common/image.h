@@ -9,6 +9,10 @@
 
 namespace terrasprite {
 
+/// The "Software" text of every PNG terrasprite writes (a tEXt chunk before
+/// the image data): how a rerun recognises its own outputs.
+inline constexpr const char* kPngSoftware = "terrasprite";
+
 /// Affine map from pixel (column, row) to georeferenced coordinates, as GDAL's
 /// geotransform: X = gt[0] + col*gt[1] + row*gt[2], Y = gt[3] + col*gt[4] + row*gt[5].
 /// `wkt` is the CRS (may be empty when the file has a transform but no CRS).

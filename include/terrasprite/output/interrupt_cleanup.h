@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: MIT
-// What an interrupted run (SIGINT, SIGTERM) leaves behind: nothing of its own.
+// What an interrupted run (SIGINT, SIGTERM, SIGHUP) leaves behind: nothing of its own.
 #pragma once
 #include <filesystem>
 #include <functional>
 
 namespace terrasprite {
 
-/// Blocks SIGINT and SIGTERM in the calling thread and starts one thread that
-/// waits for them. Call it first thing in main(), before any other thread
+/// Blocks SIGINT, SIGTERM and SIGHUP in the calling thread and starts one
+/// thread that waits for them; ignores SIGXFSZ, so a write past a file-size
+/// limit fails (EFBIG) and is reported like a full disk. Call it first thing in main(), before any other thread
 /// exists, so every later thread inherits the blocked mask. On a signal that
 /// thread removes every path currently registered with a CleanupOnInterrupt,
 /// prints one line on stderr naming them, and exits with status 128 + signal.

@@ -21,10 +21,15 @@ struct OutputPolicy {
 /// Throws InputError naming `path` unless a single file can be written there
 /// now: the parent is an existing, writable directory (proved by creating and
 /// removing a temporary file in it), and `path` is absent or a regular file
-/// that terrasprite wrote (a JSON object whose "generator" names terrasprite)
-/// or `policy.overwrite` is set. Directories, devices, FIFOs and symbolic
+/// that terrasprite wrote (a JSON object whose "generator" names terrasprite,
+/// a PNG whose Software text is kPngSoftware, an MP4 whose metadata holds
+/// generator_name()) or `policy.overwrite` is set. Directories, devices, FIFOs and symbolic
 /// links are always refused. Call it for every output file before any work.
 void check_output_file(const std::string& path, OutputPolicy policy);
+
+/// A fresh file, created exclusively beside `target` as `.NAME.tmp-XXXXXX`
+/// (never a name the user may own); its path, or "" with errno set.
+std::string create_temp_beside(const std::string& target);
 
 /// Checks `path` as above, calls `write(tmp)` to write the whole file at a
 /// temporary name in the same directory, then renames it onto `path`. On any

@@ -15,6 +15,8 @@ struct VideoOptions {
   int crf = 18;                     ///< x264 constant rate factor, 0..51 (lower: better)
   std::string preset = "veryfast";  ///< x264 preset (ultrafast .. placebo)
   int queue_frames = 4;             ///< frames buffered between caller and writer thread
+  /// An encoder that reads nothing for this long has failed (it is killed).
+  double stall_seconds = 60.0;
   /// The ffmpeg executable; empty: $TERRASPRITE_FFMPEG, else "ffmpeg" on PATH.
   std::string ffmpeg;
 };
@@ -23,9 +25,11 @@ struct VideoOptions {
 void validate_video_options(const VideoOptions& o, const std::string& option = "--video");
 
 /// Writes an MP4 (H.264, yuv420p, +faststart) of `width` x `height` frames.
-/// The stream goes to `FILE.partial` and is renamed to `file` by finish(), so
-/// an interrupted or failed run never leaves a file that looks complete (the
-/// destructor without finish() kills ffmpeg and removes the partial file).
+/// The stream goes to a fresh temporary file beside `file` (`.NAME.tmp-XXXXXX`,
+/// never a name of the user's) and is renamed to `file` by finish(), so an
+/// interrupted or failed run never leaves a file that looks complete (the
+/// destructor without finish() kills ffmpeg and removes the temporary file).
+/// The MP4's comment is generator_name(), so a rerun may replace it.
 /// H.264 in 4:2:0 needs even sizes: an odd width or height is padded by one
 /// pixel that repeats the last column or row (padded() says so).
 /// Errors (ffmpeg missing, encoder failure, disk full) throw InputError with

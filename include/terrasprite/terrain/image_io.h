@@ -16,7 +16,9 @@ namespace terrasprite {
 /// larger than 16384 pixels a side (checked from the header, before decoding).
 Image load_image(const std::string& path);
 
-/// Writes an RGBA8 image as PNG (alpha kept). Throws InputError on I/O failure.
+/// Writes an RGBA8 image as PNG (alpha kept), tagged Software = kPngSoftware.
+/// Throws InputError naming `path` when any byte cannot be written (a full
+/// disk, a file-size limit).
 void save_png(const Image& image, const std::string& path);
 
 /// Writes a single-channel 16-bit PNG (row 0 on top). Throws InputError on failure.

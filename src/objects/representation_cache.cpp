@@ -74,7 +74,7 @@ std::uint64_t model_content_hash(const Model& m) {
   h = fnv1a(bytes(m.normals), h);
   h = fnv1a(bytes(m.uvs), h);
   h = fnv1a(bytes(m.indices), h);
-  std::string fields;
+  std::string fields = fmt::format("v{}|i{};", m.positions.size(), m.indices.size());
   for (const MeshPart& p : m.parts)
     fields += fmt::format("p{},{},{};", p.first_index, p.index_count, p.material);
   for (const Material& mat : m.materials)

@@ -146,14 +146,15 @@ void check_table_options(HybridCommand& c) {
 QualityTable cached_table(GlSceneObjects& set, std::size_t i, const TableOptions& o,
                           const std::string& cache) {
   const LayoutModel& sm = set.layout_model(i);
-  const auto file = table_cache_file(cache, sm.file, sm.options, o, lod_chain_key(set.lod()));
-  std::optional<QualityTable> t = read_table_cache(file);
+  const TableCacheEntry entry =
+      table_cache_entry(cache, sm.file, set.model(i).model(), sm.options, o, lod_chain_key(set.lod()));
+  std::optional<QualityTable> t = read_table_cache(entry);
   if (!t) {
     fmt::print(stderr, "measuring the quality table of {} ({})\n", sm.name,
                o.kinds.size() > 1 ? "pm, relief" : "octahedral");
     Progress progress("table " + sm.name);
     t = measure_quality_table(set.model(i), o, [&](int d, int n) { progress(d, n); });
-    write_table_cache(file, table_json(*t, o));
+    write_table_cache(entry, table_json(*t, o));
   }
   return *t;
 }

@@ -27,7 +27,7 @@ GlSceneObjects::GlSceneObjects(const ObjectLayout& scene, const LodOptions& lod,
     const Model model = load_model(m.file, m.options);
     const RepresentationCache cache =
         cache_dir.empty() ? RepresentationCache{}
-                          : RepresentationCache(cache_dir, model_source_key(m.file, m.options),
+                          : RepresentationCache(cache_dir, model_source_key(model, m.options),
                                                 std::filesystem::path(m.file).stem().string());
     std::vector<LodLevel> chain = cached_lod_chain(model, lod, cache);
     impl_->models.push_back(std::make_unique<GlModel>(model, std::move(chain), cache));

@@ -27,7 +27,7 @@ bool load_impostor(const RepresentationCache& cache, const std::string& what,
   if (!cache.enabled()) return false;
   const std::size_t total = total_bytes(textures);
   const std::optional<std::string> payload =
-      cache.read(what, [total](std::string_view bytes) -> const char* {
+      cache.read(what, total, [total](std::string_view bytes) -> const char* {
         return bytes.size() == total ? nullptr : "not the size of this impostor's textures";
       });
   if (!payload) return false;

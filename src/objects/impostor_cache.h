@@ -23,8 +23,9 @@ struct TextureLevel {
 };
 
 /// Fills the textures from the entry `what` and returns true; false (the
-/// textures untouched) when the cache is disabled, has no such entry, or the
-/// entry's size does not match.
+/// textures untouched) when the cache is disabled, has no such entry of this
+/// model (RepresentationCache::read: key, checksum), or the entry's size is
+/// not the textures' size.
 bool load_impostor(const RepresentationCache& cache, const std::string& what,
                    std::initializer_list<TextureLevel> textures);
 

@@ -40,11 +40,15 @@ class RepresentationCaching : public ::testing::Test {
 
   // The box drawn with `rep` by a fresh GlModel over `c`, seen obliquely.
   ts::Image draw(const ts::RepresentationCache& c, const ts::Representation& rep) {
-    ts::GlModel m(box, ts::cached_lod_chain(box, {}, c), c);
+    return draw_model(box, c, rep);
+  }
+  ts::Image draw_model(const ts::Model& model, const ts::RepresentationCache& c,
+                       const ts::Representation& rep) {
+    ts::GlModel m(model, ts::cached_lod_chain(model, {}, c), c);
     m.prepare(rep);
     target.bind_and_clear();
     const ts::ObjectInstance at_origin{};
-    m.draw(rep, std::span(&at_origin, 1), tstest::orbit(glm::dvec3(box.center()), 20.0, 30, 35));
+    m.draw(rep, std::span(&at_origin, 1), tstest::orbit(glm::dvec3(model.center()), 20.0, 30, 35));
     glFinish();
     return target.read_color();
   }
@@ -127,49 +131,56 @@ TEST_F(RepresentationCaching, DamagedEntryIsRebuiltAndReplaced) {
   EXPECT_EQ(flipped.stats().rejected, 1);
 }
 
-// An entry whose size field is zstd's "unknown" (2^64 - 1) over a frame that
-// records no size, and one whose size field claims a terabyte: each is
-// refused with a warning and reads as absent (to be built again), without
-// allocating what the header claims.
+// An entry claiming more than the caller's bound (a terabyte, or 4 GB of an
+// impostor's few kilobytes) is refused before decoding: one warning, then
+// rebuilt and replaced, so the next run reads it.
 TEST(RepresentationCacheEntry, AnImpossibleSizeIsRefusedNotAllocated) {
   tstest::TempDir dir;
   const ts::RepresentationCache cache(dir.path, "key", "model");
   const std::string payload(1000, 'x');
   cache.write("what", payload);
-  ASSERT_EQ(cache.read("what"), payload);
-  std::string bytes;
-  {
-    std::ifstream in(cache.file("what"), std::ios::binary);
-    bytes.assign(std::istreambuf_iterator<char>(in), {});
-  }
-  ASSERT_GT(bytes.size(), 20u);
-  const std::string header = bytes.substr(0, 12);  // magic and version
-
-  std::string frame(ZSTD_compressBound(payload.size()), '\0');
-  ZSTD_CCtx* c = ZSTD_createCCtx();
-  ZSTD_CCtx_setParameter(c, ZSTD_c_contentSizeFlag, 0);
-  ZSTD_CCtx_setParameter(c, ZSTD_c_checksumFlag, 1);
-  ZSTD_outBuffer out{frame.data(), frame.size(), 0};
-  ZSTD_inBuffer in{payload.data(), payload.size(), 0};
-  ASSERT_EQ(ZSTD_compressStream2(c, &out, &in, ZSTD_e_end), 0u);
-  ZSTD_freeCCtx(c);
-  frame.resize(out.pos);
-
-  const auto entry = [&](std::uint64_t size, const std::string& body) {
-    std::string e = header;
-    e.append(reinterpret_cast<const char*>(&size), sizeof size);
-    std::ofstream(cache.file("what"), std::ios::binary | std::ios::trunc) << e + body;
-  };
-  entry(ZSTD_CONTENTSIZE_UNKNOWN, frame);
+  ASSERT_EQ(cache.read("what", payload.size()), payload);
   testing::internal::CaptureStderr();
-  EXPECT_FALSE(cache.read("what"));
-  EXPECT_NE(testing::internal::GetCapturedStderr().find("no payload size"), std::string::npos);
+  EXPECT_FALSE(cache.read("what", payload.size() - 1));
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("claims 1000 bytes"), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_EQ(cache.stats().rejected, 1);
+}
 
-  entry(std::uint64_t(1) << 40, bytes.substr(20));  // the valid frame, a terabyte claimed
+// Entries are found by file name but read only under the key they record:
+// model A's entries copied under model B's names (same file stem, same
+// entry names) are refused and B's own are built. Every representation
+// (the LOD chain, a relief impostor of the very same size) is checked.
+TEST_F(RepresentationCaching, AnotherModelsEntriesAreNeverRead) {
+  const ts::Model other = tstest::colored_box(2.f, 1.f, 0.5f);
+  const ts::RepresentationCache a(dir, ts::model_source_key(box, {}), "model");
+  const ts::RepresentationCache b(dir, ts::model_source_key(other, {}), "model");
+  ASSERT_NE(ts::model_source_key(box, {}), ts::model_source_key(other, {}));
+  EXPECT_EQ(ts::model_source_key(box, {}),
+            ts::model_source_key(tstest::colored_box(1.f, 2.f, 1.5f), {}))
+      << "the same content is the same key";
+  (void)draw(a, relief);
+  const ts::Image b_built = draw(ts::RepresentationCache{}, relief);  // no cache: built
+
+  // B's entry names now hold A's bytes.
+  for (const std::string& what : std::vector<std::string>{ts::lod_chain_key({}), "relief-32"})
+    fs::copy_file(a.file(what), b.file(what), fs::copy_options::overwrite_existing);
   testing::internal::CaptureStderr();
-  EXPECT_FALSE(cache.read("what"));
-  EXPECT_NE(testing::internal::GetCapturedStderr().find("truncated"), std::string::npos);
-  EXPECT_EQ(cache.stats().rejected, 2);
+  ts::GlModel gb(other, ts::cached_lod_chain(other, {}, b), b);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(b.stats().hits, 0);
+  EXPECT_EQ(b.stats().rejected, 1) << err;
+  EXPECT_NE(err.find("other inputs"), std::string::npos) << err;
+  EXPECT_EQ(gb.chain().front().positions, ts::build_lod_chain(other).front().positions);
+
+  testing::internal::CaptureStderr();
+  const ts::Image b_read = draw_model(other, b, relief);
+  testing::internal::GetCapturedStderr();
+  EXPECT_EQ(b.stats().hits, 1) << "B's chain, rebuilt, is read back";
+  EXPECT_EQ(b.stats().rejected, 2) << "A's relief impostor is refused";
+  EXPECT_EQ(b_read.rgba, draw_model(other, ts::RepresentationCache{}, relief).rgba);
+  EXPECT_NE(b_read.rgba, b_built.rgba) << "B's impostor, not the box's";
 }
 
 TEST_F(RepresentationCaching, DisabledCacheWritesNothing) {

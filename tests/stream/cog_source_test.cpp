@@ -12,10 +12,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "stream/tile_file.h"
+#include "terrasprite/common/cache_entry.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/stream/tiled_terrain.h"
 #include "test_util.h"
@@ -290,6 +293,127 @@ TEST(CogSource, BoundsAreCachedForAnUnchangedFileOnly) {
     ASSERT_EQ(setenv("TERRASPRITE_CACHE", before.c_str(), 1), 0);
   else
     ASSERT_EQ(unsetenv("TERRASPRITE_CACHE"), 0);
+}
+
+}  // namespace
+}  // namespace terrasprite
+
+namespace terrasprite {
+namespace {
+
+// TERRASPRITE_CACHE set to `root` for a scope, then restored.
+struct CacheRootScope {
+  std::string before;
+  bool was;
+  explicit CacheRootScope(const std::string& root) {
+    const char* b = std::getenv("TERRASPRITE_CACHE");
+    was = b != nullptr;
+    before = b ? b : "";
+    setenv("TERRASPRITE_CACHE", root.c_str(), 1);
+  }
+  ~CacheRootScope() {
+    if (was)
+      setenv("TERRASPRITE_CACHE", before.c_str(), 1);
+    else
+      unsetenv("TERRASPRITE_CACHE");
+  }
+};
+
+std::vector<std::filesystem::path> entries(const std::string& dir) {
+  std::vector<std::filesystem::path> v;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) v.push_back(e.path());
+  return v;
+}
+
+// The bounds of the file `path` computed afresh (under an empty cache root).
+std::vector<std::vector<float>> fresh_bounds(const std::string& path, const std::string& root) {
+  std::filesystem::remove_all(root);
+  const CacheRootScope scope(root);
+  const TileSetInfo s = open_cog(path, "", 4, 1 << 10);
+  EXPECT_FALSE(s.cog->bounds_cached);
+  return s.cog->bound;
+}
+
+// Another DEM copied over the cached one, same path, same size, its old
+// modification time restored: the fingerprint (change time, edge hash) sees
+// it and the bounds are computed again, not read. Cost: about 0.3 s.
+TEST(CogBoundsCache, AnotherFileAtTheSamePathSizeAndTimeIsAMiss) {
+  tstest::TempDir t;
+  const std::string a = make_cog(t.path / "a.tif", 257, "CUBIC");
+  const std::string b = make_cog(t.path / "b.tif", 257, "AVERAGE");
+  const auto size = std::max(std::filesystem::file_size(a), std::filesystem::file_size(b));
+  std::filesystem::resize_file(a, size);  // bytes after a TIFF's last block are never read
+  std::filesystem::resize_file(b, size);
+  const auto b_bounds = fresh_bounds(b, t / "fresh");
+  ASSERT_NE(fresh_bounds(a, t / "fresh"), b_bounds) << "the test needs two different DEMs";
+
+  const CacheRootScope scope(t / "cache");
+  EXPECT_FALSE(open_cog(a, "", 4, 1 << 10).cog->bounds_cached);
+  ASSERT_TRUE(open_cog(a, "", 4, 1 << 10).cog->bounds_cached);
+  const auto mtime = std::filesystem::last_write_time(a);
+  std::filesystem::copy_file(b, a, std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::last_write_time(a, mtime);
+  const TileSetInfo now = open_cog(a, "", 4, 1 << 10);
+  EXPECT_FALSE(now.cog->bounds_cached) << "the old file's bounds read for the new one";
+  EXPECT_EQ(now.cog->bound, b_bounds);
+}
+
+// Another file's entry under this file's name, a flipped payload byte, and
+// an entry of the right key whose bounds no pass makes (-1e30 everywhere:
+// rays would hit nothing) are each a note and a fresh pass, never used.
+TEST(CogBoundsCache, AWrongKeyADamagedOrAnImpossibleEntryIsAMiss) {
+  tstest::TempDir t;
+  const std::string a = make_cog(t.path / "a.tif", 257, "CUBIC");
+  const std::string b = make_cog(t.path / "b.tif", 257, "AVERAGE");
+  const auto a_bounds = fresh_bounds(a, t / "fresh");
+  const std::string dir = t / "cache/cog-bounds";
+  const CacheRootScope scope(t / "cache");
+  (void)open_cog(b, "", 4, 1 << 10);
+  const std::filesystem::path b_entry = entries(dir).at(0);
+  std::filesystem::rename(b_entry, t.path / "b.entry");
+  (void)open_cog(a, "", 4, 1 << 10);
+  const std::filesystem::path a_entry = entries(dir).at(0);
+  const auto reopen = [&](const char* note) {
+    testing::internal::CaptureStderr();
+    const TileSetInfo s = open_cog(a, "", 4, 1 << 10);
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_FALSE(s.cog->bounds_cached) << note;
+    EXPECT_EQ(s.cog->bound, a_bounds) << note;
+    EXPECT_NE(err.find(note), std::string::npos) << err;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+    EXPECT_TRUE(open_cog(a, "", 4, 1 << 10).cog->bounds_cached) << "rebuilt and replaced";
+  };
+
+  std::filesystem::copy_file(t.path / "b.entry", a_entry,
+                             std::filesystem::copy_options::overwrite_existing);
+  reopen("other inputs");
+
+  const auto size = std::filesystem::file_size(a_entry);
+  {
+    std::fstream f(a_entry, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekg(std::streamoff(size - 8));
+    const char c = char(f.get());
+    f.seekp(std::streamoff(size - 8));
+    f.put(char(c ^ 1));
+  }
+  reopen("checksum");
+
+  // Rewritten with the right key and a valid checksum, bounds of -1e30.
+  std::ifstream in(a_entry, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  in.close();
+  std::uint32_t key_size = 0;
+  std::memcpy(&key_size, bytes.data() + 12, 4);
+  const std::string key = bytes.substr(16, key_size);
+  std::optional<std::string> payload = read_cache_entry(a_entry, key, 1 << 30).payload;
+  ASSERT_TRUE(payload);
+  std::vector<float> v(payload->size() / 4);
+  std::memcpy(v.data(), payload->data(), payload->size());
+  std::fill(v.begin() + 2, v.end(), -1e30f);
+  std::ofstream(a_entry, std::ios::binary | std::ios::trunc)
+      << encode_cache_entry(key, std::string_view(reinterpret_cast<const char*>(v.data()),
+                                                  v.size() * 4));
+  reopen("bounds no pass can make");
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The on-disk cache of quality tables (`objects table`, `bench hybrid`): one
-// JSON file (quality_table_json.h) per model, options and LOD chain.
+// cache entry (terrasprite/common/cache_entry.h) per model, options and LOD
+// chain, holding the table as JSON (quality_table_json.h).
 #pragma once
 #include <filesystem>
 #include <nlohmann/json_fwd.hpp>
@@ -12,25 +13,28 @@
 
 namespace terrasprite {
 
-/// Cache key of a table: model_source_key() (the model file's bytes, its
-/// texture's and the model options), then a hash of the table options, the
-/// LOD chain's key (lod_chain_key: levels built otherwise make another
-/// table) and the format version; 48 hex digits. Throws InputError when the
-/// model file cannot be read.
-std::string table_cache_key(const std::string& model_file, const ModelOptions& m,
-                            const TableOptions& o, const std::string& chain);
+/// Where a table is cached and the key its entry records.
+struct TableCacheEntry {
+  /// `<cache_dir>/<model stem>-<48 hex digits>.table`: where to look.
+  std::filesystem::path file;
+  /// What the entry must record to be read: the format version,
+  /// model_source_key() (the loaded model's content and its options), the
+  /// LOD chain's key (lod_chain_key: levels built otherwise make another
+  /// table) and every table option.
+  std::string key;
+};
 
-/// The cache file of a model's table in `cache_dir` (empty: default_cache_dir()):
-/// `<model stem>-<table_cache_key>.json`.
-std::filesystem::path table_cache_file(const std::string& cache_dir, const std::string& model_file,
-                                       const ModelOptions& m, const TableOptions& o,
-                                       const std::string& chain);
+/// The entry of the table measured on `model` (loaded from `model_file` with
+/// `m`) with `o` on the chain `chain`, in `cache_dir` (empty: default_cache_dir()).
+TableCacheEntry table_cache_entry(const std::string& cache_dir, const std::string& model_file,
+                                  const Model& model, const ModelOptions& m,
+                                  const TableOptions& o, const std::string& chain);
 
-/// The cached table in `file`, if one is there and readable (an unreadable
-/// one is reported on stderr and ignored).
-std::optional<QualityTable> read_table_cache(const std::filesystem::path& file);
+/// The cached table, if an entry of this key is there, intact and readable;
+/// a present but unusable one is a note on stderr (one line) and a miss.
+std::optional<QualityTable> read_table_cache(const TableCacheEntry& entry);
 
 /// Stores `j` (table_json) atomically; a failure is a warning on stderr, not an error.
-void write_table_cache(const std::filesystem::path& file, const nlohmann::json& j);
+void write_table_cache(const TableCacheEntry& entry, const nlohmann::json& j);
 
 }  // namespace terrasprite

@@ -29,10 +29,12 @@ ObjectsTableResult run_objects_table(const ObjectsTableOptions& o) {
   const Model model = load_model(o.model_file, o.model);
   ObjectsTableResult r;
   std::optional<QualityTable> cached;
+  TableCacheEntry entry;
   if (o.use_cache) {
-    r.cache_file =
-        table_cache_file(o.cache_dir, o.model_file, o.model, o.table, lod_chain_key(LodOptions{}));
-    cached = read_table_cache(r.cache_file);
+    entry = table_cache_entry(o.cache_dir, o.model_file, model, o.model, o.table,
+                              lod_chain_key(LodOptions{}));
+    r.cache_file = entry.file;
+    cached = read_table_cache(entry);
   }
   r.cached = cached.has_value();
   if (r.cached) {
@@ -41,12 +43,12 @@ ObjectsTableResult run_objects_table(const ObjectsTableOptions& o) {
   }
   const RepresentationCache reps =
       o.use_cache ? RepresentationCache(o.cache_dir.empty() ? default_cache_dir() : o.cache_dir,
-                                        model_source_key(o.model_file, o.model),
+                                        model_source_key(model, o.model),
                                         std::filesystem::path(o.model_file).stem().string())
                   : RepresentationCache{};
   r.table = measure(model, o, reps);
   r.representation_cache = reps.stats();
-  if (o.use_cache) write_table_cache(r.cache_file, table_json(r.table, o.table));
+  if (o.use_cache) write_table_cache(entry, table_json(r.table, o.table));
   return r;
 }
 

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 #include "terrasprite/common/error.h"
@@ -63,15 +64,18 @@ plot 'per_frame.dat' u "frame":"flip" w QSTYLE lw 1.5 t 'LOD-sprite', '' u "fram
 // The frame-count sweep (Fig. 10).
 const char* kFrameCountPlot = R"GP(set output 'fig10_keyframes_vs_frames.png'
 YRANGE_FRAMES
+XRANGE_FRAMES
 set title "Keyframe fraction against frame count (paper Fig. 10)"
 set xlabel "frames along the same path (log)"; set ylabel "keyframe fraction"; set logscale x
 plot 'frames.dat' u "frames":"keyframe_fraction" w lp pt 7 lw 1.5 t 'keyframes / frames'
 unset logscale x
+set autoscale xy
 )GP";
 
 // The threshold sweep (Figs. 11-12).
 const char* kThresholdPlots = R"GP(set output 'fig11_keyframes_vs_threshold.png'
 YRANGE_THRESHOLD
+XRANGE_THRESHOLD
 set title "Keyframe fraction against threshold (paper Fig. 11)"
 set xlabel "threshold (pixels, log)"; set ylabel "keyframe fraction"; set logscale x
 plot 'threshold.dat' u "threshold_px":"keyframe_fraction" w lp pt 7 lw 1.5 t 'keyframes / frames'
@@ -81,15 +85,18 @@ set title "Speed-up over full resolution against threshold (paper Fig. 12)"
 set ylabel "speed-up (total full / total LOD-sprite)"
 plot 'threshold.dat' u "threshold_px":"speedup" w lp pt 7 lw 1.5 t 'measured (totals)', '' u "threshold_px":"speedup_from_medians" w lp pt 5 lw 1.5 t 'from per-class medians'
 unset logscale x
-set autoscale y
+set autoscale xy
 )GP";
 
 // The coarse-mesh sweep.
 const char* kLodSweepPlot = R"GP(set output 'lod_sweep.png'
+XRANGE_LOD
+YRANGE_LOD
+Y2RANGE_LOD
 set title "Coarse mesh size at the chosen threshold"
 set xlabel "coarse quads per side (log)"; set ylabel "speed-up"; set y2label "mean SSIM"; set y2tics; set ytics nomirror; set logscale x
 plot 'lod.dat' u "lod_quads":"speedup" w lp pt 7 lw 1.5 t 'speed-up (totals)', '' u "lod_quads":"speedup_from_medians" w lp pt 6 lw 1.5 t 'speed-up (medians)', '' u "lod_quads":"mean_ssim" axes x1y2 w lp pt 5 lw 1.5 t 'mean SSIM'
-unset logscale x; unset y2tics; unset y2label; set ytics mirror
+unset logscale x; unset y2tics; unset y2label; set ytics mirror; set autoscale xy; set autoscale y2
 )GP";
 
 // The plots a run has data for, in the page's order.
@@ -179,30 +186,44 @@ void write_data(const LodspriteResult& j, OutputDir& out) {
              "lod_quads keyframes speedup mean_ssim speedup_from_medians\n" + ld.str());
 }
 
-// gnuplot's y range for a plotted series: autoscale, or a band around it when
-// every value is the same (autoscale would fail with "empty y range").
-std::string y_range(const std::vector<double>& v) {
-  if (v.empty()) return "set autoscale y";
+// gnuplot's range of `axis` for a plotted series: autoscale, or a band around
+// it when every value is the same (autoscale would warn of an empty range).
+std::string axis_range(const char* axis, const std::vector<double>& v) {
+  if (v.empty()) return fmt::format("set autoscale {}", axis);
   const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
-  if (*hi > *lo) return "set autoscale y";
+  if (*hi > *lo) return fmt::format("set autoscale {}", axis);
   const double pad = std::max(0.1 * std::abs(*lo), 0.01);
-  return fmt::format("set yrange [{}:{}]", *lo - pad, *hi + pad);
+  return fmt::format("set {}range [{}:{}]", axis, *lo - pad, *hi + pad);
 }
 
-// The y range lines of the sweep plots.
-void replace_y_ranges(const LodspriteResult& j, std::string& gp) {
-  std::vector<double> by_frames, by_threshold, speedup;
-  for (const FrameCountPoint& t : j.frame_count_sweep) by_frames.push_back(t.keyframe_fraction);
+// The axis range lines of the sweep plots.
+void replace_axis_ranges(const LodspriteResult& j, std::string& gp) {
+  std::vector<double> frames, by_frames, thresholds, by_threshold, speedup, quads, lod_speedup,
+      lod_ssim;
+  for (const FrameCountPoint& t : j.frame_count_sweep) {
+    frames.push_back(t.frames);
+    by_frames.push_back(t.keyframe_fraction);
+  }
   for (const ThresholdPoint& t : j.threshold_sweep) {
+    thresholds.push_back(t.threshold_px);
     by_threshold.push_back(t.pass.keyframe_fraction);
     speedup.push_back(t.pass.speedup);
     speedup.push_back(t.pass.speedup_from_medians);
   }
-  for (const auto& [key, values] : {std::pair{"YRANGE_FRAMES", &by_frames},
-                                    {"YRANGE_THRESHOLD", &by_threshold},
-                                    {"YRANGE_SPEEDUP", &speedup}}) {
+  for (const LodQuadsPoint& q : j.lod_sweep) {
+    quads.push_back(q.lod_quads);
+    lod_speedup.push_back(q.pass.speedup);
+    lod_speedup.push_back(q.pass.speedup_from_medians);
+    lod_ssim.push_back(q.pass.mean_ssim);
+  }
+  const std::tuple<const char*, const char*, const std::vector<double>*> lines[] = {
+      {"XRANGE_FRAMES", "x", &frames},          {"YRANGE_FRAMES", "y", &by_frames},
+      {"XRANGE_THRESHOLD", "x", &thresholds},   {"YRANGE_THRESHOLD", "y", &by_threshold},
+      {"YRANGE_SPEEDUP", "y", &speedup},        {"XRANGE_LOD", "x", &quads},
+      {"Y2RANGE_LOD", "y2", &lod_ssim},         {"YRANGE_LOD", "y", &lod_speedup}};
+  for (const auto& [key, axis, values] : lines) {
     const std::size_t at = gp.find(key);
-    if (at != std::string::npos) gp.replace(at, std::string(key).size(), y_range(*values));
+    if (at != std::string::npos) gp.replace(at, std::string(key).size(), axis_range(axis, *values));
   }
 }
 
@@ -212,7 +233,7 @@ std::string draw_plots(const LodspriteResult& j, OutputDir& out) {
   if (!j.frame_count_sweep.empty()) gp += kFrameCountPlot;
   if (!j.threshold_sweep.empty()) gp += kThresholdPlots;
   if (!j.lod_sweep.empty()) gp += kLodSweepPlot;
-  replace_y_ranges(j, gp);
+  replace_axis_ranges(j, gp);
   auto replace_all = [&](const std::string& from, const std::string& to) {
     for (std::size_t at = gp.find(from); at != std::string::npos;
          at = gp.find(from, at + to.size()))
@@ -489,9 +510,12 @@ void html_keyframe_triggers(const LodspriteResult& j, std::ostringstream& h) {
   h << fmt::format(
       "</table><p>first: the flight's first frame; error: the error passed the threshold; "
       "scale: the keyframe's pixels were stretched past {} (rising with plain LOD's drape "
-      "displacement); fallback: over {} of the in-view quads fell back to the drape texture. "
-      "Cache reuses are sprite frames and not counted.</p>\n",
-      j.max_resample_scale, j.max_fallback_fraction);
+      "displacement); fallback: {}. Cache reuses are sprite frames and not counted.</p>\n",
+      j.max_resample_scale,
+      j.max_fallback_fraction < 1
+          ? fmt::format("over {} of the in-view quads fell back to the drape texture",
+                        j.max_fallback_fraction)
+          : std::string("off (--fallback-trigger 1)"));
 }
 
 void html_plots(const LodspriteResult& j, const std::string& plot_error, std::ostringstream& h) {

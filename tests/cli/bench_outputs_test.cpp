@@ -67,8 +67,7 @@ TEST(BenchOutputs, RenderHelpStatesItsDefaults) {
 
 TEST(BenchOutputs, RenderWarnsWhenWarpedFramesAreTooFarAndTakesADuration) {
   tstest::TempDir tmp;
-  const std::string base =
-      "render --synthetic-size 65 --mode voxel --warp depth --size 32x24 --no-images ";
+  const std::string base = "render --mode voxel --warp depth --size 32x24 --no-images ";
   const auto far = tstest::run_cli(base + "--frames 12 --out " + tmp / "far");
   ASSERT_EQ(far.status, 0) << far.output;
   EXPECT_NE(far.output.find("warning: --warp depth:"), std::string::npos) << far.output;

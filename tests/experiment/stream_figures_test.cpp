@@ -14,7 +14,7 @@ namespace {
 
 // `n` frames of 10 ms, each with `lookups` height reads of which `degraded` coarser.
 std::vector<StreamFrame> frames(int n, long long lookups = 1000, long long degraded = 0) {
-  std::vector<StreamFrame> v(std::size_t(n));
+  std::vector<StreamFrame> v(static_cast<std::size_t>(n));
   for (StreamFrame& f : v) {
     f.ms = 10;
     f.stats.lookups = lookups;

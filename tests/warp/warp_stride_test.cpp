@@ -20,7 +20,7 @@ Heightfield flat_ground() {
 // about 141 m ahead), each `step_m` further east and `turn_deg` further round
 // than the last.
 std::vector<Camera> path(int n, double step_m, double turn_deg) {
-  std::vector<Camera> v(std::size_t(n));
+  std::vector<Camera> v(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     v[std::size_t(i)].position = {i * step_m, 0, 100};
     v[std::size_t(i)].yaw_deg = i * turn_deg;
@@ -39,7 +39,7 @@ TEST(WarpStride, SmallStepsWarpAndLargeOnesAreTooFar) {
   const WarpStride turning = warp_stride(path(12, 1, 20), 4, g);
   EXPECT_TRUE(turning.too_far);
   EXPECT_NEAR(turning.max_turn_deg, 41.41, 0.01);  // 60 deg of yaw 45 deg down
-  const WarpStride moving = warp_stride(path(12, 10, 0), 4, g);
+  const WarpStride moving = warp_stride(path(12, 20, 0), 4, g);
   EXPECT_TRUE(moving.too_far);
   EXPECT_EQ(moving.worst_frame, 3);
   EXPECT_FALSE(warp_stride(path(12, 50, 20), 1, g).too_far);  // every frame real

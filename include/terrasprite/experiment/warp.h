@@ -31,10 +31,10 @@ struct WarpStride {
   double max_move_over_depth = 0;
   int worst_frame = 0;  ///< the warped frame of the larger excess over its limit
   /// Whether warping this far is expected to fail visibly: a turn over a
-  /// quarter of the vertical field of view, or a move over 10% of that depth.
+  /// quarter of the vertical field of view, or a move over a quarter of that depth.
   bool too_far = false;
 };
-inline constexpr double kWarpMaxTurnOfFov = 0.25, kWarpMaxMoveOverDepth = 0.10;
+inline constexpr double kWarpMaxTurnOfFov = 0.25, kWarpMaxMoveOverDepth = 0.25;
 
 /// The stride of `path` with one real frame in `real_every` (>= 1).
 WarpStride warp_stride(const std::vector<Camera>& path, int real_every, const Heightfield& ground);

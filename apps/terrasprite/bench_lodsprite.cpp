@@ -59,7 +59,7 @@ void add_trigger_options(CLI::App& cmd, LodspriteBenchArgs& o) {
   cmd.add_option("--mesh-triangles", o.config.mesh_triangles,
                  "--mesh adaptive: triangle budget (default 0 = the uniform grid's 2 x "
                  "lod-quads^2, what plain LOD draws)");
-  cmd.add_option("--path", o.config.path, "'paper' (default) or a JSON path file");
+  add_path_option(cmd, o.config.path);
   cmd.add_option("--frames", o.config.frames, "frames along the path (default 460)");
   cmd.add_option("--size", o.size, "image size WxH (default 512x512)");
   cmd.add_option("--threshold", o.config.threshold_px, "keyframe threshold, pixels (default 1.0)");
@@ -136,7 +136,8 @@ void add_pass_options(CLI::App& cmd, LodspriteBenchArgs& o) {
                  "every n-th frame only (default 1); the full-resolution total is estimated as "
                  "their mean x frames; sprite and LOD frames are all drawn and timed");
   cmd.add_option("--out", o.out, "report directory (default out/lodsprite)");
-  cmd.add_option("--json", o.json, "also write the JSON here");
+  cmd.add_option("--json", o.json,
+                 "also write the JSON here (stdout then gets a short summary, not the JSON)");
 }
 
 // The options the run needs from the command line; InputError for bad values.
@@ -170,7 +171,6 @@ void add_bench_lodsprite(CLI::App& bench, const OutputPolicy& policy) {
                                    "LOD-sprite vs full resolution vs plain LOD: the paper's "
                                    "reproduction (JSON + plots + index.html)");
   auto o = std::make_shared<LodspriteBenchArgs>();
-  o->terrain.resample = 513;  // the paper's 512 x 512 quads
   add_terrain_options(*cmd, o->terrain);
   add_trigger_options(*cmd, *o);
   add_pass_options(*cmd, *o);
@@ -191,7 +191,9 @@ void add_bench_lodsprite(CLI::App& bench, const OutputPolicy& policy) {
     if (!o->json.empty()) report::write_json(j, o->json, policy);
     nlohmann::json summary = j;
     summary.erase("per_frame");
-    fmt::print("{}\n", summary.dump(2));
+    print_bench_result(summary, o->json,
+                       report::lodsprite_summary_text(result) +
+                           fmt::format("report: {}/index.html\n", o->out));
   });
 }
 

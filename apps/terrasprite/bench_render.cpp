@@ -29,11 +29,11 @@ void add_bench_render(CLI::App& bench, const OutputPolicy& policy) {
   auto o = std::make_shared<Opts>();
   add_terrain_options(*cmd, o->terrain);
   cmd->add_option("--lod-quads", o->lod_quads, "coarse grid quads per side (default 16)");
-  cmd->add_option("--path", o->path, "'paper' or a JSON path file");
+  add_path_option(*cmd, o->path);
   cmd->add_option("--frames", o->frames, "frames (default 460)")
       ->check(CLI::Range(1, 1000000));
   cmd->add_option("--size", o->size, "image size WxH (default 512x512)");
-  cmd->add_option("--json", o->json, "also write the JSON here");
+  cmd->add_option("--json", o->json, "also write the JSON here (stdout then gets a short summary, not the JSON)");
   add_objects_options(*cmd, o->objects);
   cmd->callback([o, &policy] {
     auto [w, h] = parse_size(o->size, "--size");
@@ -73,7 +73,12 @@ void add_bench_render(CLI::App& bench, const OutputPolicy& policy) {
                         {"lod", lod_json},
                         {"full_over_lod_median", f.ms().median / std::max(l.ms().median, 1e-9)}};
     if (!o->json.empty()) report::write_json(j, o->json, policy);
-    fmt::print("{}\n", j.dump(2));
+    print_bench_result(
+        j, o->json,
+        fmt::format("bench render: {} frames at {}x{}: full resolution median {:.2f} ms, LOD "
+                    "({} quads) median {:.2f} ms, {:.2f}x\n",
+                    r.frames, w, h, f.ms().median, o->lod_quads, l.ms().median,
+                    f.ms().median / std::max(l.ms().median, 1e-9)));
   });
 }
 

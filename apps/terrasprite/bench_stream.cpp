@@ -2,6 +2,7 @@
 // terrasprite bench stream: options in, the streaming study
 // (experiment/stream.h) run, its report written (report/stream_report.h).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <tuple>
 
@@ -94,6 +95,7 @@ void run(const BenchStreamOpts& o, const OutputPolicy& policy) {
   const std::string error = report::write_stream_plot(r, out.partial().string());
   if (!error.empty())
     fmt::print(stderr, "warning: {}; stream_frames.dat kept without a plot\n", error);
+  const std::vector<std::string> images = report::write_stream_snapshots(r, out.partial().string());
   const nlohmann::json summary = report::stream_bench_json(r);
   nlohmann::json full = summary;
   full["per_frame"] = report::stream_per_frame_json(r);
@@ -101,7 +103,23 @@ void run(const BenchStreamOpts& o, const OutputPolicy& policy) {
   report::write_json(full, out.file("bench_stream.json"), policy);
   out.commit();
   if (!o.json.empty()) report::write_json(full, o.json, policy);
-  fmt::print("{}\n", summary.dump(2));
+  print_bench_result(summary, o.json,
+                     report::stream_summary_text(r) +
+                         fmt::format("images: {} in {}\n", fmt::join(images, ", "), out_dir));
+}
+
+// --dem is not a streamed terrain: refused with the command that makes one.
+void add_dem_hint(CLI::App& cmd) {
+  cmd.add_option_function<std::string>(
+         "--dem",
+         [](const std::string& dem) {
+           throw InputError(fmt::format(
+               "--dem {0}: bench stream reads a tiled terrain; run `terrasprite tile --dem {0} "
+               "--out DIR` first, then `bench stream --tiles DIR`",
+               dem));
+         },
+         "")
+      ->group("");  // hidden: only there to give the hint
 }
 
 }  // namespace
@@ -119,7 +137,7 @@ void add_bench_stream(CLI::App& bench, const OutputPolicy& policy) {
   cmd->add_option("--cache-mb", o->cache_mb, "tile cache budget, MB (default 256)");
   cmd->add_option("--io-threads", o->io_threads, "loader threads (default 2)");
   cmd->add_option("--size", o->size, "image size WxH (default 1920x1080)");
-  cmd->add_option("--path", o->path, "'low-fast' (default), 'paper' or a JSON path file");
+  add_path_option(*cmd, o->path);
   cmd->add_option("--frames", o->frames, "frames along the path (default 300)");
   cmd->add_option("--threads", o->threads, "ray-caster threads (default 0: all)");
   cmd->add_option("--first-view-ms", o->first_view_ms,
@@ -130,8 +148,12 @@ void add_bench_stream(CLI::App& bench, const OutputPolicy& policy) {
                   "it fits in half the free memory), yes, no")
       ->check(CLI::IsMember({"auto", "yes", "no"}));
   cmd->add_flag("--in-memory-child", o->child)->group("");  // internal
-  cmd->add_option("--json", o->json, "also write the JSON here");
-  cmd->add_option("--out", o->out, "output directory: plot, JSON (default out/bench_stream)");
+  add_dem_hint(*cmd);
+  cmd->add_option("--json", o->json,
+                  "also write the JSON here (stdout then gets a short summary, not the JSON)");
+  cmd->add_option("--out", o->out,
+                  "output directory: plot, first/middle/last frames (frame_NNNN.png), JSON "
+                  "(default out/bench_stream)");
   cmd->callback([o, &policy] { run(*o, policy); });
 }
 

@@ -100,7 +100,11 @@ void run(const BenchVoxelOpts& o, const OutputPolicy& policy) {
   out.commit();
   if (!o.json.empty()) report::write_json(j, o.json, policy);
   j.erase("per_frame");
-  fmt::print("{}\n", j.dump(2));
+  std::string summary = fmt::format("bench voxel: {} frames at {}x{}\n", r.frames, r.width, r.height);
+  for (const auto& v : j["variants"])
+    summary += fmt::format("  {}: median {} ms, mean SSIM {}\n", v["name"].get<std::string>(),
+                           v["median_ms"].dump(), v["mean_ssim"].dump());
+  print_bench_result(j, o.json, summary + fmt::format("plots and frames: {}\n", out_dir));
 }
 
 }  // namespace
@@ -111,7 +115,7 @@ void add_bench_voxel(CLI::App& bench, const OutputPolicy& policy) {
   auto o = std::make_shared<BenchVoxelOpts>();
   add_terrain_options(*cmd, o->terrain);
   cmd->add_option("--size", o->size, "image size WxH (default 1920x1080)");
-  cmd->add_option("--path", o->path, "'paper' or a JSON path file");
+  add_path_option(*cmd, o->path);
   cmd->add_option("--frames", o->frames, "frames along the path (default 460)");
   cmd->add_option("--threads", o->threads, "thread counts to time, comma-separated (default 1,2)");
   cmd->add_option("--pitches", o->pitches, "static pitch sweep, degrees (default -10,-30,-60,-90)");
@@ -125,7 +129,7 @@ void add_bench_voxel(CLI::App& bench, const OutputPolicy& policy) {
                   "multires: coarsen where a voxel covers fewer pixels than this (default 1)");
   cmd->add_option("--supersample", o->supersample,
                   "reference rays per pixel side (default 2, i.e. 2x2)");
-  cmd->add_option("--json", o->json, "also write the JSON here");
+  cmd->add_option("--json", o->json, "also write the JSON here (stdout then gets a short summary, not the JSON)");
   cmd->add_option(
       "--out", o->out,
       "output directory: plot, reference and multires frames, JSON (default out/bench_voxel)");

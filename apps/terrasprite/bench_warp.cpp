@@ -70,7 +70,12 @@ void run(const BenchWarpOpts& o, const OutputPolicy& policy) {
   report::write_json(j, out.file("bench_warp.json"), policy);
   out.commit();
   if (!o.json.empty()) report::write_json(j, o.json, policy);
-  fmt::print("{}\n", j.dump(2));
+  std::string summary = "bench warp: per method and path, median warp / real frame ms\n";
+  for (const auto& m : j["methods"])
+    summary += fmt::format("  {} on {}: {} / {} ms\n", m["name"].get<std::string>(),
+                           m["path"].get<std::string>(), m["warp_ms_median"].dump(),
+                           m["real_ms_median"].dump());
+  print_bench_result(j, o.json, summary + fmt::format("plot: {}\n", out_dir));
 }
 
 }  // namespace
@@ -82,8 +87,7 @@ void add_bench_warp(CLI::App& bench, const OutputPolicy& policy) {
   cmd->add_option("--renderer", o->renderer, "renderer of the real frames: voxel (default) or full")
       ->check(CLI::IsMember({"voxel", "full"}));
   cmd->add_option("--size", o->size, "output image size WxH (default 1920x1080)");
-  cmd->add_option("--path", o->path,
-                  "'paper', 'low-fast' or a JSON path file (default: both shipped)");
+  add_path_option(*cmd, o->path, "both built-in paths, one after the other");
   cmd->add_option("--frames", o->frames, "frames along each path (default 460)");
   cmd->add_option("--k-max", o->k_max, "warp up to this many frames past a real one (default 8)");
   cmd->add_option("--margin", o->margin,
@@ -91,7 +95,7 @@ void add_bench_warp(CLI::App& bench, const OutputPolicy& policy) {
   cmd->add_option(
       "--real-every", o->real_every,
       "K for the flythrough cost figure: one real frame per K output frames (default 4)");
-  cmd->add_option("--json", o->json, "also write the JSON here");
+  cmd->add_option("--json", o->json, "also write the JSON here (stdout then gets a short summary, not the JSON)");
   cmd->add_option("--out", o->out, "output directory: plot, JSON (default out/bench_warp)");
   cmd->callback([o, &policy] { run(*o, policy); });
 }

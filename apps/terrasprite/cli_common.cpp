@@ -194,4 +194,20 @@ std::function<void(const char*, int, int)> stage_progress(std::string label) {
   };
 }
 
+CLI::Option* add_path_option(CLI::App& cmd, std::string& path, const std::string& default_text) {
+  return cmd.add_option(
+      "--path", path,
+      fmt::format("camera path: {} | a JSON path file (default {})", kPathChoices,
+                  default_text.empty() ? path : default_text));
+}
+
+void print_bench_result(const nlohmann::json& j, const std::string& json_file,
+                        const std::string& summary) {
+  if (json_file.empty()) {
+    fmt::print("{}\n", j.dump(2));
+    return;
+  }
+  fmt::print("{}JSON: {}\n", summary, json_file);
+}
+
 }  // namespace terrasprite::cli

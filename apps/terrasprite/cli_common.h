@@ -55,6 +55,21 @@ std::vector<std::string> split_list(const std::string& text);
 void check_outputs(const OutputPolicy& policy, const std::string& out_dir,
                    std::initializer_list<std::string> files);
 
+/// The built-in camera paths every --path takes besides a JSON path file.
+inline constexpr const char* kPathChoices = "'paper' (the LOD-sprite paper's flight) | "
+                                            "'low-fast' (low and fast over the terrain)";
+
+/// --path, defined once for every command that flies a path: a built-in path
+/// (kPathChoices) or a JSON path file. The help shows `default_text`, or
+/// `path`'s value when that is empty.
+CLI::Option* add_path_option(CLI::App& cmd, std::string& path, const std::string& default_text = "");
+
+/// A bench's result on stdout: with no --json file (`json_file` empty), the
+/// JSON `j` itself (the contract scripts read); with one, the short human
+/// `summary` and where the JSON went.
+void print_bench_result(const nlohmann::json& j, const std::string& json_file,
+                        const std::string& summary);
+
 using report::number_or_null;
 using report::run_gnuplot;
 using report::write_text;

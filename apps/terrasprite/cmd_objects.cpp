@@ -136,6 +136,8 @@ void add_objects_table(CLI::App& objects, const OutputPolicy& policy) {
     const std::string stem = std::filesystem::path(a->model.file).stem().string();
     const std::string out_dir = a->out.empty() ? "out/objects_" + stem : a->out;
     check_outputs(policy, out_dir, {a->json});
+    for (const std::string& w : report::objects_report_warnings(o.table))
+      fmt::print(stderr, "warning: {}\n", w);
     Progress progress("objects table");
     o.progress = [&](int done, int total) { progress(done, total); };
     const ObjectsTableResult r = run_objects_table(o);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // terrasprite render: one renderer along a path -> PNG frames + stats JSON.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
@@ -22,6 +23,7 @@
 #include "terrasprite/common/stats.h"
 #include "terrasprite/experiment/render_run.h"
 #include "terrasprite/experiment/render_stack.h"
+#include "terrasprite/experiment/warp.h"
 #include "terrasprite/output/output_dir.h"
 #include "terrasprite/output/output_file.h"
 #include "terrasprite/output/video_writer.h"
@@ -38,6 +40,7 @@ struct RenderOpts {
   long long mesh_triangles = 0;
   std::string path = "paper";
   int frames = 460;
+  double duration_s = 0;  // > 0: frames = duration x --fps instead of --frames
   std::string size = "512x512";
   std::string out;
   bool depth = false;
@@ -109,11 +112,57 @@ void save_depth(const Frame& f, double m_per_unit, const std::string& file) {
 // Everything checked before any output exists; throws InputError naming the option.
 struct Checked {
   int w = 0, h = 0;
+  int frames = 0;           ///< along the path: --frames, or --duration x --fps
   int first = 0, last = 0;  ///< the frames drawn, [first, last)
   RenderMode mode = RenderMode::kFull;
   std::optional<WarpMethod> warp;
   CoarseMesh mesh = CoarseMesh::kUniform;
 };
+
+// --frames, or --duration S at --fps N: S x N frames.
+int frame_count(const RenderOpts& o) {
+  int frames = o.frames;
+  if (o.duration_s != 0) {
+    if (!(o.duration_s > 0 && o.duration_s <= 1e5))
+      throw InputError(
+          fmt::format("--duration {}: must be a number of seconds, above 0 and at most 100000",
+                      o.duration_s));
+    if (!(o.video_opts.fps > 0 && o.video_opts.fps <= 1000))
+      throw InputError(fmt::format("--fps {}: must be above 0 and at most 1000", o.video_opts.fps));
+    frames = int(std::lround(o.duration_s * o.video_opts.fps));
+  }
+  if (frames < 1 || frames > 1000000)
+    throw InputError(o.duration_s != 0
+                         ? fmt::format("--duration {} at --fps {}: {} frames, must be between 1 "
+                                       "and 1000000",
+                                       o.duration_s, o.video_opts.fps, frames)
+                         : fmt::format("--frames {}: must be between 1 and 1000000", frames));
+  return frames;
+}
+
+// One line on stderr when the warped frames are too far from their real ones
+// to warp cleanly (warp_stride's measure), with what to change.
+void warn_warp_stride(const RenderOpts& o, const Checked& c, const std::vector<Camera>& path,
+                      const Heightfield& ground) {
+  if (!c.warp) return;
+  const WarpStride s = warp_stride(path, o.real_every, ground);
+  if (!s.too_far) return;
+  fmt::print(stderr,
+             "warning: --warp {}: between a real frame and its warped ones the camera turns up "
+             "to {:.1f} deg (limit {:.0f}% of the {:.0f} deg field of view) and moves up to "
+             "{:.0f}% of the depth at the image centre (limit {:.0f}%), worst at frame {}: expect "
+             "streaks, bands and holes; use more --frames (or --duration S --fps N) or a lower "
+             "--real-every\n",
+             o.warp, s.max_turn_deg, 100 * kWarpMaxTurnOfFov, path.front().fov_y_deg,
+             100 * s.max_move_over_depth, 100 * kWarpMaxMoveOverDepth, s.worst_frame);
+}
+
+// Where the stats JSON goes when neither --out nor --json names a place: beside
+// the video (f.mp4 -> f.stats.json); empty otherwise.
+std::string stats_beside_video(const RenderOpts& o) {
+  if (!o.out.empty() || !o.json.empty() || o.video.empty()) return "";
+  return std::filesystem::path(o.video).replace_extension(".stats.json").string();
+}
 
 Checked check_options(const RenderOpts& o, const OutputPolicy& policy) {
   if (o.out.empty() && o.video.empty())
@@ -122,11 +171,10 @@ Checked check_options(const RenderOpts& o, const OutputPolicy& policy) {
     throw InputError("--out: --frames-png and --depth need an output directory");
   Checked c;
   std::tie(c.w, c.h) = parse_size(o.size, "--size");
-  if (o.frames < 1 || o.frames > 1000000)
-    throw InputError(fmt::format("--frames {}: must be between 1 and 1000000", o.frames));
-  std::tie(c.first, c.last) = parse_frame_range(o.frame_range, o.frames);
+  c.frames = frame_count(o);
+  std::tie(c.first, c.last) = parse_frame_range(o.frame_range, c.frames);
   c.mode = parse_render_mode(o.mode);
-  check_outputs(policy, o.out, {o.json});
+  check_outputs(policy, o.out, {o.json, stats_beside_video(o)});
   check_video_target(o, policy);
   return c;
 }
@@ -242,8 +290,9 @@ nlohmann::json stats_json(const RenderOpts& o, const Checked& c, const RenderSta
 void run(const RenderOpts& o, const OutputPolicy& policy) {
   Checked c = check_options(o, policy);
   Terrain terrain = load_terrain_verbose(o.terrain);
-  std::vector<Camera> path = make_path(o.path, terrain.heights, o.frames, double(c.w) / c.h);
+  std::vector<Camera> path = make_path(o.path, terrain.heights, c.frames, double(c.w) / c.h);
   const RenderStackOptions so = stack_options(o, c);
+  warn_warp_stride(o, c, path, terrain.heights);
   RenderStack stack = make_render_stack(terrain, so);
   const std::unique_ptr<GlSceneObjects> objects =
       attach_objects(o.objects, terrain, stack.scene.get(), to_string(c.mode));
@@ -261,9 +310,12 @@ void run(const RenderOpts& o, const OutputPolicy& policy) {
     sinks.out->commit();
   }
   if (!o.json.empty()) report::write_json(j, o.json, policy);
-  fmt::print("{}: {} frames {}x{} ({}), median {:.2f} ms/frame, {:.0f} ms in all on {} -> {}\n",
+  const std::string beside = stats_beside_video(o);
+  if (!beside.empty()) report::write_json(j, beside, policy);
+  fmt::print("{}: {} frames {}x{} ({}), median {:.2f} ms/frame, {:.0f} ms in all on {} -> {}{}\n",
              o.mode, run.frames.size(), c.w, c.h, terrain.heights.name, run.median_ms, wall_ms,
-             stack.device, sinks.out ? sinks.out->final_path().string() : o.video);
+             stack.device, sinks.out ? sinks.out->final_path().string() : o.video,
+             beside.empty() ? "" : ", stats " + beside);
 }
 
 }  // namespace
@@ -273,7 +325,10 @@ void add_render(CLI::App& app, const OutputPolicy& policy) {
                                  "render a camera path with one renderer: PNG frames + stats JSON");
   auto o = std::make_shared<RenderOpts>();
   add_terrain_options(*cmd, o->terrain);
-  cmd->add_option("--mode", o->mode, "renderer")->check(CLI::IsMember(render_mode_names()));
+  cmd->add_option("--mode", o->mode,
+                  fmt::format("renderer: {} (default {})", fmt::join(render_mode_names(), " | "),
+                              o->mode))
+      ->check(CLI::IsMember(render_mode_names()));
   cmd->add_option("--lod-quads", o->lod_quads,
                   "coarse grid quads per side for lod modes (default 16)");
   cmd->add_option("--mesh", o->mesh,
@@ -282,17 +337,24 @@ void add_render(CLI::App& app, const OutputPolicy& policy) {
   cmd->add_option("--mesh-triangles", o->mesh_triangles,
                   "--mesh adaptive: triangle budget (default 0 = the uniform grid's 2 x "
                   "lod-quads^2)");
-  cmd->add_option("--path", o->path, "'paper', 'low-fast' or a JSON path file");
-  cmd->add_option("--frames", o->frames, "frames along the path (default 460)");
+  add_path_option(*cmd, o->path);
+  auto* frames = cmd->add_option("--frames", o->frames, "frames along the path (default 460)");
+  cmd->add_option("--duration", o->duration_s,
+                  "instead of --frames: seconds of flight at --fps frames a second (frames = "
+                  "duration x fps)")
+      ->excludes(frames);
   cmd->add_option("--size", o->size, "image size WxH (default 512x512)");
   // Checked in run(), so a parse error (e.g. an unknown option) is reported first.
-  cmd->add_option("--out", o->out, "output directory (required)");
+  cmd->add_option("--out", o->out,
+                  "output directory: PNG frames and stats.json (required unless --video)");
   cmd->add_flag("--depth", o->depth,
                 "also write linear depth as 16-bit PNG (depth_m_per_unit in the JSON)");
   cmd->add_flag(
       "--lighting", o->lighting,
       "simple sun lighting on top of the texture (off: the derived texture is hillshaded)");
-  cmd->add_option("--json", o->json, "also write the stats JSON here");
+  cmd->add_option("--json", o->json,
+                  "also write the stats JSON here (with --video and no --out or --json: beside "
+                  "the video, FILE.stats.json)");
   cmd->add_option("--warp", o->warp,
                   "warp frames between real ones: poly2 (2D polynomial) or depth (3D reprojection)")
       ->check(CLI::IsMember({"poly2", "depth"}));
@@ -303,7 +365,8 @@ void add_render(CLI::App& app, const OutputPolicy& policy) {
   cmd->add_option("--video", o->video,
                   "also write an H.264 MP4 (yuv420p, +faststart) through ffmpeg; PNG frames then "
                   "only with --frames-png");
-  cmd->add_option("--fps", o->video_opts.fps, "video frame rate (default 30)");
+  cmd->add_option("--fps", o->video_opts.fps,
+                  "video frame rate, and the flight's with --duration (default 30)");
   cmd->add_option("--crf", o->video_opts.crf, "x264 constant rate factor 0..51 (default 18)");
   cmd->add_option("--preset", o->video_opts.preset, "x264 preset (default veryfast)");
   cmd->add_flag("--frames-png", o->frames_png, "with --video, keep writing PNG frames too");

@@ -102,7 +102,7 @@ nlohmann::json full_json(const LodspriteResult& r) {
 
 nlohmann::json lod_json(const LodSummary& l) {
   return {{"total_ms", l.total_ms},   {"median_ms", l.median_ms},
-          {"mean_psnr", l.mean_psnr}, {"mean_psnr_sprite_frames", l.mean_psnr_sprite_frames},
+          {"mean_psnr", l.mean_psnr}, {"mean_psnr_sprite_frames", number_or_null(l.mean_psnr_sprite_frames)},
           {"mean_ssim", l.mean_ssim}, {"min_ssim", l.min_ssim},
           {"mean_flip", l.mean_flip}};
 }
@@ -118,7 +118,7 @@ nlohmann::json sprite_json(const SpriteSummary& s) {
           {"key_median_ms", s.key_median_ms},
           {"sprite_median_ms", s.sprite_median_ms},
           {"mean_psnr", s.mean_psnr},
-          {"mean_psnr_sprite_frames", s.mean_psnr_sprite_frames},
+          {"mean_psnr_sprite_frames", number_or_null(s.mean_psnr_sprite_frames)},
           {"mean_ssim", s.mean_ssim},
           {"min_ssim", s.min_ssim},
           {"mean_flip", s.mean_flip},
@@ -128,20 +128,31 @@ nlohmann::json sprite_json(const SpriteSummary& s) {
 
 nlohmann::json bound_json(const SpeedupBound& b) {
   return {{"f", b.f},
-          {"r", b.r},
-          {"speedup_bound", b.speedup_bound},
-          {"efficiency", b.efficiency},
+          {"r", number_or_null(b.r)},
+          {"speedup_bound", number_or_null(b.speedup_bound)},
+          {"efficiency", number_or_null(b.efficiency)},
           {"key_over_full_median", b.key_over_full_median}};
 }
 
+// true: met, false: missed, null: not meaningful for this run (why_not_applicable says why).
 nlohmann::json targets_json(const LodspriteTargets& t) {
-  return {{"keyframes_at_most_28", t.keyframes_at_most_28},
-          {"efficiency_at_least_0_9", t.efficiency_at_least_0_9},
-          {"ssim_above_lod_on_95pct", t.ssim_above_lod_on_95pct},
-          {"mean_psnr_above_lod", t.mean_psnr_above_lod},
-          {"mean_psnr_above_lod_on_sprite_frames", t.mean_psnr_above_lod_on_sprite_frames},
-          {"paper_speedup", 12.32},
-          {"paper_keyframes", 28}};
+  nlohmann::json j = {{"paper_speedup", 12.32}, {"paper_keyframes", 28}};
+  nlohmann::json why = nlohmann::json::object();
+  for (const auto& [key, check] : {
+           std::pair<const char*, const TargetCheck*>{"keyframes_at_most_28", &t.keyframes_at_most_28},
+           {"efficiency_at_least_0_9", &t.efficiency_at_least_0_9},
+           {"ssim_above_lod_on_95pct", &t.ssim_above_lod_on_95pct},
+           {"mean_psnr_above_lod", &t.mean_psnr_above_lod},
+           {"mean_psnr_above_lod_on_sprite_frames", &t.mean_psnr_above_lod_on_sprite_frames}}) {
+    if (check->state == TargetState::kNotApplicable) {
+      j[key] = nullptr;
+      why[key] = check->why;
+    } else {
+      j[key] = check->state == TargetState::kMet;
+    }
+  }
+  j["why_not_applicable"] = why;
+  return j;
 }
 
 // The threshold, frame-count and coarse-mesh sweeps with their methods.
@@ -235,6 +246,15 @@ nlohmann::json lodsprite_json(const LodspriteResult& r) {
                  {"sprite", r.stalls.sprite}};
   j["bound"] = bound_json(r.bound);
   j["targets"] = targets_json(r.targets());
+  nlohmann::json by_trigger = nlohmann::json::array();
+  for (const KeyframeTriggerRow& t : r.keyframes_by_trigger())
+    by_trigger.push_back({{"trigger", to_string(t.trigger)},
+                          {"keyframes", t.keyframes},
+                          {"error_median", number_or_null(t.error_median)},
+                          {"error_max", number_or_null(t.error_max)},
+                          {"measure_median", number_or_null(t.measure_median)},
+                          {"measure_max", number_or_null(t.measure_max)}});
+  j["keyframes_by_trigger"] = by_trigger;
   add_sweeps(r, j);
   j["figures"] = figures_json(r.figures);
   nlohmann::json per_frame = nlohmann::json::array();

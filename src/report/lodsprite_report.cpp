@@ -3,11 +3,14 @@
 #include "terrasprite/report/lodsprite_report.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 #include "terrasprite/common/error.h"
@@ -60,30 +63,40 @@ plot 'per_frame.dat' u "frame":"flip" w QSTYLE lw 1.5 t 'LOD-sprite', '' u "fram
 
 // The frame-count sweep (Fig. 10).
 const char* kFrameCountPlot = R"GP(set output 'fig10_keyframes_vs_frames.png'
+YRANGE_FRAMES
+XRANGE_FRAMES
 set title "Keyframe fraction against frame count (paper Fig. 10)"
 set xlabel "frames along the same path (log)"; set ylabel "keyframe fraction"; set logscale x
 plot 'frames.dat' u "frames":"keyframe_fraction" w lp pt 7 lw 1.5 t 'keyframes / frames'
 unset logscale x
+set autoscale xy
 )GP";
 
 // The threshold sweep (Figs. 11-12).
 const char* kThresholdPlots = R"GP(set output 'fig11_keyframes_vs_threshold.png'
+YRANGE_THRESHOLD
+XRANGE_THRESHOLD
 set title "Keyframe fraction against threshold (paper Fig. 11)"
 set xlabel "threshold (pixels, log)"; set ylabel "keyframe fraction"; set logscale x
 plot 'threshold.dat' u "threshold_px":"keyframe_fraction" w lp pt 7 lw 1.5 t 'keyframes / frames'
 set output 'fig12_speedup_vs_threshold.png'
+YRANGE_SPEEDUP
 set title "Speed-up over full resolution against threshold (paper Fig. 12)"
 set ylabel "speed-up (total full / total LOD-sprite)"
 plot 'threshold.dat' u "threshold_px":"speedup" w lp pt 7 lw 1.5 t 'measured (totals)', '' u "threshold_px":"speedup_from_medians" w lp pt 5 lw 1.5 t 'from per-class medians'
 unset logscale x
+set autoscale xy
 )GP";
 
 // The coarse-mesh sweep.
 const char* kLodSweepPlot = R"GP(set output 'lod_sweep.png'
+XRANGE_LOD
+YRANGE_LOD
+Y2RANGE_LOD
 set title "Coarse mesh size at the chosen threshold"
 set xlabel "coarse quads per side (log)"; set ylabel "speed-up"; set y2label "mean SSIM"; set y2tics; set ytics nomirror; set logscale x
 plot 'lod.dat' u "lod_quads":"speedup" w lp pt 7 lw 1.5 t 'speed-up (totals)', '' u "lod_quads":"speedup_from_medians" w lp pt 6 lw 1.5 t 'speed-up (medians)', '' u "lod_quads":"mean_ssim" axes x1y2 w lp pt 5 lw 1.5 t 'mean SSIM'
-unset logscale x; unset y2tics; unset y2label; set ytics mirror
+unset logscale x; unset y2tics; unset y2label; set ytics mirror; set autoscale xy; set autoscale y2
 )GP";
 
 // The plots a run has data for, in the page's order.
@@ -106,6 +119,16 @@ std::string row(const std::string& name, const std::string& value) {
 
 std::string pass(bool ok) {
   return ok ? "<b style='color:#1a7f37'>met</b>" : "<b style='color:#b42318'>missed</b>";
+}
+
+std::string pass(const TargetCheck& c) {
+  if (c.state == TargetState::kNotApplicable) return fmt::format("n/a ({})", c.why);
+  return pass(c.state == TargetState::kMet);
+}
+
+// A figure that may be undefined (NaN): "n/a (why)" then.
+std::string figure(double v, const char* format, const char* why) {
+  return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : fmt::format("n/a ({})", why);
 }
 
 // The async displays' frame times, frame by frame (async.dat), and the
@@ -163,12 +186,54 @@ void write_data(const LodspriteResult& j, OutputDir& out) {
              "lod_quads keyframes speedup mean_ssim speedup_from_medians\n" + ld.str());
 }
 
+// gnuplot's range of `axis` for a plotted series: autoscale, or a band around
+// it when every value is the same (autoscale would warn of an empty range).
+std::string axis_range(const char* axis, const std::vector<double>& v) {
+  if (v.empty()) return fmt::format("set autoscale {}", axis);
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  if (*hi > *lo) return fmt::format("set autoscale {}", axis);
+  const double pad = std::max(0.1 * std::abs(*lo), 0.01);
+  return fmt::format("set {}range [{}:{}]", axis, *lo - pad, *hi + pad);
+}
+
+// The axis range lines of the sweep plots.
+void replace_axis_ranges(const LodspriteResult& j, std::string& gp) {
+  std::vector<double> frames, by_frames, thresholds, by_threshold, speedup, quads, lod_speedup,
+      lod_ssim;
+  for (const FrameCountPoint& t : j.frame_count_sweep) {
+    frames.push_back(t.frames);
+    by_frames.push_back(t.keyframe_fraction);
+  }
+  for (const ThresholdPoint& t : j.threshold_sweep) {
+    thresholds.push_back(t.threshold_px);
+    by_threshold.push_back(t.pass.keyframe_fraction);
+    speedup.push_back(t.pass.speedup);
+    speedup.push_back(t.pass.speedup_from_medians);
+  }
+  for (const LodQuadsPoint& q : j.lod_sweep) {
+    quads.push_back(q.lod_quads);
+    lod_speedup.push_back(q.pass.speedup);
+    lod_speedup.push_back(q.pass.speedup_from_medians);
+    lod_ssim.push_back(q.pass.mean_ssim);
+  }
+  const std::tuple<const char*, const char*, const std::vector<double>*> lines[] = {
+      {"XRANGE_FRAMES", "x", &frames},          {"YRANGE_FRAMES", "y", &by_frames},
+      {"XRANGE_THRESHOLD", "x", &thresholds},   {"YRANGE_THRESHOLD", "y", &by_threshold},
+      {"YRANGE_SPEEDUP", "y", &speedup},        {"XRANGE_LOD", "x", &quads},
+      {"Y2RANGE_LOD", "y2", &lod_ssim},         {"YRANGE_LOD", "y", &lod_speedup}};
+  for (const auto& [key, axis, values] : lines) {
+    const std::size_t at = gp.find(key);
+    if (at != std::string::npos) gp.replace(at, std::string(key).size(), axis_range(axis, *values));
+  }
+}
+
 // Writes plots.gp and runs gnuplot; returns its error line, empty on success.
 std::string draw_plots(const LodspriteResult& j, OutputDir& out) {
   std::string gp = kFramePlots;
   if (!j.frame_count_sweep.empty()) gp += kFrameCountPlot;
   if (!j.threshold_sweep.empty()) gp += kThresholdPlots;
   if (!j.lod_sweep.empty()) gp += kLodSweepPlot;
+  replace_axis_ranges(j, gp);
   auto replace_all = [&](const std::string& from, const std::string& to) {
     for (std::size_t at = gp.find(from); at != std::string::npos;
          at = gp.find(from, at + to.size()))
@@ -199,6 +264,13 @@ void save_figures(const LodspriteResult& j, OutputDir& out) {
   }
 }
 
+// Whether the benchmarked grid is the input's own or a resampling of it.
+std::string grid_origin(const TerrainInfo& t) {
+  if (!t.resampled_from) return "the input's own grid";
+  return fmt::format("resampled from {} x {} by --resample", t.resampled_from->first,
+                     t.resampled_from->second);
+}
+
 // The page's head, title, the flight's video (first) and what ran.
 void html_intro(const LodspriteResult& j, std::ostringstream& h) {
   h << "<!doctype html><html><head><meta charset='utf-8'><title>LOD-sprite reproduction</title>\n"
@@ -216,16 +288,17 @@ void html_intro(const LodspriteResult& j, std::ostringstream& h) {
         "The flight: LOD-sprite frames, H.264 (<a href='{0}'>{0}</a>)</p>\n",
         j.video, std::min(j.width, 1024));
   h << fmt::format(
-      "<p>Terrain <b>{}</b> ({} x {} samples, texture {}), {} frames at {} x {} along the paper "
-      "path, "
+      "<p>Terrain <b>{}</b> ({} x {} samples, {}; texture {}), {} frames at {} x {} along the "
+      "path {}, "
       "coarse mesh {} x {} quads, threshold {} {} ({} metric), {} terrain shading. GL: "
       "<code>{}</code>. "
       "Full resolution, plain LOD and LOD-sprite rendered interleaved frame by frame in one "
       "process; "
       "quality scored after each frame's timed spans.</p>\n",
-      j.terrain.name, j.terrain.samples_x, j.terrain.samples_y, j.terrain.texture, j.frames,
-      j.width, j.height, j.lod_quads, j.lod_quads, j.threshold_px, threshold_unit(j.metric),
-      to_string(j.metric), to_string(j.shading), j.gl_renderer);
+      j.terrain.name, j.terrain.samples_x, j.terrain.samples_y, grid_origin(j.terrain),
+      j.terrain.texture, j.frames, j.width, j.height, j.path, j.lod_quads, j.lod_quads,
+      j.threshold_px, threshold_unit(j.metric), to_string(j.metric), to_string(j.shading),
+      j.gl_renderer);
 }
 
 void html_summary(const LodspriteResult& j, std::ostringstream& h) {
@@ -243,10 +316,12 @@ void html_summary(const LodspriteResult& j, std::ostringstream& h) {
   h << row("keyframes",
            fmt::format("{} of {} ({:.1f}%; paper: 28 = 6.1%)", s.keyframes, j.frames, 100 * b.f));
   h << row("r = median full / median sprite frame",
-           fmt::format("{:.1f} (full {:.2f} ms, sprite {:.2f} ms, key {:.2f} ms)", b.r,
-                       j.full_median_ms, s.sprite_median_ms, s.key_median_ms));
+           fmt::format("{} (full {:.2f} ms, sprite {:.2f} ms, key {:.2f} ms)",
+                       figure(b.r, "{:.1f}", "no sprite frames"), j.full_median_ms,
+                       s.sprite_median_ms, s.key_median_ms));
   h << row("bound 1 / (f + (1 - f) / r)",
-           fmt::format("{:.2f}x, efficiency {:.1f}%", b.speedup_bound, 100 * b.efficiency));
+           fmt::format("{}, efficiency {}", figure(b.speedup_bound, "{:.2f}x", "no r"),
+                       figure(100 * b.efficiency, "{:.1f}%", "no bound")));
   h << row("plain LOD median frame", fmt::format("{:.2f} ms", l.median_ms));
   if (j.reference_every > 1)
     h << row("full-resolution reference",
@@ -258,12 +333,14 @@ void html_summary(const LodspriteResult& j, std::ostringstream& h) {
        "only</th><th>mean SSIM</th><th>min SSIM</th><th>mean FLIP</th></tr>\n";
   h << fmt::format(
       "<tr><th>plain "
-      "LOD</th><td>{:.2f}</td><td>{:.2f}</td><td>{:.4f}</td><td>{:.4f}</td><td>{}</td></tr>\n",
-      l.mean_psnr, l.mean_psnr_sprite_frames, l.mean_ssim, l.min_ssim, flip_text(l.mean_flip));
+      "LOD</th><td>{:.2f}</td><td>{}</td><td>{:.4f}</td><td>{:.4f}</td><td>{}</td></tr>\n",
+      l.mean_psnr, figure(l.mean_psnr_sprite_frames, "{:.2f}", "no sprite frames"), l.mean_ssim,
+      l.min_ssim, flip_text(l.mean_flip));
   h << fmt::format(
-      "<tr><th>LOD-sprite</th><td>{:.2f}</td><td>{:.2f}</td><td>{:.4f}</td><td>{:.4f}</td><td>{}</"
+      "<tr><th>LOD-sprite</th><td>{:.2f}</td><td>{}</td><td>{:.4f}</td><td>{:.4f}</td><td>{}</"
       "td></tr></table>\n",
-      s.mean_psnr, s.mean_psnr_sprite_frames, s.mean_ssim, s.min_ssim, flip_text(s.mean_flip));
+      s.mean_psnr, figure(s.mean_psnr_sprite_frames, "{:.2f}", "no sprite frames"), s.mean_ssim,
+      s.min_ssim, flip_text(s.mean_flip));
   h << fmt::format(
       "<p>Keyframes are the full-resolution frame itself (PSNR capped at {} dB, SSIM 1, FLIP "
       "0).</p>\n",
@@ -280,8 +357,8 @@ void html_against_paper(const LodspriteResult& j, std::ostringstream& h) {
   h << fmt::format("<tr><th>keyframes</th><td>{} of {}</td><td>28 of 460</td></tr>\n", s.keyframes,
                    j.frames);
   h << fmt::format(
-      "<tr><th>r = median full / median sprite frame</th><td>{:.1f}</td><td>about 55</td></tr>\n",
-      j.bound.r);
+      "<tr><th>r = median full / median sprite frame</th><td>{}</td><td>about 55</td></tr>\n",
+      figure(j.bound.r, "{:.1f}", "no sprite frames"));
   h << fmt::format(
       "<tr><th>p99 frame time / median sprite frame</th><td>{:.1f} ({:.2f} / {:.2f} ms)</td>"
       "<td>-</td></tr>\n",
@@ -365,6 +442,82 @@ void html_targets(const LodspriteResult& j, std::ostringstream& h) {
   h << "</table>\n";
 }
 
+// Whether every value of a sweep is the same (its plot is a flat line).
+template <typename Point, typename Get>
+bool flat(const std::vector<Point>& points, Get get) {
+  return std::all_of(points.begin(), points.end(),
+                     [&](const Point& p) { return get(p) == get(points.front()); });
+}
+
+// What a plot shows and how to read it, below it on the page.
+std::string plot_caption(const LodspriteResult& j, const std::string& file) {
+  const std::string unit = threshold_unit(j.metric);
+  if (file == "fig08_error.png")
+    return fmt::format(
+        "Each frame's error against the keyframe in use ({} metric and the exact reprojection), "
+        "the threshold ({} {}) dashed; red points: keyframes at the value that fired them. A "
+        "keyframe well below the threshold came from another trigger (table below).",
+        to_string(j.metric), j.threshold_px, unit);
+  if (file == "fig09_time.png")
+    return "Frame time per class, log scale: full resolution (grey), plain LOD, LOD-sprite "
+           "keyframes (red) and sprite frames (blue).";
+  if (file == "fig10_keyframes_vs_frames.png")
+    return "Keyframes / frames when the same path is flown with more or fewer frames: smaller "
+           "steps between frames give fewer keyframes per frame." +
+           std::string(flat(j.frame_count_sweep, [](const FrameCountPoint& p) {
+                          return p.keyframe_fraction;
+                        })
+                            ? " Flat here: every frame count gave the same fraction."
+                            : "");
+  if (file == "fig11_keyframes_vs_threshold.png")
+    return "Keyframes / frames at each error threshold." +
+           std::string(flat(j.threshold_sweep, [](const ThresholdPoint& p) {
+                          return p.pass.keyframes;
+                        })
+                            ? " Flat here: every threshold gave the same keyframes, so the "
+                              "error trigger did not decide them (see the table of triggers)."
+                            : "");
+  if (file == "fig12_speedup_vs_threshold.png")
+    return "Speed-up over full resolution at each threshold: measured from totals, and derived "
+           "from the per-class medians.";
+  if (file == "lod_sweep.png")
+    return "Speed-up (left axis) and mean SSIM (right axis) against the coarse mesh's quads per "
+           "side, at the chosen threshold.";
+  return "Per frame against full resolution: LOD-sprite and plain LOD (keyframes are full "
+         "resolution itself, so they score perfectly).";
+}
+
+// Which trigger fired each keyframe, and at what values.
+void html_keyframe_triggers(const LodspriteResult& j, std::ostringstream& h) {
+  h << fmt::format(
+      "<h2>Keyframes by trigger</h2><table><tr><th>trigger</th><th>keyframes</th><th>error when "
+      "fired, median / max ({}; threshold {} {})</th><th>trigger's measure, median / max</th>"
+      "</tr>\n",
+      to_string(j.metric), j.threshold_px, threshold_unit(j.metric));
+  for (const KeyframeTriggerRow& r : j.keyframes_by_trigger()) {
+    const char* measure = r.trigger == Trigger::kScale      ? "resample scale"
+                          : r.trigger == Trigger::kFallback ? "fallback fraction"
+                          : r.trigger == Trigger::kError    ? "error"
+                                                            : "";
+    h << fmt::format(
+        "<tr><td>{}</td><td>{}</td><td>{} / {}</td><td>{}</td></tr>\n", to_string(r.trigger),
+        r.keyframes, figure(r.error_median, "{:.3g}", "none"),
+        figure(r.error_max, "{:.3g}", "none"),
+        *measure ? fmt::format("{} {} / {}", measure, figure(r.measure_median, "{:.3g}", "none"),
+                               figure(r.measure_max, "{:.3g}", "none"))
+                 : std::string("-"));
+  }
+  h << fmt::format(
+      "</table><p>first: the flight's first frame; error: the error passed the threshold; "
+      "scale: the keyframe's pixels were stretched past {} (rising with plain LOD's drape "
+      "displacement); fallback: {}. Cache reuses are sprite frames and not counted.</p>\n",
+      j.max_resample_scale,
+      j.max_fallback_fraction < 1
+          ? fmt::format("over {} of the in-view quads fell back to the drape texture",
+                        j.max_fallback_fraction)
+          : std::string("off (--fallback-trigger 1)"));
+}
+
 void html_plots(const LodspriteResult& j, const std::string& plot_error, std::ostringstream& h) {
   if (!plot_error.empty()) {
     h << fmt::format(
@@ -374,7 +527,10 @@ void html_plots(const LodspriteResult& j, const std::string& plot_error, std::os
     return;
   }
   h << "<h2>Plots (the paper's Figs. 8-12 from our data)</h2>\n";
-  for (const char* p : plot_files(j)) h << fmt::format("<p><img src='{}' alt='{}'></p>\n", p, p);
+  for (const char* p : plot_files(j))
+    h << fmt::format("<figure style='display:block'><img src='{0}' alt='{0}'><figcaption>{1}"
+                     "</figcaption></figure>\n",
+                     p, plot_caption(j, p));
 }
 
 void html_sweeps(const LodspriteResult& j, std::ostringstream& h) {
@@ -446,12 +602,42 @@ void write_lodsprite_report(const LodspriteResult& j, OutputDir& out) {
   if (j.trigger_comparison) html_trigger(*j.trigger_comparison, h);
   if (j.async) html_async(*j.async, plot_error.empty(), h);
   html_targets(j, h);
+  html_keyframe_triggers(j, h);
   html_plots(j, plot_error, h);
   html_sweeps(j, h);
   html_figures(j, h);
   h << "<p>All numbers: <code>lodsprite.json</code>; per-frame data: "
        "<code>per_frame.dat</code>.</p></body></html>\n";
   write_text(out.file("index.html"), h.str());
+}
+
+namespace {
+std::string target_word(const TargetCheck& c) {
+  return c.state == TargetState::kMet      ? "met"
+         : c.state == TargetState::kMissed ? "missed"
+                                           : "n/a (" + c.why + ")";
+}
+}  // namespace
+
+std::string lodsprite_summary_text(const LodspriteResult& r) {
+  std::string text = fmt::format(
+      "bench lodsprite: {} ({} x {} samples, {}), {} frames at {}x{}, threshold {} {}\n",
+      r.terrain.name, r.terrain.samples_x, r.terrain.samples_y, grid_origin(r.terrain), r.frames,
+      r.width, r.height, r.threshold_px, threshold_unit(r.metric));
+  std::vector<std::string> triggers;
+  for (const KeyframeTriggerRow& t : r.keyframes_by_trigger())
+    triggers.push_back(fmt::format("{} {}", t.keyframes, to_string(t.trigger)));
+  text += fmt::format(
+      "keyframes {} of {} ({}); speed-up {:.2f}x over full resolution, r {}\n",
+      r.sprite.keyframes, r.frames, fmt::join(triggers, ", "), r.speedup,
+      figure(r.bound.r, "{:.1f}", "no sprite frames"));
+  const LodspriteTargets t = r.targets();
+  text += fmt::format(
+      "targets: keyframes <= 28 {}; efficiency >= 0.9 {}; SSIM above LOD on 95% {}; mean PSNR "
+      "above LOD {}\n",
+      target_word(t.keyframes_at_most_28), target_word(t.efficiency_at_least_0_9),
+      target_word(t.ssim_above_lod_on_95pct), target_word(t.mean_psnr_above_lod));
+  return text;
 }
 
 }  // namespace terrasprite::report

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -35,12 +36,18 @@ const RepresentationQuality* middle_of(const QualityTable& t, ObjectKind kind) {
   return v.empty() ? nullptr : v[v.size() / 2];
 }
 
+// Figure 1's panels: the largest, middle and smallest sizes, each once.
+std::vector<int> figure1_sizes(std::vector<int> sizes) {
+  std::sort(sizes.begin(), sizes.end());
+  std::vector<int> pick = {sizes.back(), sizes[sizes.size() / 2], sizes.front()};
+  pick.erase(std::unique(pick.begin(), pick.end()), pick.end());
+  return pick;
+}
+
 // Figure 1: SSIM over (phi, theta) at the largest, middle and smallest size,
 // at the first measured heading (the model lit from one side).
 std::string figure1(const QualityTable& t, const TableOptions& o, OutputDir& out) {
-  std::vector<int> sizes = o.sizes_px;
-  std::sort(sizes.begin(), sizes.end());
-  const std::vector<int> pick = {sizes.back(), sizes[sizes.size() / 2], sizes.front()};
+  const std::vector<int> pick = figure1_sizes(o.sizes_px);
   std::string gp;
   for (ObjectKind kind : {ObjectKind::kRelief, ObjectKind::kOctahedral, ObjectKind::kMesh}) {
     const RepresentationQuality* q = middle_of(t, kind);
@@ -62,12 +69,16 @@ std::string figure1(const QualityTable& t, const TableOptions& o, OutputDir& out
     }
     write_text(out.file(name + ".dat"), dat.str());
     gp += fmt::format(
-        "set output '{0}.png'\nset multiplot layout 1,3 title 'SSIM over viewing angle: {1}'\n"
+        "set output '{0}.png'\nset multiplot layout 1,{2} title 'SSIM over viewing angle: {1}'\n"
         "set xlabel 'phi (deg)'; set ylabel 'theta (deg)'; set view map; set cbrange [0.5:1]\n",
-        name, rep_label(*q));
-    for (int i = 0; i < 3; ++i)
-      gp += fmt::format("set title '{} px'\nsplot '{}.dat' index {} u 1:2:3 w pm3d notitle\n",
-                        pick[i], name, i);
+        name, rep_label(*q), pick.size());
+    // pm3d fills the cells between views; the points show each view even where
+    // the grid is too coarse (or too ragged) for pm3d to fill any cell.
+    for (std::size_t i = 0; i < pick.size(); ++i)
+      gp += fmt::format(
+          "set title '{} px'\nsplot '{}.dat' index {} u 1:2:3 w pm3d notitle, '' index {} u "
+          "1:2:3 w p pt 5 ps 2 palette notitle\n",
+          pick[i], name, i, i);
     gp += "unset multiplot\nunset view\n";
   }
   return gp;
@@ -142,7 +153,9 @@ std::string table1_markdown(const QualityTable& t, const TableOptions& o) {
       const auto& targets = std::string(metric) == "ssim" ? o.ssim_targets : o.psnr_targets;
       md << fmt::format("\n| {} {} | ", object_kind_name(kind), metric);
       for (double target : targets) md << fmt::format("{} | ", target);
-      md << "\n|---|" << std::string(targets.size() * 4, '-') << "|\n";
+      md << "\n|---|";
+      for (std::size_t i = 0; i < targets.size(); ++i) md << "---|";
+      md << "\n";
       for (int size : o.sizes_px) {
         md << fmt::format("| {} px | ", size);
         for (double target : targets)
@@ -155,6 +168,25 @@ std::string table1_markdown(const QualityTable& t, const TableOptions& o) {
       }
     }
   return md.str();
+}
+
+std::vector<std::string> objects_report_warnings(const TableOptions& o) {
+  std::vector<std::string> w;
+  const double theta_max = o.full_sphere ? 180 : 90;
+  const int thetas = int(theta_max / o.angle_step_deg + 1e-9) + 1;
+  const int phis = int(std::ceil(360 / o.angle_step_deg - 1e-9));
+  if (thetas < 3 || phis < 4)
+    w.push_back(fmt::format(
+        "--angle-step {}: {} x {} views (phi x theta) a size; the fig1 heat maps show the views "
+        "as points, too few for a surface (30 or less gives one)",
+        o.angle_step_deg, phis, thetas));
+  std::vector<int> sizes = o.sizes_px;
+  std::sort(sizes.begin(), sizes.end());
+  if (std::unique(sizes.begin(), sizes.end()) - sizes.begin() < 2)
+    w.push_back(fmt::format("--sizes-px {}: one size; the fig2 lines (quality against size) "
+                            "are single points",
+                            o.sizes_px.front()));
+  return w;
 }
 
 void write_objects_report(const QualityTable& t, const TableOptions& o, OutputDir& out) {

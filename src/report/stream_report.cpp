@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: MIT
 #include "terrasprite/report/stream_report.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "terrasprite/report/json_writer.h"
 #include "terrasprite/report/plot.h"
+#include "terrasprite/terrain/image_io.h"
 
 namespace terrasprite::report {
 namespace {
@@ -29,8 +32,9 @@ nlohmann::json streamed_json(const StreamSummary& s) {
       {"median_ms", s.median_ms},
       {"p99_ms", s.p99_ms},
       {"stall_frames", s.stall_frames},
+      {"slow_frames_without_streaming", s.slow_frames_without_streaming},
       {"degraded_samples_total", s.degraded_samples_total},
-      {"degraded_fraction_after_warmup", s.degraded_fraction_after_warmup},
+      {"degraded_fraction_after_warmup", number_or_null(s.degraded_fraction_after_warmup)},
       {"hit_rate", s.hit_rate},
       {"hit_rate_after_warmup", s.hit_rate_after_warmup},
       {"io_mb_s", s.io_mb_s},
@@ -86,7 +90,70 @@ nlohmann::json stream_bench_json(const StreamBenchResult& r) {
           {"images_equal_when_resident",
            {{"frames_compared", r.frames_compared}, {"frames_equal", r.frames_equal}}},
           {"faults_injected", r.faults_injected},
-          {"faults_survived", r.faults_survived}};
+          {"faults_survived", r.faults_survived},
+          {"verdict", to_string(r.verdict)},
+          {"definitions", stream_definitions_json()}};
+}
+
+nlohmann::json stream_definitions_json() {
+  const std::string warm = std::to_string(kStreamWarmupFrames);
+  return {
+      {"median_ms", "median streamed frame time: the draw, the cache's update included"},
+      {"p99_ms", "99th percentile of the streamed frame times"},
+      {"stall_frames",
+       "frames over twice their in-memory time (without the in-memory run: over twice the "
+       "median of the 21 frames around them) in which the cache streamed: a tile lookup "
+       "missed, or tiles were loaded, evicted or failed"},
+      {"slow_frames_without_streaming",
+       "frames as slow as a stall but with no streaming in them: timing noise of this machine"},
+      {"degraded_samples_total",
+       "height reads over the run served from a coarser level than the ray march asked"},
+      {"degraded_fraction_after_warmup",
+       "of the height reads from frame " + warm +
+           " on, the share served coarser than asked (0..1); null when the run has no frame "
+           "past frame " + warm},
+      {"hit_rate", "tile lookups that found their tile resident, over all lookups (0..1)"},
+      {"hit_rate_after_warmup", "the same from frame " + warm + " on"},
+      {"io_mb_s", "tile bytes decoded from disk per second of the streamed run"},
+      {"peak_rss_mb", "the streaming process's peak resident memory"},
+      {"first_frame_ms", "from the command's start to the first frame shown"},
+      {"verdict",
+       "'fell behind' with any stall frame; else 'served coarser data' when over 1% of reads "
+       "after the warm-up were degraded; else 'kept up'"}};
+}
+
+std::string stream_summary_text(const StreamBenchResult& r) {
+  const StreamSummary& s = r.stream;
+  const std::string degraded =
+      std::isfinite(s.degraded_fraction_after_warmup)
+          ? fmt::format("{:.1f}% of reads degraded after frame {}",
+                        100 * s.degraded_fraction_after_warmup, kStreamWarmupFrames)
+          : fmt::format("degraded reads after the warm-up n/a (no frame past frame {})",
+                        kStreamWarmupFrames);
+  const std::string vs_memory =
+      r.in_memory ? fmt::format(", {:.2f}x the in-memory median", r.ratio_median)
+                  : std::string(", no in-memory run to compare");
+  std::string text = fmt::format(
+      "bench stream: {} frames at {}x{} over {}x{} samples, {} MB cache: median {:.1f} ms, "
+      "p99 {:.1f} ms{}\n",
+      r.frames.size(), r.width, r.height, r.source.samples_x, r.source.samples_y, r.cache_mb,
+      s.median_ms, s.p99_ms, vs_memory);
+  text += fmt::format(
+      "verdict: streaming {} ({} stall frames, {} slow frames without streaming; {}; tile hit "
+      "rate {:.1f}%)\n",
+      to_string(r.verdict), s.stall_frames, s.slow_frames_without_streaming, degraded,
+      100 * s.hit_rate);
+  return text;
+}
+
+std::vector<std::string> write_stream_snapshots(const StreamBenchResult& r,
+                                                const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& [frame, image] : r.snapshots) {
+    names.push_back(fmt::format("frame_{:04d}.png", frame));
+    save_png(image, dir + "/" + names.back());
+  }
+  return names;
 }
 
 nlohmann::json stream_per_frame_json(const StreamBenchResult& r) {

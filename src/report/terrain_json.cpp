@@ -13,7 +13,11 @@ nlohmann::json terrain_json(const TerrainInfo& t) {
           {"extent_m", {(t.samples_x - 1) * t.spacing_x, (t.samples_y - 1) * t.spacing_y}},
           {"height_min", t.height_min},
           {"height_max", t.height_max},
-          {"texture", t.texture}};
+          {"texture", t.texture},
+          // null: the input's own grid; else its samples before --resample
+          {"resampled_from", t.resampled_from ? nlohmann::json{t.resampled_from->first,
+                                                               t.resampled_from->second}
+                                              : nlohmann::json(nullptr)}};
 }
 
 nlohmann::json terrain_json(const Terrain& t) {

@@ -258,7 +258,7 @@ TEST(QualityTable, CliJsonContractAndCache) {
   const tstest::CliResult with_null =
       tstest::run_cli(args + " --json " + (dir / "n.json") + " --out " + (dir / "n"));
   ASSERT_EQ(with_null.status, 0) << with_null.output;
-  EXPECT_EQ(with_null.output.find("warning"), std::string::npos) << with_null.output;
+  EXPECT_EQ(with_null.output.find("cache file"), std::string::npos) << with_null.output;
   EXPECT_TRUE(nlohmann::json::parse(std::ifstream(dir / "n.json"))["cached"].get<bool>());
   const tstest::CliResult third =
       tstest::run_cli(args + " --views 6 --json " + (dir / "c.json") + " --out " + (dir / "c"));

@@ -9,6 +9,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "terrasprite/stream/streaming_tiles.h"
@@ -65,14 +66,24 @@ struct StreamSourceInfo {
   std::optional<Cog> cog;
 };
 
+/// Frames before this one are the warm-up: the cache fills; the "after
+/// warm-up" figures leave them out.
+inline constexpr int kStreamWarmupFrames = 30;
+
 /// The streamed run's figures.
 struct StreamSummary {
   double median_ms = 0, p99_ms = 0;
-  /// Frames over twice their in-memory time, or (without one) over twice the
-  /// median of the 21 frames around them.
+  /// Stall: a slow frame (over twice its in-memory time, or without one over
+  /// twice the median of the 21 frames around it) in which the cache streamed
+  /// (a tile missed, loaded or evicted). Slow frames with no streaming in them
+  /// are this machine's noise: slow_frames_without_streaming.
   int stall_frames = 0;
+  int slow_frames_without_streaming = 0;
   long long degraded_samples_total = 0;
-  double degraded_fraction_after_warmup = 0;  ///< per pixel, frames 30 on
+  /// Of the height reads from frame kStreamWarmupFrames on, the share served
+  /// coarser than the march asked (0..1); NaN when the run is no longer than
+  /// the warm-up.
+  double degraded_fraction_after_warmup = 0;
   double hit_rate = 1, hit_rate_after_warmup = 1;
   double io_mb_s = 0, bytes_read_mb = 0;
   double peak_rss_mb = 0, pinned_mb = 0;
@@ -84,6 +95,22 @@ struct StreamSummary {
   int first_view_max_wait_ms = 0;
   int first_view_tiles_missed = 0, first_view_still_missing = 0;
 };
+
+/// The one-line judgement of a streamed run.
+enum class StreamVerdict {
+  kKeptUp,       ///< no stall frame, at most 1% of reads degraded after the warm-up
+  kDegraded,     ///< no stall frame, but over 1% of reads degraded after the warm-up
+  kFellBehind,   ///< stall frames
+};
+/// "kept up", "served coarser data", "fell behind".
+const char* to_string(StreamVerdict v);
+
+/// Counts a run's stall frames and its slow frames without streaming (see
+/// StreamSummary), from each frame's time, in-memory time and cache stats.
+/// Every frame needs in_memory_ms, or none does.
+std::pair<int, int> stall_frames(const std::vector<StreamFrame>& frames);
+/// StreamSummary::degraded_fraction_after_warmup of these frames.
+double degraded_fraction_after_warmup(const std::vector<StreamFrame>& frames);
 
 struct InMemorySummary {
   double median_ms = 0, p99_ms = 0, peak_rss_mb = 0;
@@ -102,7 +129,10 @@ struct StreamBenchResult {
   /// the in-memory one (0 and 0 without the peer).
   int frames_compared = 0, frames_equal = 0;
   int faults_injected = 0, faults_survived = 0;
+  StreamVerdict verdict = StreamVerdict::kKeptUp;
   std::vector<StreamFrame> frames;
+  /// A few streamed images (the first, middle and last frames), by frame number.
+  std::vector<std::pair<int, Image>> snapshots;
 };
 
 /// Runs the study. Throws InputError naming the tile source when it cannot

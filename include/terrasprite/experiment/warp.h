@@ -10,11 +10,34 @@
 #include <string>
 #include <vector>
 
+#include "terrasprite/camera/camera.h"
 #include "terrasprite/experiment/render_mode.h"
+#include "terrasprite/terrain/heightfield.h"
 #include "terrasprite/terrain/terrain_info.h"
 #include "terrasprite/warp/warp.h"
 
 namespace terrasprite {
+
+/// How far the camera moves between a real frame and the frames warped from
+/// it, over a whole path (render --warp: frame i is real when i % real_every
+/// is 0). A warp reprojects what the real frame saw: turning shows what it did
+/// not see (holes, bands at the edges), and moving against nearby ground
+/// shows parallax it cannot fill (streaks).
+struct WarpStride {
+  double max_turn_deg = 0;  ///< largest angle between a real and a warped view direction
+  /// Largest eye displacement since the real frame over the real frame's
+  /// depth at the image centre (the distance along its view direction to the
+  /// ground, or to the far plane).
+  double max_move_over_depth = 0;
+  int worst_frame = 0;  ///< the warped frame of the larger excess over its limit
+  /// Whether warping this far is expected to fail visibly: a turn over a
+  /// quarter of the vertical field of view, or a move over a quarter of that depth.
+  bool too_far = false;
+};
+inline constexpr double kWarpMaxTurnOfFov = 0.25, kWarpMaxMoveOverDepth = 0.25;
+
+/// The stride of `path` with one real frame in `real_every` (>= 1).
+WarpStride warp_stride(const std::vector<Camera>& path, int real_every, const Heightfield& ground);
 
 /// The methods the study compares, in this order.
 inline constexpr std::array kWarpBenchMethods = {WarpMethod::kPoly2, WarpMethod::kDepth};

@@ -3,6 +3,8 @@
 // data, the Figs. 13-14 images, and an index.html that opens with the
 // flight's video and carries the numbers.
 #pragma once
+#include <string>
+
 #include "terrasprite/experiment/lodsprite/lodsprite_result.h"
 #include "terrasprite/output/output_dir.h"
 
@@ -13,5 +15,9 @@ namespace terrasprite::report {
 /// fails) and writes index.html into `out` from a run_lodsprite() result.
 /// The JSON documents are lodsprite_json.h's. Unwritable files: InputError.
 void write_lodsprite_report(const lodsprite::LodspriteResult& r, OutputDir& out);
+
+/// A few lines for the console: the terrain's grid (resampled or as given),
+/// keyframes by trigger, the speed-up and the targets (n/a where not meaningful).
+std::string lodsprite_summary_text(const lodsprite::LodspriteResult& r);
 
 }  // namespace terrasprite::report

@@ -6,6 +6,7 @@
 #pragma once
 #include <nlohmann/json_fwd.hpp>
 #include <string>
+#include <vector>
 
 #include "terrasprite/experiment/objects/full_geometry.h"
 #include "terrasprite/experiment/objects/objects_table.h"
@@ -31,6 +32,11 @@ std::string table1_markdown(const QualityTable& t, const TableOptions& o);
 /// Writes the .dat files, plots.gp and its plots (gnuplot; skipped with a
 /// warning on stderr when it fails) and table1.md into `out`.
 void write_objects_report(const QualityTable& t, const TableOptions& o, OutputDir& out);
+
+/// What in the report would come out degenerate with these options, one
+/// line each (empty when nothing): views too few for fig1's heat maps to be
+/// a surface, a single size (fig2's lines are points).
+std::vector<std::string> objects_report_warnings(const TableOptions& o);
 
 /// `objects table`'s files: write_objects_report's, table.json in `out`
 /// and, unless `json_path` is empty, the same JSON there.

@@ -25,6 +25,7 @@ struct Heightfield {
   long long nodata_count = 0;       ///< cells that were nodata in the source (filled)
   std::optional<GeoTransform> geo;  ///< source georeferencing, when known
   std::optional<std::pair<int, int>> resampled_to;  ///< set when the grid was resampled
+  std::optional<std::pair<int, int>> resampled_from;  ///< the source's samples, when resampled
   std::string name = "unnamed";
 
   float at(int i, int j) const { return heights[static_cast<std::size_t>(j) * width + i]; }

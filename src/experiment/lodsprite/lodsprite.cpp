@@ -257,6 +257,11 @@ double min_of(const std::vector<double>& v) {
   return *std::min_element(v.begin(), v.end());
 }
 
+// The mean, or NaN for no values (a figure with nothing to average is not 0).
+double mean_or_nan(const std::vector<double>& v) {
+  return v.empty() ? NAN : mean(v);
+}
+
 // Frames over 10x their class median: this shared machine's stalls weigh
 // heavily in totals; counted so a reader can tell noise from cost.
 int stalls(const std::vector<double>& v) {
@@ -275,7 +280,7 @@ void summarize_series(const FrameSeries& s, int n, LodspriteResult& r) {
   r.lod = {.total_ms = sum(s.lod_ms),
            .median_ms = median(s.lod_ms),
            .mean_psnr = mean(s.lod_psnr),
-           .mean_psnr_sprite_frames = mean(s.lod_psnr_sprite_only),
+           .mean_psnr_sprite_frames = mean_or_nan(s.lod_psnr_sprite_only),
            .mean_ssim = mean(s.lod_ssim),
            .min_ssim = min_of(s.lod_ssim),
            .mean_flip = mean(s.lod_flip)};
@@ -289,7 +294,7 @@ void summarize_series(const FrameSeries& s, int n, LodspriteResult& r) {
               .key_median_ms = median(s.key_ms),
               .sprite_median_ms = median(s.spr_ms),
               .mean_psnr = mean(s.sp_psnr),
-              .mean_psnr_sprite_frames = mean(s.sp_psnr_sprite_only),
+              .mean_psnr_sprite_frames = mean_or_nan(s.sp_psnr_sprite_only),
               .mean_ssim = mean(s.sp_ssim),
               .min_ssim = min_of(s.sp_ssim),
               .mean_flip = mean(s.sp_flip),
@@ -308,7 +313,8 @@ void speedup_and_bound(LodspriteResult& r) {
   r.speedup_from_medians = median_speedup(n, keys, full_median, r.sprite.key_median_ms, spr_median);
   SpeedupBound& b = r.bound;
   b.f = double(keys) / n;
-  b.r = full_median / std::max(spr_median, 1e-9);
+  // No sprite frame: no sprite median to divide by, so no r and no bound.
+  b.r = r.sprite.sprite_frames > 0 ? full_median / std::max(spr_median, 1e-9) : NAN;
   b.speedup_bound = 1.0 / (b.f + (1.0 - b.f) / b.r);
   b.efficiency = r.speedup / b.speedup_bound;
   b.key_over_full_median = r.sprite.key_median_ms / std::max(full_median, 1e-9);

@@ -10,6 +10,7 @@
 #include <future>
 #include <memory>
 #include <optional>
+#include <tuple>
 
 #include "in_memory_peer.h"
 #include "stream/cog_source.h"
@@ -66,6 +67,7 @@ class StreamedVoxel final : public Renderer {
 // What the streamed run gathered, frame by frame, before the figures.
 struct StreamRun {
   std::vector<StreamFrame> frames;
+  std::vector<std::pair<int, Image>> snapshots;
   std::vector<std::uint64_t> hash;
   std::vector<double> in_memory_ms;
   std::vector<std::uint64_t> in_memory_hash;
@@ -143,6 +145,9 @@ StreamRun fly_streamed(const StreamBenchOptions& o, StreamingTiles& tiles,
             if (run.frames.empty()) run.first_frame_ms = ms_since(t_run);
             run.frames.push_back({f.ms, renderer.update_ms(), std::nullopt, renderer.last()});
             run.hash.push_back(stream_bench::image_hash(f.color));
+            const int i = int(run.frames.size()) - 1;
+            if (i == 0 || i == (o.frames - 1) / 2 || i == o.frames - 1)
+              run.snapshots.emplace_back(i, f.color);
             ChildReply m;
             const auto t_peer = Clock::now();
             if (peer && peer->frame(int(run.frames.size()) - 1, m)) {
@@ -168,33 +173,39 @@ StreamRun fly_streamed(const StreamBenchOptions& o, StreamingTiles& tiles,
 
 // Frames over twice their in-memory time, or (without one) over twice the
 // median of the 21 frames around them.
-int stall_frames(const std::vector<double>& ms, const std::vector<double>& mem) {
-  int n = 0;
-  for (std::size_t i = 0; i < ms.size(); ++i) {
+std::vector<bool> slow_frames(const std::vector<StreamFrame>& frames) {
+  std::vector<double> ms;
+  for (const StreamFrame& f : frames) ms.push_back(f.ms);
+  std::vector<bool> slow(frames.size());
+  for (std::size_t i = 0; i < frames.size(); ++i) {
     double ref;
-    if (!mem.empty()) {
-      ref = mem[i];
+    if (frames[i].in_memory_ms) {
+      ref = *frames[i].in_memory_ms;
     } else {
       const std::size_t a = i >= 10 ? i - 10 : 0, b = std::min(ms.size(), i + 11);
       ref = median(
           std::vector<double>(ms.begin() + std::ptrdiff_t(a), ms.begin() + std::ptrdiff_t(b)));
     }
-    n += ms[i] > 2 * ref;
+    slow[i] = ms[i] > 2 * ref;
   }
-  return n;
+  return slow;
 }
 
-// Frame time, reads and hit rates over the run and after its first 30 frames.
+// Whether the cache streamed in this frame: a lookup missed, or tiles came or went.
+bool streamed_in(const StreamFrameStats& st) {
+  return st.misses > 0 || st.loaded > 0 || st.evicted > 0 || st.failed > 0;
+}
+
+// Frame time, reads and hit rates over the run and after its warm-up frames.
 StreamSummary stream_summary(const StreamRun& run, const Opened& op, const StreamBenchOptions& o) {
   std::vector<double> ms;
-  long long degraded = 0, degraded_late = 0, lookups = 0, misses = 0, bytes = 0;
+  long long degraded = 0, lookups = 0, misses = 0, bytes = 0;
   long long lookups_late = 0, misses_late = 0;
   for (std::size_t i = 0; i < run.frames.size(); ++i) {
     const StreamFrameStats& st = run.frames[i].stats;
     ms.push_back(run.frames[i].ms);
     degraded += st.degraded_samples;
-    if (i >= 30) {
-      degraded_late += st.degraded_samples;
+    if (i >= std::size_t(kStreamWarmupFrames)) {
       lookups_late += st.lookups;
       misses_late += st.misses;
     }
@@ -203,14 +214,11 @@ StreamSummary stream_summary(const StreamRun& run, const Opened& op, const Strea
     bytes += st.bytes_read;
   }
   const Summary s = summarize(ms);
-  const double late_pixels = double(o.width) * o.height *
-                             double(std::max<std::size_t>(1, ms.size() > 30 ? ms.size() - 30 : 0));
   StreamSummary out;
   out.median_ms = s.median;
   out.p99_ms = s.p99;
-  out.stall_frames = stall_frames(ms, run.in_memory_ms);
   out.degraded_samples_total = degraded;
-  out.degraded_fraction_after_warmup = double(degraded_late) / late_pixels;
+  out.degraded_fraction_after_warmup = degraded_fraction_after_warmup(run.frames);
   out.hit_rate = lookups ? 1.0 - double(misses) / double(lookups) : 1.0;
   out.hit_rate_after_warmup =
       lookups_late ? 1.0 - double(misses_late) / double(lookups_late) : 1.0;
@@ -260,7 +268,46 @@ void add_in_memory(StreamBenchResult& res, StreamRun& run, double peer_peak_rss_
   }
 }
 
+// Stalls make a run fall behind; degraded reads past the warm-up make it coarse.
+StreamVerdict judge(const StreamSummary& s) {
+  if (s.stall_frames > 0) return StreamVerdict::kFellBehind;
+  if (s.degraded_fraction_after_warmup > 0.01) return StreamVerdict::kDegraded;
+  return StreamVerdict::kKeptUp;
+}
+
 }  // namespace
+
+const char* to_string(StreamVerdict v) {
+  switch (v) {
+    case StreamVerdict::kKeptUp:
+      return "kept up";
+    case StreamVerdict::kDegraded:
+      return "served coarser data";
+    case StreamVerdict::kFellBehind:
+      return "fell behind";
+  }
+  return "kept up";
+}
+
+std::pair<int, int> stall_frames(const std::vector<StreamFrame>& frames) {
+  const std::vector<bool> slow = slow_frames(frames);
+  int stalls = 0, noise = 0;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (!slow[i]) continue;
+    (streamed_in(frames[i].stats) ? stalls : noise) += 1;
+  }
+  return {stalls, noise};
+}
+
+double degraded_fraction_after_warmup(const std::vector<StreamFrame>& frames) {
+  long long degraded = 0, lookups = 0;
+  for (std::size_t i = kStreamWarmupFrames; i < frames.size(); ++i) {
+    degraded += frames[i].stats.degraded_samples;
+    lookups += frames[i].stats.lookups;
+  }
+  if (frames.size() <= std::size_t(kStreamWarmupFrames)) return NAN;
+  return lookups > 0 ? double(degraded) / double(lookups) : 0.0;
+}
 
 StreamBenchResult run_stream_bench(const StreamBenchOptions& o) {
   const Opened op = open_source(o, Clock::now());
@@ -286,6 +333,10 @@ StreamBenchResult run_stream_bench(const StreamBenchOptions& o) {
   res.faults_injected = op.tiles->injected_faults();
   res.faults_survived = op.tiles->failed_tiles();  // the run went on past every one
   res.frames = std::move(run.frames);
+  std::tie(res.stream.stall_frames, res.stream.slow_frames_without_streaming) =
+      stall_frames(res.frames);
+  res.verdict = judge(res.stream);
+  res.snapshots = std::move(run.snapshots);
   return res;
 }
 

@@ -128,6 +128,7 @@ struct FigureCompare {
 
 struct LodSummary {
   double total_ms = 0, median_ms = 0;
+  /// mean_psnr_sprite_frames: NaN when no sprite frame was scored.
   double mean_psnr = 0, mean_psnr_sprite_frames = 0, mean_ssim = 0, min_ssim = 0, mean_flip = 0;
 };
 
@@ -136,6 +137,7 @@ struct SpriteSummary {
   double decision_cpu_median_ms = 0, decision_cpu_p99_ms = 0;
   int keyframes = 0, sprite_frames = 0;
   double key_median_ms = 0, sprite_median_ms = 0;
+  /// mean_psnr_sprite_frames: NaN when no sprite frame was scored.
   double mean_psnr = 0, mean_psnr_sprite_frames = 0, mean_ssim = 0, min_ssim = 0, mean_flip = 0;
   double ssim_above_lod_fraction = 0, ssim_above_lod_fraction_sprite_frames = 0;
 };
@@ -148,18 +150,43 @@ struct StallCounts {
 /// The speed-up bound 1 / (f + (1 - f) / r) of the measured f and r.
 struct SpeedupBound {
   double f = 0;  ///< keyframe fraction
-  double r = 0;  ///< median full / median sprite frame
+  /// median full / median sprite frame; r, the bound and the efficiency are
+  /// NaN when the run has no sprite frame (nothing to divide by).
+  double r = 0;
   double speedup_bound = 0, efficiency = 0, key_over_full_median = 0;
+};
+
+/// A target's outcome: met or missed only where its measurement means something.
+enum class TargetState { kMet, kMissed, kNotApplicable };
+
+struct TargetCheck {
+  TargetState state = TargetState::kNotApplicable;
+  std::string why;  ///< kNotApplicable: why this run cannot tell
+  static TargetCheck of(bool met) { return {met ? TargetState::kMet : TargetState::kMissed, {}}; }
+  static TargetCheck not_applicable(std::string why) {
+    return {TargetState::kNotApplicable, std::move(why)};
+  }
 };
 
 /// The paper's keyframe budget, speed-up and quality against plain LOD: the
 /// JSON's `targets` and the report's target table, decided here once.
 struct LodspriteTargets {
-  bool keyframes_at_most_28 = false;
-  bool efficiency_at_least_0_9 = false;
-  bool ssim_above_lod_on_95pct = false;
-  bool mean_psnr_above_lod = false;
-  bool mean_psnr_above_lod_on_sprite_frames = false;
+  TargetCheck keyframes_at_most_28;  ///< only for the paper's 460 frames along its path
+  TargetCheck efficiency_at_least_0_9;                   ///< needs keyframes and sprite frames
+  TargetCheck ssim_above_lod_on_95pct;                   ///< needs scored sprite frames
+  TargetCheck mean_psnr_above_lod;                       ///< needs scored sprite frames
+  TargetCheck mean_psnr_above_lod_on_sprite_frames;      ///< needs scored sprite frames
+};
+
+/// The keyframes one trigger fired, and the values it fired at: the error
+/// (the run's metric, against threshold_px) and the trigger's own measure
+/// (kScale: the resample scale, kFallback: the fallback fraction, kError: the
+/// error again; NaN for kFirst and kForced).
+struct KeyframeTriggerRow {
+  Trigger trigger = Trigger::kFirst;
+  int keyframes = 0;
+  double error_median = 0, error_max = 0;
+  double measure_median = 0, measure_max = 0;
 };
 
 struct LodspriteResult {
@@ -204,6 +231,13 @@ struct LodspriteResult {
   std::vector<LodspriteFrame> per_frame;
 
   LodspriteTargets targets() const;
+  /// The main run's keyframes by the trigger that fired them (cache reuses
+  /// are sprite frames, not counted), triggers in enum order, empty ones left out.
+  std::vector<KeyframeTriggerRow> keyframes_by_trigger() const;
+  /// The per-frame error column the keyframe threshold is compared with.
+  double trigger_error(const LodspriteFrame& f) const {
+    return metric == ErrorMetric::kPaper ? f.error_px : f.error_px_exact;
+  }
 };
 
 /// How the sweeps' speed-ups are measured: the JSON and the page both say it.

@@ -10,12 +10,12 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
-#include <limits>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <iterator>
+#include <limits>
 #include <map>
 #include <string_view>
 
@@ -132,8 +132,7 @@ void add_materials(RawModel& raw, const tinygltf::Model& g, const Reader& rd) {
             im.component > 4 || im.image.size() != std::size_t(im.width) * im.height * im.component)
           rd.fail(fmt::format("texture '{}' is missing or unreadable{}",
                               one_line(im.uri.empty() ? im.name : im.uri, 60),
-                              rd.warnings.empty() ? ""
-                                                  : " (" + one_line(rd.warnings, 120) + ")"));
+                              rd.warnings.empty() ? "" : " (" + one_line(rd.warnings, 120) + ")"));
         Image img(im.width, im.height);
         for (std::size_t p = 0; p < std::size_t(im.width) * im.height; ++p)
           for (int c = 0; c < 4; ++c) {
@@ -216,9 +215,8 @@ void add_node(RawModel& raw, const Reader& rd, int node, const glm::dmat4& paren
   if (node < 0 || node >= int(rd.g.nodes.size())) rd.fail("a node index is out of range");
   if (depth > kMaxNodeDepth) rd.fail("the node tree is too deep (a cycle?)");
   if (++visits > kMaxNodeVisits)
-    rd.fail(fmt::format("the scene reaches nodes more than {} times (children shared at "
-                        "many levels?)",
-                        kMaxNodeVisits));
+    rd.fail(
+        fmt::format("the scene reaches nodes over {} times (shared children?)", kMaxNodeVisits));
   const tinygltf::Node& n = rd.g.nodes[node];
   const glm::dmat4 xf = parent * node_matrix(n);
   if (n.mesh >= int(rd.g.meshes.size())) rd.fail("a node names a mesh that does not exist");
@@ -244,14 +242,16 @@ void check_json_depth(std::string_view json, const std::string& path) {
   for (std::size_t i = 0; i < json.size(); ++i) {
     const char c = json[i];
     if (in_string) {
-      if (c == '\\') ++i;
-      else if (c == '"') in_string = false;
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
     } else if (c == '"') {
       in_string = true;
     } else if (c == '[' || c == '{') {
       if (++depth > kMaxJsonDepth)
-        throw InputError(fmt::format("{}: the JSON nests deeper than {} levels", path,
-                                     kMaxJsonDepth));
+        throw InputError(
+            fmt::format("{}: the JSON nests deeper than {} levels", path, kMaxJsonDepth));
     } else if (c == ']' || c == '}') {
       --depth;
     }
@@ -274,8 +274,8 @@ bool read_referenced_file(std::vector<unsigned char>* out, std::string* err,
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status st = fs::status(file, ec);
-  const char* problem = !fs::exists(st)         ? "no such file"
-                        : fs::is_directory(st)  ? "is a directory"
+  const char* problem = !fs::exists(st)            ? "no such file"
+                        : fs::is_directory(st)     ? "is a directory"
                         : !fs::is_regular_file(st) ? "is not a regular file"
                                                    : nullptr;
   if (!problem) {
@@ -287,8 +287,7 @@ bool read_referenced_file(std::vector<unsigned char>* out, std::string* err,
   return problem == nullptr;
 }
 
-bool write_nothing(std::string* err, const std::string&, const std::vector<unsigned char>&,
-                   void*) {
+bool write_nothing(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
   if (err) *err += "the model loader writes no files";
   return false;
 }
@@ -309,11 +308,11 @@ Model load_gltf(const std::string& path, const std::string& bytes, const ModelOp
   std::string err, warn;
   const std::string dir = std::filesystem::path(path).parent_path().string();
   const bool ok =
-      binary ? loader.LoadBinaryFromMemory(&g, &err, &warn,
-                                           reinterpret_cast<const unsigned char*>(bytes.data()),
-                                           unsigned(bytes.size()), dir)
-             : loader.LoadASCIIFromString(&g, &err, &warn, bytes.data(), unsigned(bytes.size()),
-                                          dir);
+      binary
+          ? loader.LoadBinaryFromMemory(&g, &err, &warn,
+                                        reinterpret_cast<const unsigned char*>(bytes.data()),
+                                        unsigned(bytes.size()), dir)
+          : loader.LoadASCIIFromString(&g, &err, &warn, bytes.data(), unsigned(bytes.size()), dir);
   if (!ok) throw InputError(fmt::format("{}: not a readable glTF file ({})", path, one_line(err)));
   RawModel raw;
   const Reader rd{g, path, warn};

@@ -136,13 +136,21 @@ std::vector<glm::vec3> smooth_normals(const std::vector<glm::vec3>& positions,
 namespace objects {
 
 std::string one_line(std::string_view text, std::size_t max) {
+  constexpr std::size_t kMaxWord = 48;  // a data URI or a path quoted whole
   std::string out;
+  std::size_t word = 0;
   for (char c : text) {
     if (c == '\n' || c == '\r') {
       if (!out.empty() && out.back() != ' ') out += "; ";
-    } else {
-      out += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+      word = 0;
+      continue;
     }
+    word = c == ' ' ? 0 : word + 1;
+    if (word > kMaxWord) {
+      if (word == kMaxWord + 1) out += "...";
+      continue;
+    }
+    out += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
     if (out.size() > max) return out.substr(0, max) + "...";
   }
   while (!out.empty() && (out.back() == ' ' || out.back() == ';' || out.back() == '.'))

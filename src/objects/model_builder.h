@@ -39,8 +39,8 @@ inline constexpr std::size_t kMaxModelVertices = std::size_t(1) << 25;
 inline constexpr std::size_t kMaxModelTriangles = std::size_t(1) << 25;
 
 /// A loader library's error or warning text as one short line: line ends
-/// become "; ", trailing full stops go, and past `max` characters it is cut
-/// with "...".
+/// become "; ", trailing full stops go, a word (a data URI) longer than 48
+/// characters is cut with "...", and so is the line past `max` characters.
 std::string one_line(std::string_view text, std::size_t max = 200);
 
 /// `bytes` is the whole file at `path`; `path` names it in messages and

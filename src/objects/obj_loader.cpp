@@ -18,8 +18,8 @@
 #include <tuple>
 
 #include "objects/model_builder.h"
-#include "terrasprite/terrain/image_io.h"
 #include "terrasprite/common/error.h"
+#include "terrasprite/terrain/image_io.h"
 
 namespace terrasprite::objects {
 namespace {
@@ -126,31 +126,40 @@ bool check_corner(std::string_view c, ObjCounts& n) {
 
 constexpr std::size_t kMaxFaceCorners = 1000;
 
+// Where a statement is, for its message.
+struct ObjLine {
+  const std::string& path;
+  long number;
+};
+std::string obj_line_text(const ObjLine& l) {
+  return fmt::format("{}: line {}", l.path, l.number);
+}
+
 // One statement; throws naming the line for what tinyobjloader would read
 // as zeros, skip, or spend quadratic time on.
-void check_statement(const std::vector<std::string_view>& f, ObjCounts& n, const std::string& at) {
+void check_statement(const std::vector<std::string_view>& f, ObjCounts& n, const ObjLine& at) {
   const std::string_view key = f[0];
   if (key == "v" || key == "vt" || key == "vn") {
     const std::size_t need = key == "vt" ? 1 : 3;
     if (f.size() < need + 1)
-      throw InputError(fmt::format("{}: '{}' has {} of its {} coordinates (truncated file?)", at,
-                                   key, f.size() - 1, need));
+      throw InputError(fmt::format("{}: '{}' has {} of its {} coordinates (truncated file?)",
+                                   obj_line_text(at), key, f.size() - 1, need));
     for (std::size_t k = 1; k < f.size(); ++k)
       if (!is_float_number(f[k]))
-        throw InputError(
-            fmt::format("{}: coordinate '{}' is not a finite number", at, obj_excerpt(f[k])));
+        throw InputError(fmt::format("{}: coordinate '{}' is not a finite number",
+                                     obj_line_text(at), obj_excerpt(f[k])));
     ++(key == "v" ? n.v : key == "vt" ? n.vt : n.vn);
   } else if (key == "f") {
     if (f.size() < 4)
-      throw InputError(fmt::format("{}: a face has {} corners, fewer than 3 (truncated file?)", at,
-                                   f.size() - 1));
+      throw InputError(fmt::format("{}: a face has {} corners, fewer than 3 (truncated file?)",
+                                   obj_line_text(at), f.size() - 1));
     if (f.size() - 1 > kMaxFaceCorners)
-      throw InputError(fmt::format("{}: a face has {} corners; at most {} are accepted", at,
-                                   f.size() - 1, kMaxFaceCorners));
+      throw InputError(fmt::format("{}: a face has {} corners; at most {} are accepted",
+                                   obj_line_text(at), f.size() - 1, kMaxFaceCorners));
     for (std::size_t k = 1; k < f.size(); ++k)
       if (!check_corner(f[k], n))
-        throw InputError(fmt::format("{}: face corner '{}' is not a vertex index in range", at,
-                                     obj_excerpt(f[k])));
+        throw InputError(fmt::format("{}: face corner '{}' is not a vertex index in range",
+                                     obj_line_text(at), obj_excerpt(f[k])));
   }
 }
 
@@ -160,26 +169,28 @@ void check_statement(const std::vector<std::string_view>& f, ObjCounts& n, const
 // without its end (a truncated file).
 void check_obj_text(std::string_view text, const std::string& path) {
   ObjCounts n;
-  long line_no = 0;
+  ObjLine line{path, 0};
   std::size_t at = 0;
   while (at < text.size()) {  // lines end in \n, \r\n or \r, as tinyobjloader reads them
     const std::size_t eol = std::min(text.find_first_of("\r\n", at), text.size());
-    const std::string_view line = text.substr(at, eol - at);
-    ++line_no;
-    const std::vector<std::string_view> fields = split_fields(line);
+    ++line.number;
+    const std::vector<std::string_view> fields = split_fields(text.substr(at, eol - at));
     if (!fields.empty() && fields[0][0] != '#') {
-      const std::string where = fmt::format("{}: line {}", path, line_no);
       if (eol == text.size())
-        throw InputError(fmt::format("{}: the last line has no end (truncated file?)", where));
-      check_statement(fields, n, where);
+        throw InputError(
+            fmt::format("{}: the last line has no end (truncated file?)", obj_line_text(line)));
+      check_statement(fields, n, line);
     }
     at = eol + (text.substr(eol, 2) == "\r\n" ? 2 : 1);
   }
-  if (n.max_v > n.v || n.max_vt > n.vt || n.max_vn > n.vn)
-    throw InputError(fmt::format(
-        "{}: a face refers to element {} of {} (truncated file?)", path,
-        n.max_v > n.v ? n.max_v : n.max_vt > n.vt ? n.max_vt : n.max_vn,
-        n.max_v > n.v ? n.v : n.max_vt > n.vt ? n.vt : n.vn));
+  const auto past = [&](const char* what, long used, long defined) {
+    if (used > defined)
+      throw InputError(fmt::format("{}: a face refers to {} {} of {} (truncated file?)", path, what,
+                                   used, defined));
+  };
+  past("vertex", n.max_v, n.v);
+  past("uv", n.max_vt, n.vt);
+  past("normal", n.max_vn, n.vn);
 }
 
 // The .mtl files `mtllib` names, beside the model; the names of those
@@ -194,8 +205,7 @@ class MaterialFiles : public tinyobj::MaterialReader {
     std::ifstream in;
     if (std::filesystem::is_regular_file(file, ec)) in.open(file, std::ios::binary);
     if (!in.is_open()) {
-      if (std::find(missing.begin(), missing.end(), name) == missing.end())
-        missing.push_back(name);
+      if (std::find(missing.begin(), missing.end(), name) == missing.end()) missing.push_back(name);
       return false;
     }
     tinyobj::LoadMtl(names, materials, &in, warn, err);
@@ -231,8 +241,10 @@ Model load_obj(const std::string& path, const std::string& bytes, const ModelOpt
   if (warn.find("invalid vertex index") != std::string::npos)
     throw InputError(fmt::format("{}: a face has a vertex index out of range", path));
   for (const std::string& m : mtl.missing)
-    fmt::print(stderr, "warning: {}: material library {} not found; its materials are drawn in "
-               "the default colour\n", path, obj_excerpt(m));
+    fmt::print(stderr,
+               "warning: {}: material library {} not found; its materials are drawn in "
+               "the default colour\n",
+               path, obj_excerpt(m));
   RawModel raw;
   add_materials(raw, materials, path, options);
   const int fallback = int(raw.materials.size()) - 1;

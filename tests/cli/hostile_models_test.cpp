@@ -73,9 +73,8 @@ TEST(HostileModels, EachFailsInOneLineAndWritesNothing) {
 TEST(HostileModels, MissingMaterialLibraryIsOneWarning) {
   tstest::TempDir tmp;
   make_model_fixtures(tmp.path);
-  const tstest::CliResult r =
-      tstest::run_shell("cd '" + tmp.path.string() + "' && " + TS_CLI +
-                        " objects info --model mtl.obj 2>&1 >/dev/null");
+  const tstest::CliResult r = tstest::run_shell("cd '" + tmp.path.string() + "' && " + TS_CLI +
+                                                " objects info --model mtl.obj 2>&1 >/dev/null");
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_NE(r.output.find("warning: mtl.obj: material library nowhere.mtl not found"),

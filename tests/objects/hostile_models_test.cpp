@@ -68,8 +68,8 @@ std::string float_bytes(const std::vector<float>& v) {
 // A glTF of one triangle (`positions`, 9 floats) in an embedded buffer;
 // `nodes` and `extra` replace the node list and add top-level members.
 std::string gltf_json(const std::vector<float>& positions,
-                      const std::string& nodes = R"([{"mesh": 0}])",
-                      const std::string& extra = "", const std::string& buffer_uri = "") {
+                      const std::string& nodes = R"([{"mesh": 0}])", const std::string& extra = "",
+                      const std::string& buffer_uri = "") {
   const std::string bytes = float_bytes(positions);
   const std::string uri =
       buffer_uri.empty() ? "data:application/octet-stream;base64," + base64(bytes) : buffer_uri;
@@ -141,15 +141,15 @@ TEST(HostileModels, TruncatedObjRefused) {
   tstest::TempDir dir;
   const std::string head = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\n";
   for (const std::string tail : {
-           "f 2 4",             // a face cut to two corners
-           "f 2 4 3",           // a last line without its end
-           "f 2 4 3\nv 1 2\n",  // a vertex cut to two coordinates
+           "f 2 4",                  // a face cut to two corners
+           "f 2 4 3",                // a last line without its end
+           "f 2 4 3\nv 1 2\n",       // a vertex cut to two coordinates
            "f 2 4 3\nv 1 2 3.5e\n",  // a number cut short
-           "f 2 4/\n",          // a corner cut after its slash
-           "f 2 4 30\n",        // past the vertices
-           "f 2 4 3 1 50\n",    // past the vertices, in a polygon
-           "f 2 4 -9\n",        // before the first vertex
-           "f 1/5 2/5 3/5\n",   // past the uvs
+           "f 2 4/\n",               // a corner cut after its slash
+           "f 2 4 30\n",             // past the vertices
+           "f 2 4 3 1 50\n",         // past the vertices, in a polygon
+           "f 2 4 -9\n",             // before the first vertex
+           "f 1/5 2/5 3/5\n",        // past the uvs
        }) {
     write_text(dir / "cut.obj", head + tail);
     const std::string what = load_error(dir / "cut.obj");
@@ -198,7 +198,7 @@ TEST(HostileModels, DeepJsonRefusedBeforeParsing) {
   EXPECT_NE(load_error(dir / "deep.glb").find("nests deeper"), std::string::npos);
   // Brackets inside strings are text, not nesting.
   write_text(dir / "strings.gltf", gltf_json(kTriangle, R"([{"mesh": 0, "name": ")" +
-                                                          std::string(1000, '[') + R"(\""}])"));
+                                                            std::string(1000, '[') + R"(\""}])"));
   EXPECT_EQ(ts::load_model(dir / "strings.gltf").triangles(), 1u);
 }
 
@@ -211,7 +211,8 @@ TEST(HostileModels, NodeGraphWithExponentiallyManyPathsRefused) {
     nodes += fmt::format(R"({{"mesh": 0, "children": [{}, {}]}},)", i + 1, i + 1);
   nodes += R"({"mesh": 0}])";
   write_text(dir / "paths.gltf", gltf_json(kTriangle, nodes));
-  EXPECT_NE(load_error(dir / "paths.gltf").find("more than"), std::string::npos);
+  EXPECT_NE(load_error(dir / "paths.gltf").find("reaches nodes over 100000 times"),
+            std::string::npos);
 }
 
 // 0.05 s.
@@ -236,7 +237,7 @@ TEST(HostileModels, MessagesSayWhatIsWrongInOneShortLine) {
   const std::string len = "\"byteLength\": " + std::to_string(big.size() * 4);
   wrong.replace(wrong.find(len), len.size(), "\"byteLength\": 7");
   write_text(dir / "length.gltf", wrong);
-  load_error(dir / "length.gltf");
+  EXPECT_LT(load_error(dir / "length.gltf").size(), 250u);
 }
 
 // 0.01 s.

@@ -29,6 +29,8 @@ constexpr int kMaxNodeDepth = 64;
 // Node visits along every path of the scene: a graph whose children repeat
 // at each level has 2^depth paths.
 constexpr std::size_t kMaxNodeVisits = 100000;
+// A buffer or image file's size, read whole.
+constexpr std::uintmax_t kMaxReferencedBytes = std::uintmax_t(2) << 30;
 // Nesting of JSON arrays and objects: tinygltf parses recursively.
 constexpr int kMaxJsonDepth = 128;
 
@@ -274,10 +276,11 @@ bool read_referenced_file(std::vector<unsigned char>* out, std::string* err,
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status st = fs::status(file, ec);
-  const char* problem = !fs::exists(st)            ? "no such file"
-                        : fs::is_directory(st)     ? "is a directory"
-                        : !fs::is_regular_file(st) ? "is not a regular file"
-                                                   : nullptr;
+  const char* problem = !fs::exists(st)                                 ? "no such file"
+                        : fs::is_directory(st)                          ? "is a directory"
+                        : !fs::is_regular_file(st)                      ? "is not a regular file"
+                        : fs::file_size(file, ec) > kMaxReferencedBytes ? "is larger than 2 GiB"
+                                                                        : nullptr;
   if (!problem) {
     std::ifstream in(file, std::ios::binary);
     out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());

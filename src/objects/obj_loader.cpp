@@ -197,13 +197,19 @@ void check_obj_text(std::string_view text, const std::string& path) {
 // missing are kept for one warning each.
 class MaterialFiles : public tinyobj::MaterialReader {
  public:
-  explicit MaterialFiles(std::filesystem::path dir) : dir_(std::move(dir)) {}
+  explicit MaterialFiles(const std::string& model)
+      : model_(model), dir_(std::filesystem::path(model).parent_path()) {}
   bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                   std::map<std::string, int>* names, std::string* warn, std::string* err) override {
     const std::filesystem::path file = dir_ / name;
     std::error_code ec;
     std::ifstream in;
-    if (std::filesystem::is_regular_file(file, ec)) in.open(file, std::ios::binary);
+    if (std::filesystem::is_regular_file(file, ec)) {
+      if (std::filesystem::file_size(file, ec) > (std::uintmax_t(1) << 30))
+        throw InputError(
+            fmt::format("{}: material library {} is larger than 1 GiB", model_, obj_excerpt(name)));
+      in.open(file, std::ios::binary);
+    }
     if (!in.is_open()) {
       if (std::find(missing.begin(), missing.end(), name) == missing.end()) missing.push_back(name);
       return false;
@@ -214,6 +220,7 @@ class MaterialFiles : public tinyobj::MaterialReader {
   std::vector<std::string> missing;
 
  private:
+  const std::string& model_;
   std::filesystem::path dir_;
 };
 
@@ -235,7 +242,7 @@ Model load_obj(const std::string& path, const std::string& bytes, const ModelOpt
   std::string warn, err;
   BytesBuf buf(bytes);
   std::istream in(&buf);
-  MaterialFiles mtl(std::filesystem::path(path).parent_path());
+  MaterialFiles mtl(path);
   if (!tinyobj::LoadObj(&a, &shapes, &materials, &warn, &err, &in, &mtl, true, false))
     throw InputError(fmt::format("{}: not a readable OBJ file ({})", path, one_line(err)));
   if (warn.find("invalid vertex index") != std::string::npos)

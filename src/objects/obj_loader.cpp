@@ -6,6 +6,7 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cfloat>
 #include <charconv>
 #include <cmath>
@@ -61,10 +62,13 @@ void add_materials(RawModel& raw, const std::vector<tinyobj::material_t>& mats,
   raw.materials.push_back(fallback);
 }
 
-// Longest piece of the file quoted in a message.
+// A piece of the file quoted in a message: at most 40 characters, those
+// that do not print as '?'.
 std::string obj_excerpt(std::string_view text) {
   constexpr std::size_t kMax = 40;
-  return text.size() <= kMax ? std::string(text) : std::string(text.substr(0, kMax)) + "...";
+  std::string out;
+  for (char c : text.substr(0, kMax)) out += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+  return text.size() <= kMax ? out : out + "...";
 }
 
 // What tinyobjloader separates fields with.

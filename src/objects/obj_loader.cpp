@@ -128,6 +128,8 @@ bool check_corner(std::string_view c, ObjCounts& n) {
   return false;  // a fourth field
 }
 
+// Corners of one face: tinyobjloader triangulates a polygon by ear clipping,
+// in time quadratic in its corners.
 constexpr std::size_t kMaxFaceCorners = 1000;
 
 // Where a statement is, for its message.

@@ -30,8 +30,7 @@ struct ModelArgs {
 void add_model_options(CLI::App& cmd, ModelArgs& m) {
   cmd.add_option("--model", m.file, "model file: .obj, .gltf or .glb")->required();
   cmd.add_option("--up", m.up, "the file's up axis: y or z")->capture_default_str();
-  cmd.add_option("--height-m", m.height_m, "real height in metres (0 keeps file units)")
-      ->check(CLI::NonNegativeNumber);
+  cmd.add_option("--height-m", m.height_m, "real height in metres, 0..10000 (0 keeps file units)");
   cmd.add_option("--texture", m.texture, "texture for a model without materials (image file)");
 }
 
@@ -39,6 +38,7 @@ ModelOptions model_options(const ModelArgs& m) {
   ModelOptions o;
   o.up = parse_up_axis(m.up, "--up");
   o.height_m = m.height_m;
+  check_model_options(o, "--height-m");
   o.texture = m.texture;
   return o;
 }

@@ -9,11 +9,15 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <iterator>
+#include <limits>
 #include <map>
+#include <string_view>
 
 #include "objects/model_builder.h"
 #include "terrasprite/common/error.h"
@@ -22,10 +26,18 @@ namespace terrasprite::objects {
 namespace {
 
 constexpr int kMaxNodeDepth = 64;
+// Node visits along every path of the scene: a graph whose children repeat
+// at each level has 2^depth paths.
+constexpr std::size_t kMaxNodeVisits = 100000;
+// A buffer or image file's size, read whole.
+constexpr std::uintmax_t kMaxReferencedBytes = std::uintmax_t(2) << 30;
+// Nesting of JSON arrays and objects: tinygltf parses recursively.
+constexpr int kMaxJsonDepth = 128;
 
 struct Reader {
   const tinygltf::Model& g;
   const std::string& path;
+  const std::string& warnings;  ///< tinygltf's, for a texture it could not read
 
   [[noreturn]] void fail(const std::string& what) const {
     throw InputError(fmt::format("{}: {}", path, what));
@@ -120,8 +132,9 @@ void add_materials(RawModel& raw, const tinygltf::Model& g, const Reader& rd) {
         const tinygltf::Image& im = g.images[src];
         if (im.width <= 0 || im.height <= 0 || im.bits != 8 || im.component < 1 ||
             im.component > 4 || im.image.size() != std::size_t(im.width) * im.height * im.component)
-          rd.fail(fmt::format("texture '{}' is missing or unreadable",
-                              im.uri.empty() ? im.name : im.uri));
+          rd.fail(fmt::format("texture '{}' is missing or unreadable{}",
+                              one_line(im.uri.empty() ? im.name : im.uri, 60),
+                              rd.warnings.empty() ? "" : " (" + one_line(rd.warnings, 120) + ")"));
         Image img(im.width, im.height);
         for (std::size_t p = 0; p < std::size_t(im.width) * im.height; ++p)
           for (int c = 0; c < 4; ++c) {
@@ -157,6 +170,8 @@ bool add_primitive(RawModel& raw, const Reader& rd, const tinygltf::Primitive& p
     uv = rd.view(it->second, 2);
   if ((nrm.base && nrm.count != pos.count) || (uv.base && uv.count != pos.count))
     rd.fail("a primitive's attributes have different counts");
+  if (pos.count > kMaxModelVertices - raw.positions.size())
+    rd.fail(fmt::format("the scene instances more than {} vertices", kMaxModelVertices));
   const std::uint32_t first = std::uint32_t(raw.positions.size());
   const glm::dmat3 nxf = glm::inverseTranspose(glm::dmat3(xf));
   for (std::size_t i = 0; i < pos.count; ++i) {
@@ -174,6 +189,8 @@ bool add_primitive(RawModel& raw, const Reader& rd, const tinygltf::Primitive& p
   std::vector<std::uint32_t> idx;
   if (prim.indices >= 0) {
     const Reader::View iv = rd.view(prim.indices, 1);
+    if (iv.count > 3 * kMaxModelTriangles - raw.indices.size())
+      rd.fail(fmt::format("the scene instances more than {} triangles", kMaxModelTriangles));
     for (std::size_t i = 0; i < iv.count; ++i) {
       const double k = Reader::component(iv, i, 0);
       if (k >= double(pos.count))
@@ -196,34 +213,112 @@ bool add_primitive(RawModel& raw, const Reader& rd, const tinygltf::Primitive& p
 }
 
 void add_node(RawModel& raw, const Reader& rd, int node, const glm::dmat4& parent, int depth,
-              bool& all_normals) {
+              std::size_t& visits, bool& all_normals) {
   if (node < 0 || node >= int(rd.g.nodes.size())) rd.fail("a node index is out of range");
   if (depth > kMaxNodeDepth) rd.fail("the node tree is too deep (a cycle?)");
+  if (++visits > kMaxNodeVisits)
+    rd.fail(
+        fmt::format("the scene reaches nodes over {} times (shared children?)", kMaxNodeVisits));
   const tinygltf::Node& n = rd.g.nodes[node];
   const glm::dmat4 xf = parent * node_matrix(n);
   if (n.mesh >= int(rd.g.meshes.size())) rd.fail("a node names a mesh that does not exist");
   if (n.mesh >= 0)
     for (const tinygltf::Primitive& p : rd.g.meshes[n.mesh].primitives)
       all_normals = add_primitive(raw, rd, p, xf) && all_normals;  // one without: compute all
-  for (int c : n.children) add_node(raw, rd, c, xf, depth + 1, all_normals);
+  for (int c : n.children) add_node(raw, rd, c, xf, depth + 1, visits, all_normals);
+}
+
+// The JSON text of a .gltf, or the JSON chunk of a .glb (whatever is there
+// when the header is cut short: tinygltf reports that).
+std::string_view json_text(const std::string& bytes, bool binary) {
+  if (!binary) return bytes;
+  if (bytes.size() < 20) return {};
+  std::uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return std::string_view(bytes).substr(20, length);
+}
+
+void check_json_depth(std::string_view json, const std::string& path) {
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth)
+        throw InputError(
+            fmt::format("{}: the JSON nests deeper than {} levels", path, kMaxJsonDepth));
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
+// Files a glTF refers to (buffers, images): only regular files, each
+// problem named, no path expansion.
+bool file_exists(const std::string& file, void*) {
+  std::error_code ec;
+  return std::filesystem::exists(file, ec);
+}
+
+std::string file_as_named(const std::string& file, void*) {
+  return file;
+}
+
+bool read_referenced_file(std::vector<unsigned char>* out, std::string* err,
+                          const std::string& file, void*) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(file, ec);
+  const char* problem = !fs::exists(st)                                 ? "no such file"
+                        : fs::is_directory(st)                          ? "is a directory"
+                        : !fs::is_regular_file(st)                      ? "is not a regular file"
+                        : fs::file_size(file, ec) > kMaxReferencedBytes ? "is larger than 2 GiB"
+                                                                        : nullptr;
+  if (!problem) {
+    std::ifstream in(file, std::ios::binary);
+    out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (!in && !in.eof()) problem = "cannot be read";
+  }
+  if (problem && err) *err += problem;
+  return problem == nullptr;
+}
+
+bool write_nothing(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "the model loader writes no files";
+  return false;
 }
 
 }  // namespace
 
-Model load_gltf(const std::string& path, const ModelOptions& options) {
+Model load_gltf(const std::string& path, const std::string& bytes, const ModelOptions& options) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  const bool binary = ext == ".glb";
+  check_json_depth(json_text(bytes, binary), path);
+  if (bytes.size() > std::numeric_limits<unsigned>::max())
+    throw InputError(fmt::format("{}: larger than 4 GiB", path));
   tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks({file_exists, file_as_named, read_referenced_file, write_nothing, nullptr});
   tinygltf::Model g;
   std::string err, warn;
-  const bool binary = std::filesystem::path(path).extension() == ".glb" ||
-                      std::filesystem::path(path).extension() == ".GLB";
-  const bool ok = binary ? loader.LoadBinaryFromFile(&g, &err, &warn, path)
-                         : loader.LoadASCIIFromFile(&g, &err, &warn, path);
-  if (!ok) {
-    std::replace(err.begin(), err.end(), '\n', ' ');
-    throw InputError(fmt::format("{}: not a readable glTF file ({})", path, err));
-  }
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  const bool ok =
+      binary
+          ? loader.LoadBinaryFromMemory(&g, &err, &warn,
+                                        reinterpret_cast<const unsigned char*>(bytes.data()),
+                                        unsigned(bytes.size()), dir)
+          : loader.LoadASCIIFromString(&g, &err, &warn, bytes.data(), unsigned(bytes.size()), dir);
+  if (!ok) throw InputError(fmt::format("{}: not a readable glTF file ({})", path, one_line(err)));
   RawModel raw;
-  const Reader rd{g, path};
+  const Reader rd{g, path, warn};
   add_materials(raw, g, rd);
   std::vector<int> roots;
   if (!g.scenes.empty()) {
@@ -232,8 +327,9 @@ Model load_gltf(const std::string& path, const ModelOptions& options) {
   } else {
     for (int i = 0; i < int(g.nodes.size()); ++i) roots.push_back(i);  // no scene: every node
   }
+  std::size_t visits = 0;
   bool all_normals = true;
-  for (int r : roots) add_node(raw, rd, r, glm::dmat4(1.0), 0, all_normals);
+  for (int r : roots) add_node(raw, rd, r, glm::dmat4(1.0), 0, visits, all_normals);
   if (!all_normals) raw.normals.clear();
   return finish_model(std::move(raw), path, options);
 }

@@ -14,6 +14,7 @@
 
 #include "objects/model_builder.h"
 #include "terrasprite/common/error.h"
+#include "terrasprite/common/input_file.h"
 
 namespace terrasprite {
 namespace {
@@ -81,6 +82,30 @@ void group_parts(const objects::RawModel& raw, Model& m) {
   }
 }
 
+// Bounds of the vertices the triangles use (glTF files may carry unused ones),
+// in double: finite float coordinates can still span more than a float holds.
+void place_in_metres(Model& m, const std::string& path, const ModelOptions& options) {
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (std::uint32_t i : m.indices) {
+    lo = glm::min(lo, glm::dvec3(m.positions[i]));
+    hi = glm::max(hi, glm::dvec3(m.positions[i]));
+  }
+  const double height = hi.z - lo.z;
+  if (!(height > 0))
+    throw InputError(fmt::format("{}: the model has zero height along its up axis", path));
+  m.scale_to_m = options.height_m > 0 ? options.height_m / height : 1.0;
+  const glm::dvec3 extent = (hi - lo) * m.scale_to_m;
+  const double largest = std::max({extent.x, extent.y, extent.z});
+  if (!(largest <= kMaxModelExtentM))
+    throw InputError(fmt::format(
+        "{}: the model spans {:g} m (scale {:g} m per file unit); at most {:g} m is accepted", path,
+        largest, m.scale_to_m, kMaxModelExtentM));
+  const glm::dvec3 origin(0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), lo.z);
+  for (glm::vec3& p : m.positions) p = glm::vec3((glm::dvec3(p) - origin) * m.scale_to_m);
+  m.bounds_min = glm::vec3((lo - origin) * m.scale_to_m);
+  m.bounds_max = glm::vec3((hi - origin) * m.scale_to_m);
+}
+
 }  // namespace
 
 std::vector<glm::vec3> smooth_normals(const std::vector<glm::vec3>& positions,
@@ -109,6 +134,29 @@ std::vector<glm::vec3> smooth_normals(const std::vector<glm::vec3>& positions,
 }
 
 namespace objects {
+
+std::string one_line(std::string_view text, std::size_t max) {
+  constexpr std::size_t kMaxWord = 48;  // a data URI or a path quoted whole
+  std::string out;
+  std::size_t word = 0;
+  for (char c : text) {
+    if (c == '\n' || c == '\r') {
+      if (!out.empty() && out.back() != ' ') out += "; ";
+      word = 0;
+      continue;
+    }
+    word = c == ' ' ? 0 : word + 1;
+    if (word > kMaxWord) {
+      if (word == kMaxWord + 1) out += "...";
+      continue;
+    }
+    out += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+    if (out.size() > max) return out.substr(0, max) + "...";
+  }
+  while (!out.empty() && (out.back() == ' ' || out.back() == ';' || out.back() == '.'))
+    out.pop_back();
+  return out;
+}
 
 Model finish_model(RawModel raw, const std::string& path, const ModelOptions& options) {
   validate(raw, path);
@@ -140,20 +188,7 @@ Model finish_model(RawModel raw, const std::string& path, const ModelOptions& op
   m.textures = std::move(raw.textures);
   m.texture_names = std::move(raw.texture_names);
 
-  // Bounds of the vertices the triangles use (glTF files may carry unused ones).
-  glm::vec3 lo(INFINITY), hi(-INFINITY);
-  for (std::uint32_t i : m.indices) {
-    lo = glm::min(lo, m.positions[i]);
-    hi = glm::max(hi, m.positions[i]);
-  }
-  const double height = double(hi.z) - lo.z;
-  if (!(height > 0))
-    throw InputError(fmt::format("{}: the model has zero height along its up axis", path));
-  m.scale_to_m = options.height_m > 0 ? options.height_m / height : 1.0;
-  const glm::vec3 origin(0.5f * (lo.x + hi.x), 0.5f * (lo.y + hi.y), lo.z);
-  for (glm::vec3& p : m.positions) p = glm::vec3(glm::dvec3(p - origin) * m.scale_to_m);
-  m.bounds_min = glm::vec3(glm::dvec3(lo - origin) * m.scale_to_m);
-  m.bounds_max = glm::vec3(glm::dvec3(hi - origin) * m.scale_to_m);
+  place_in_metres(m, path, options);
   return m;
 }
 
@@ -165,15 +200,21 @@ UpAxis parse_up_axis(const std::string& text, const char* option) {
   throw InputError(fmt::format("{}: '{}' is not an up axis (y or z)", option, text));
 }
 
+void check_model_options(const ModelOptions& options, const std::string& path) {
+  if (!(options.height_m >= 0 && options.height_m <= kMaxModelHeightM))
+    throw InputError(fmt::format("{}: height {:g} m is not in 0..{:g}", path, options.height_m,
+                                 kMaxModelHeightM));
+}
+
 Model load_model(const std::string& path, const ModelOptions& options) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(fmt::format("{}: no such model file", path));
+  check_model_options(options, path);
   const std::string ext = lower_extension(path);
-  if (ext == ".obj") return objects::load_obj(path, options);
-  if (ext == ".gltf" || ext == ".glb") return objects::load_gltf(path, options);
-  throw InputError(
-      fmt::format("{}: unsupported model format '{}' (use .obj, .gltf or .glb)", path, ext));
+  if (ext != ".obj" && ext != ".gltf" && ext != ".glb")
+    throw InputError(
+        fmt::format("{}: unsupported model format '{}' (use .obj, .gltf or .glb)", path, ext));
+  const std::string bytes = read_input_text(path, "model file");
+  if (ext == ".obj") return objects::load_obj(path, bytes, options);
+  return objects::load_gltf(path, bytes, options);
 }
 
 }  // namespace terrasprite

@@ -3,6 +3,8 @@
 // material per triangle. finish_model validates, computes missing normals,
 // groups triangles by material and brings the model to world conventions.
 #pragma once
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "terrasprite/objects/model.h"
@@ -32,7 +34,18 @@ Model finish_model(RawModel raw, const std::string& path, const ModelOptions& op
 /// Returns the triangles moved.
 std::size_t draw_opposite_twins_single_sided(RawModel& raw);
 
-Model load_obj(const std::string& path, const ModelOptions& options);
-Model load_gltf(const std::string& path, const ModelOptions& options);
+/// Bounds on what one model may hold (a glTF can instance a mesh many times).
+inline constexpr std::size_t kMaxModelVertices = std::size_t(1) << 25;
+inline constexpr std::size_t kMaxModelTriangles = std::size_t(1) << 25;
+
+/// A loader library's error or warning text as one short line: line ends
+/// become "; ", trailing full stops go, a word (a data URI) longer than 48
+/// characters is cut with "...", and so is the line past `max` characters.
+std::string one_line(std::string_view text, std::size_t max = 200);
+
+/// `bytes` is the whole file at `path`; `path` names it in messages and
+/// locates the files it refers to (materials, textures, buffers).
+Model load_obj(const std::string& path, const std::string& bytes, const ModelOptions& options);
+Model load_gltf(const std::string& path, const std::string& bytes, const ModelOptions& options);
 
 }  // namespace terrasprite::objects

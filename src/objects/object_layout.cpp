@@ -58,7 +58,8 @@ LayoutModel parse_model(const nlohmann::json& m, const std::string& name, const 
   LayoutModel out;
   out.name = m.at("name").get<std::string>();
   out.file = resolve(base, m.at("file").get<std::string>());
-  out.options.up = parse_up_axis(m.value("up", std::string("y")), "up");
+  out.options.up = parse_up_axis(m.value("up", std::string("y")),
+                                 fmt::format("{}: model '{}': up", name, out.name).c_str());
   out.options.height_m = m.value("height_m", 0.0);
   if (!(out.options.height_m >= 0) || out.options.height_m > 1e4)
     fail(name,

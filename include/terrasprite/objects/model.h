@@ -59,6 +59,12 @@ struct Model {
 
 enum class UpAxis { kY, kZ };
 
+/// The largest ModelOptions::height_m accepted, metres.
+inline constexpr double kMaxModelHeightM = 1e4;
+/// The largest extent of a loaded model along any axis, metres (after
+/// height_m's scale): a model's bounds are always finite and drawable.
+inline constexpr double kMaxModelExtentM = 1e6;
+
 struct ModelOptions {
   UpAxis up = UpAxis::kY;  ///< the file's up axis (glTF is y-up by definition)
   /// Real height in metres (extent along up); 0 keeps file units as metres.
@@ -78,10 +84,17 @@ struct ModelOptions {
 };
 
 /// Loads an .obj, .gltf or .glb file by its extension. Throws InputError (one
-/// line naming `path`) for a missing, truncated or malformed file, an index out
-/// of range, a non-finite position, a missing texture file, an unsupported
-/// accessor, zero triangles, or a degenerate (zero-height) model.
+/// line naming `path`) for a missing file or a directory, a truncated or
+/// malformed file, an index out of range, a non-finite position, a missing
+/// texture file, an unsupported accessor, zero triangles, a degenerate
+/// (zero-height) model, one larger than kMaxModelExtentM, more work than the
+/// loaders' bounds (docs/formats.md, Models), or a height_m outside
+/// 0..kMaxModelHeightM. A missing OBJ material library is a warning on stderr.
 Model load_model(const std::string& path, const ModelOptions& options = {});
+
+/// Throws InputError naming `source` (a file, or a scene's model) when
+/// `options` cannot describe a model: height_m not in 0..kMaxModelHeightM.
+void check_model_options(const ModelOptions& options, const std::string& source);
 
 /// Whether the triangles (vertices welded by exact position) form closed
 /// surfaces, every edge shared by exactly two triangles in opposite

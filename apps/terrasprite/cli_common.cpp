@@ -53,6 +53,7 @@ void add_terrain_options(CLI::App& cmd, TerrainOptions& o) {
   cmd.add_option("--z-scale", o.z_scale, "multiply raw height samples (e.g. 0.1 for decimetres)");
   cmd.add_option("--spacing", o.spacing, "sample spacing in metres (overrides the file's)");
   cmd.add_option("--nodata", o.nodata, "nodata value for rasters that do not tag one");
+  add_fill_option(cmd, o);
   cmd.add_option_function<std::string>(
          "--encoding",
          [&o](const std::string& e) {
@@ -70,6 +71,30 @@ void add_terrain_options(CLI::App& cmd, TerrainOptions& o) {
                  "synthetic terrain samples per side, 2..8193 (default 513)");
   cmd.add_option("--erosion", o.erosion_passes,
                  "synthetic terrain erosion passes, 0..100 (default 2)");
+}
+
+void add_fill_option(CLI::App& cmd, TerrainOptions& o) {
+  cmd.add_option_function<std::string>(
+         "--fill",
+         [&o](const std::string& f) {
+           o.fill = f == "gdal" ? NodataFill::kGdal : f == "none" ? NodataFill::kNone : NodataFill::kAmle;
+         },
+         "how nodata cells (voids) are filled: amle (default; least steep surface from the rim), "
+         "gdal (GDALFillNodata, inverse distance) or none (holes: info and tile only, the "
+         "renderers refuse it)")
+      ->check(CLI::IsMember({"amle", "gdal", "none"}));
+}
+
+void add_show_voids_option(CLI::App& cmd, TerrainOptions& o) {
+  cmd.add_flag("--show-voids", o.show_voids,
+               "tint the terrain magenta where the DEM had nodata cells (filled by --fill)");
+}
+
+void check_fill_drawable(const TerrainOptions& o) {
+  if (o.fill == NodataFill::kNone)
+    throw InputError(
+        "--fill none: the renderers (GL and voxel) draw no holes; use --fill amle or gdal, with "
+        "--show-voids to see the filled cells");
 }
 
 Terrain load_terrain_verbose(const TerrainOptions& o) {

@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "terrasprite/common/process_memory.h"
 #include "render_modes.h"
+#include "look_at_options.h"
 #include "objects_options.h"
 #include "terrasprite/terrain/image_io.h"
 #include "terrasprite/camera/camera_path.h"
@@ -56,6 +57,7 @@ struct RenderOpts {
   int memory_every = 100;
   std::string heap_trim = "on";
   ObjectsOptions objects;
+  LookAtOptions look;
 };
 
 // The soak's figures: RSS every `every` frames, its peak, and the growth a
@@ -128,6 +130,7 @@ Checked check_options(const RenderOpts& o, const OutputPolicy& policy) {
     throw InputError(fmt::format("--frames {}: must be between 1 and 1000000", o.frames));
   std::tie(c.first, c.last) = parse_frame_range(o.frame_range, o.frames);
   c.mode = parse_render_mode(o.mode);
+  check_fill_drawable(o.terrain);
   check_outputs(policy, o.out, {o.json});
   check_video_target(o, policy);
   return c;
@@ -241,10 +244,17 @@ nlohmann::json stats_json(const RenderOpts& o, const Checked& c, const RenderSta
   return j;
 }
 
+// The cameras: --look-at's view (and an orbit of its target from there), or --path.
+std::vector<Camera> flight_path(const RenderOpts& o, const Heightfield& h, double aspect) {
+  if (const std::optional<LookAtView> v = parse_look_at(o.look, h))
+    return look_at_orbit(*v, h, o.frames, aspect);
+  return make_path(o.path, h, o.frames, aspect);
+}
+
 void run(const RenderOpts& o, const OutputPolicy& policy) {
   Checked c = check_options(o, policy);
   Terrain terrain = load_terrain_verbose(o.terrain);
-  std::vector<Camera> path = make_path(o.path, terrain.heights, o.frames, double(c.w) / c.h);
+  std::vector<Camera> path = flight_path(o, terrain.heights, double(c.w) / c.h);
   const RenderStackOptions so = stack_options(o, c);
   RenderStack stack = make_render_stack(terrain, so);
   const std::unique_ptr<GlSceneObjects> objects =
@@ -284,7 +294,7 @@ void add_render(CLI::App& app, const OutputPolicy& policy) {
   cmd->add_option("--mesh-triangles", o->mesh_triangles,
                   "--mesh adaptive: triangle budget (default 0 = the uniform grid's 2 x "
                   "lod-quads^2)");
-  cmd->add_option("--path", o->path, "'paper', 'low-fast' or a JSON path file");
+  CLI::Option* path = cmd->add_option("--path", o->path, "'paper', 'low-fast' or a JSON path file");
   cmd->add_option("--frames", o->frames, "frames along the path (default 460)");
   cmd->add_option("--size", o->size, "image size WxH (default 512x512)");
   // Checked in run(), so a parse error (e.g. an unknown option) is reported first.
@@ -321,6 +331,8 @@ void add_render(CLI::App& app, const OutputPolicy& policy) {
                   "on: at each memory sample hand freed heap pages back to the OS (default on)")
       ->check(CLI::IsMember({"on", "off"}));
   add_objects_options(*cmd, o->objects);
+  add_look_at_options(*cmd, o->look)->excludes(path);
+  add_show_voids_option(*cmd, o->terrain);
   cmd->callback([o, &policy] { run(*o, policy); });
 }
 

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "cli_common.h"
+#include "look_at_options.h"
 #include "commands.h"
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/common/error.h"
@@ -29,6 +30,7 @@ struct ViewOpts {
   viewer::ViewerOptions viewer;
   bool lighting = false, free = false;
   bool sync_keyframes = false;  ///< sprite: keyframes drawn in the frame (no second thread)
+  LookAtOptions look;
 };
 
 /// One --mode's renderer stack, built on the viewer's render thread. The
@@ -97,12 +99,20 @@ Camera start_camera(const Heightfield& h, double aspect) {
   return c;
 }
 
+/// --look-at's view, or the default first view.
+Camera first_camera(const LookAtOptions& look, const Heightfield& h, double aspect) {
+  if (const std::optional<LookAtView> v = parse_look_at(look, h))
+    return look_at_camera(*v, h, aspect);
+  return start_camera(h, aspect);
+}
+
 void run(ViewOpts& o, const OutputPolicy& policy) {
   auto [w, h] = parse_size(o.size, "--size");
   viewer::ViewerOptions& v = o.viewer;
   v.width = w;
   v.height = h;
   v.fly.bounded = !o.free;
+  check_fill_drawable(o.terrain);
   if (v.frames < 0) throw InputError(fmt::format("--frames {}: must be at least 0", v.frames));
   if (!(v.settings.voxel_ratio > 0 && v.settings.voxel_ratio <= 64))
     throw InputError(
@@ -124,7 +134,7 @@ void run(ViewOpts& o, const OutputPolicy& policy) {
   v.record = o.record;
   const bool lighting = o.lighting, async_keyframes = !o.sync_keyframes;
   viewer::RunStats stats = viewer::run_viewer(
-      terrain.heights, start_camera(terrain.heights, double(w) / h), v,
+      terrain.heights, first_camera(o.look, terrain.heights, double(w) / h), v,
       [&terrain, w, h, lighting, async_keyframes, pyramid = std::shared_ptr<VoxelTerrain>()](
           const viewer::LiveSettings& s,
           GlContext* context) mutable -> std::unique_ptr<viewer::ViewRenderer> {
@@ -176,10 +186,13 @@ void add_view(CLI::App& app, const OutputPolicy& policy) {
                   "seconds between recorded keyframes (default 0.5)");
   cmd->add_option("--play", o->play, "fly this path JSON file in real time");
   cmd->add_option("--speed", o->viewer.fly.speed_mps,
-                  "flying speed m/s (default: a tenth of the terrain extent per second)");
+                  "flying speed m/s (default: half the height above ground per second, 5 m/s to 2% of "
+                  "the extent per second; +/- scale it)");
   cmd->add_option("--clearance", o->viewer.fly.clearance_m,
                   "minimum height above ground, metres (default 0.5% of the extent)");
   cmd->add_flag("--free", o->free, "allow flying far outside the terrain");
+  add_look_at_options(*cmd, o->look);
+  add_show_voids_option(*cmd, o->terrain);
   cmd->add_flag("--shared-context", o->viewer.share_context,
                 "GL renderers draw in a context shared with the window, nothing read back "
                 "(default off: on llvmpipe the window then waits for the renderer)");

@@ -34,10 +34,10 @@ namespace {
 struct RenderOpts {
   TerrainOptions terrain;
   std::string mode = "full";
-  int lod_quads = 16;
+  std::optional<int> lod_quads;  // unset: auto_lod_quads
   std::string mesh = "uniform";  // --mode sprite: its coarse mesh
   long long mesh_triangles = 0;
-  std::string path = "paper";
+  std::string path = "overview";
   int frames = 460;
   std::string size = "512x512";
   std::string out;
@@ -137,7 +137,7 @@ Checked check_options(const RenderOpts& o, const OutputPolicy& policy) {
 }
 
 // The options read once the terrain is loaded, in the order they are reported.
-RenderStackOptions stack_options(const RenderOpts& o, Checked& c) {
+RenderStackOptions stack_options(const RenderOpts& o, Checked& c, const Heightfield& h) {
   if (!o.warp.empty()) c.warp = parse_warp_method(o.warp);
   if (o.real_every < 1)
     throw InputError(fmt::format("--real-every {}: must be at least 1", o.real_every));
@@ -149,7 +149,7 @@ RenderStackOptions stack_options(const RenderOpts& o, Checked& c) {
   so.mode = c.mode;
   so.width = c.w;
   so.height = c.h;
-  so.lod_quads = o.lod_quads;
+  so.lod_quads = o.lod_quads.value_or(auto_lod_quads(h));
   so.lighting = o.lighting;
   so.sprite_mesh = c.mesh;
   so.sprite_mesh_triangles = o.mesh_triangles;
@@ -255,7 +255,7 @@ void run(const RenderOpts& o, const OutputPolicy& policy) {
   Checked c = check_options(o, policy);
   Terrain terrain = load_terrain_verbose(o.terrain);
   std::vector<Camera> path = flight_path(o, terrain.heights, double(c.w) / c.h);
-  const RenderStackOptions so = stack_options(o, c);
+  const RenderStackOptions so = stack_options(o, c, terrain.heights);
   RenderStack stack = make_render_stack(terrain, so);
   const std::unique_ptr<GlSceneObjects> objects =
       attach_objects(o.objects, terrain, stack.scene.get(), to_string(c.mode));
@@ -287,14 +287,18 @@ void add_render(CLI::App& app, const OutputPolicy& policy) {
   add_terrain_options(*cmd, o->terrain);
   cmd->add_option("--mode", o->mode, "renderer")->check(CLI::IsMember(render_mode_names()));
   cmd->add_option("--lod-quads", o->lod_quads,
-                  "coarse grid quads per side for lod modes (default 16)");
+                  "coarse grid quads per side for lod modes (default: from the terrain, a quad of "
+                  "about 32 samples or 1 km, at least 16; 16 is the paper setup)");
   cmd->add_option("--mesh", o->mesh,
                   "--mode sprite: coarse mesh, uniform (default, the --lod-quads grid) | adaptive "
                   "(per keyframe, a screen-space-error quadtree for its camera)");
   cmd->add_option("--mesh-triangles", o->mesh_triangles,
                   "--mesh adaptive: triangle budget (default 0 = the uniform grid's 2 x "
                   "lod-quads^2)");
-  CLI::Option* path = cmd->add_option("--path", o->path, "'paper', 'low-fast' or a JSON path file");
+  CLI::Option* path = cmd->add_option(
+      "--path", o->path,
+      "'overview' (default: the paper flight, brought closer over terrain flatter than the "
+      "synthetic one), 'paper', 'low-fast' or a JSON path file");
   cmd->add_option("--frames", o->frames, "frames along the path (default 460)");
   cmd->add_option("--size", o->size, "image size WxH (default 512x512)");
   // Checked in run(), so a parse error (e.g. an unknown option) is reported first.

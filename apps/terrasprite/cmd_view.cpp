@@ -31,6 +31,7 @@ struct ViewOpts {
   bool lighting = false, free = false;
   bool sync_keyframes = false;  ///< sprite: keyframes drawn in the frame (no second thread)
   LookAtOptions look;
+  std::optional<int> lod_quads;  ///< unset: auto_lod_quads
 };
 
 /// One --mode's renderer stack, built on the viewer's render thread. The
@@ -90,9 +91,10 @@ RenderStackOptions stack_options(const viewer::LiveSettings& s, int w, int h, bo
 }
 
 /// The first view: from half the extent south, a tenth of the extent above the
-/// highest point, looking north at the terrain centre's lowest level.
+/// highest point, looking north at the terrain centre's lowest level; the
+/// extent scaled as the overview path scales it (closer over flat terrain).
 Camera start_camera(const Heightfield& h, double aspect) {
-  const double e = h.extent();
+  const double e = h.extent() * overview_scale(h);
   Camera c = Camera::look_at({0, -0.5 * e, h.max_height() + 0.1 * e}, {0, 0, h.min_height()}, 60.0,
                              aspect);
   fit_clip_planes(c, h);
@@ -129,6 +131,7 @@ void run(ViewOpts& o, const OutputPolicy& policy) {
       !std::filesystem::is_directory(std::filesystem::absolute(o.stats).parent_path()))
     throw InputError(fmt::format("--stats {}: its directory does not exist", o.stats));
   Terrain terrain = load_terrain_verbose(o.terrain);
+  v.settings.lod_quads = o.lod_quads.value_or(auto_lod_quads(terrain.heights));
   if (!o.play.empty()) load_path_file(o.play, terrain.heights, 2, double(w) / h);  // validate
   v.play = o.play;
   v.record = o.record;
@@ -163,7 +166,9 @@ void add_view(CLI::App& app, const OutputPolicy& policy) {
          "renderer, switchable live (default sprite)")
       ->check(CLI::IsMember(render_mode_names()));
   cmd->add_option("--size", o->size, "window and render size WxH (default 1280x720)");
-  cmd->add_option("--lod-quads", o->viewer.settings.lod_quads, "coarse grid quads (default 16)");
+  cmd->add_option("--lod-quads", o->lod_quads,
+                  "coarse grid quads (default: from the terrain, a quad of about 32 samples or "
+                  "1 km, at least 16)");
   cmd->add_option("--threshold", o->viewer.settings.threshold_px,
                   "LOD-sprite keyframe threshold, pixels (default 1)");
   cmd->add_option("--voxel-ratio", o->viewer.settings.voxel_ratio,

@@ -31,6 +31,16 @@ struct GeoPlace {
   bool above_ground = false;
 };
 
+/// The paper path with its distances and clearance scaled by
+/// overview_scale(h), so a terrain flatter than the paper's (a 100 km DEM
+/// with 1 to 4 km of relief) is flown close enough to show its relief: the
+/// same flight as paper_path on terrains as steep as the synthetic one.
+std::vector<Camera> overview_path(const Heightfield& h, int frames, double aspect,
+                                  double fov_y_deg = 60.0);
+/// (relief / extent) / 0.12, within 0.35 .. 1 (the default synthetic terrain,
+/// 2 km of relief over 15.36 km, gets 1).
+double overview_scale(const Heightfield& h);
+
 /// One keyframe of a keyframe path, in world metres (x east, y north, z up,
 /// origin at the terrain centre at height 0), or geographic (resolved when
 /// the path is sampled on its terrain).
@@ -98,7 +108,7 @@ std::vector<Camera> path_from_json(std::string_view text, const std::string& nam
 /// (roll up to 30 degrees), looking 8 degrees down. Near/far planes fitted.
 std::vector<Camera> low_fast_path(const Heightfield& h, int frames, double aspect,
                                   double fov_y_deg = 60.0);
-/// "paper", "low-fast" or a JSON file name: dispatches to the three above.
+/// "paper", "overview", "low-fast" or a JSON file name: dispatches to the four above.
 std::vector<Camera> make_path(const std::string& spec, const Heightfield& h, int frames,
                               double aspect);
 

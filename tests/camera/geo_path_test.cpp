@@ -10,6 +10,8 @@
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/camera/geo_view.h"
 #include "terrasprite/common/error.h"
+#include "terrasprite/terrain/terrain.h"
+#include "test_util.h"
 
 using namespace terrasprite;
 
@@ -109,4 +111,20 @@ TEST(GeoView, LookAtPlacesTheEyeRangeMetresBackAlongHeadingAndPitch) {
   v.pitch_deg = -30;
   v.range_m = 0;
   EXPECT_NE(what_of([&] { look_at_camera(v, h, 1.0); }).find("--range 0"), std::string::npos);
+}
+
+TEST(GeoPath, TheFujiExamplePathFliesAboveMtFuji) {  // about 1.5 s: loads the 1201^2 tile
+  const std::string d = tstest::shared_data();
+  if (d.empty()) GTEST_SKIP() << "../shared/data is absent";
+  TerrainOptions o;
+  o.dem = d + "/srtm3_mt_fuji/mt_fuji_90m.tif";
+  o.dem_given = true;
+  const Terrain t = load_terrain(o);
+  const auto path =
+      load_path_file(std::string(TS_SOURCE_DIR) + "/examples/fuji-path.json", t.heights, 13, 1.0);
+  for (const Camera& c : path) {
+    EXPECT_GT(c.position.z, t.heights.sample(c.position.x, c.position.y));
+    EXPECT_LT(c.pitch_deg, 0);
+  }
+  EXPECT_NEAR(path[0].position.z, 9000, 1e-6);
 }

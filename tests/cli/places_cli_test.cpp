@@ -31,7 +31,7 @@ nlohmann::json read_json(const std::string& f) { return nlohmann::json::parse(st
 
 }  // namespace
 
-TEST(PlacesCli, LookAtNeedsACrsAndAPlaceOnTheTerrain) {  // about 1 s
+TEST(PlacesCli, LookAtNeedsACrsAndAPlaceOnTheTerrain) {  // about 5 s: three loads of the tile
   const std::string r = "render --synthetic-size 33 --frames 1 --size 16x16 --out o ";
   expect_one_line_error(r + "--look-at 138.7,35.3", "no coordinate reference system");
   expect_one_line_error(r + "--range 100", "need --look-at");
@@ -44,7 +44,7 @@ TEST(PlacesCli, LookAtNeedsACrsAndAPlaceOnTheTerrain) {  // about 1 s
   expect_one_line_error(f + "--look-at 138.7274,35.3606 --pitch 30", "below the ground");
 }
 
-TEST(PlacesCli, RendersMtFujiByLonLatAndStatesItsVoids) {  // about 6 s: three loads of the tile
+TEST(PlacesCli, RendersMtFujiByLonLatAndStatesItsVoids) {  // about 7 s: three loads of the tile
   if (fuji().empty()) GTEST_SKIP() << "../shared/data is absent";
   tstest::TempDir tmp;
   const tstest::CliResult r = tstest::run_cli(

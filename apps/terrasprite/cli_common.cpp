@@ -74,27 +74,26 @@ void add_terrain_options(CLI::App& cmd, TerrainOptions& o) {
 }
 
 void add_fill_option(CLI::App& cmd, TerrainOptions& o) {
+  // Holes are only described: every other command draws or writes whole heights.
+  const bool holes_ok = cmd.get_name() == "info";
   cmd.add_option_function<std::string>(
          "--fill",
-         [&o](const std::string& f) {
+         [&o, holes_ok](const std::string& f) {
+           if (f == "none" && !holes_ok)
+             throw InputError(
+                 "--fill none: only info takes it; the renderers (GL and voxel) draw no holes "
+                 "and tile writes whole heights (use --fill amle or gdal, and --show-voids to see "
+                 "the filled cells)");
            o.fill = f == "gdal" ? NodataFill::kGdal : f == "none" ? NodataFill::kNone : NodataFill::kAmle;
          },
          "how nodata cells (voids) are filled: amle (default; least steep surface from the rim), "
-         "gdal (GDALFillNodata, inverse distance) or none (holes: info and tile only, the "
-         "renderers refuse it)")
+         "gdal (GDALFillNodata, inverse distance) or none (info only: the voids stay holes)")
       ->check(CLI::IsMember({"amle", "gdal", "none"}));
 }
 
 void add_show_voids_option(CLI::App& cmd, TerrainOptions& o) {
   cmd.add_flag("--show-voids", o.show_voids,
                "tint the terrain magenta where the DEM had nodata cells (filled by --fill)");
-}
-
-void check_fill_drawable(const TerrainOptions& o) {
-  if (o.fill == NodataFill::kNone)
-    throw InputError(
-        "--fill none: the renderers (GL and voxel) draw no holes; use --fill amle or gdal, with "
-        "--show-voids to see the filled cells");
 }
 
 Terrain load_terrain_verbose(const TerrainOptions& o) {

@@ -24,12 +24,11 @@ std::string with_option_names(const std::string& library_message);
 /// --resample --seed --synthetic-size --erosion
 void add_terrain_options(CLI::App& cmd, TerrainOptions& o);
 
-/// --fill amle|gdal|none (part of add_terrain_options).
+/// --fill amle|gdal|none (part of add_terrain_options); none is refused
+/// (InputError) except by `info`: no renderer draws holes.
 void add_fill_option(CLI::App& cmd, TerrainOptions& o);
 /// --show-voids, for the commands that draw the terrain.
 void add_show_voids_option(CLI::App& cmd, TerrainOptions& o);
-/// Throws InputError for --fill none: no renderer draws holes.
-void check_fill_drawable(const TerrainOptions& o);
 
 /// Loads the terrain, printing loader warnings on stderr (one line each).
 Terrain load_terrain_verbose(const TerrainOptions& o);

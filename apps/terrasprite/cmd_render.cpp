@@ -130,7 +130,6 @@ Checked check_options(const RenderOpts& o, const OutputPolicy& policy) {
     throw InputError(fmt::format("--frames {}: must be between 1 and 1000000", o.frames));
   std::tie(c.first, c.last) = parse_frame_range(o.frame_range, o.frames);
   c.mode = parse_render_mode(o.mode);
-  check_fill_drawable(o.terrain);
   check_outputs(policy, o.out, {o.json});
   check_video_target(o, policy);
   return c;

@@ -114,7 +114,6 @@ void run(ViewOpts& o, const OutputPolicy& policy) {
   v.width = w;
   v.height = h;
   v.fly.bounded = !o.free;
-  check_fill_drawable(o.terrain);
   if (v.frames < 0) throw InputError(fmt::format("--frames {}: must be at least 0", v.frames));
   if (!(v.settings.voxel_ratio > 0 && v.settings.voxel_ratio <= 64))
     throw InputError(

@@ -36,7 +36,8 @@ TEST(PlacesCli, LookAtNeedsACrsAndAPlaceOnTheTerrain) {  // about 5 s: three loa
   expect_one_line_error(r + "--look-at 138.7,35.3", "no coordinate reference system");
   expect_one_line_error(r + "--range 100", "need --look-at");
   expect_one_line_error(r + "--look-at 138.7", "expected LON,LAT");
-  expect_one_line_error(r + "--fill none", "--fill none");
+  expect_one_line_error(r + "--fill none", "only info takes it");
+  expect_one_line_error("tile --synthetic-size 33 --fill none --out t", "only info takes it");
   if (fuji().empty()) GTEST_SKIP() << "../shared/data is absent";
   const std::string f = "render --dem " + fuji() + " --frames 1 --size 16x16 --out o ";
   expect_one_line_error(f + "--look-at 140.5,35.3", "not on the terrain");
@@ -44,7 +45,7 @@ TEST(PlacesCli, LookAtNeedsACrsAndAPlaceOnTheTerrain) {  // about 5 s: three loa
   expect_one_line_error(f + "--look-at 138.7274,35.3606 --pitch 30", "below the ground");
 }
 
-TEST(PlacesCli, RendersMtFujiByLonLatAndStatesItsVoids) {  // about 7 s: three loads of the tile
+TEST(PlacesCli, RendersMtFujiByLonLatAndStatesItsVoids) {  // about 9 s: four loads of the tile
   if (fuji().empty()) GTEST_SKIP() << "../shared/data is absent";
   tstest::TempDir tmp;
   const tstest::CliResult r = tstest::run_cli(
@@ -62,6 +63,9 @@ TEST(PlacesCli, RendersMtFujiByLonLatAndStatesItsVoids) {  // about 7 s: three l
   ASSERT_EQ(tstest::run_cli("info --fill gdal --dem " + fuji() + " --json " + tmp / "g.json").status,
             0);
   EXPECT_EQ(read_json(tmp / "g.json")["nodata"]["fill_method"], "gdal");
+  ASSERT_EQ(tstest::run_cli("info --fill none --dem " + fuji() + " --json " + tmp / "n.json").status,
+            0);
+  EXPECT_EQ(read_json(tmp / "n.json")["nodata"]["fill_method"], "none");
 }
 
 TEST(PlacesCli, ObjectsSceneReportsItsCameraAndWritesPlacedInstances) {  // about 3 s

@@ -37,7 +37,9 @@ TEST(FlySpeed, FollowsTheHeightAboveGroundWithinBounds) {
 
 TEST(FlySpeed, DefaultOnA100KmTerrainNearTheGroundIsSteerable) {
   const Heightfield h = flat_field(1001, 100, 500);  // 100 km across
-  FlyController fly(h, camera_at(700), {});       // 200 m above the ground
+  FlyOptions o;
+  o.clearance_m = 20;                             // the default speed; a low clearance
+  FlyController fly(h, camera_at(700), o);        // 200 m above the ground
   EXPECT_NEAR(fly.speed_mps(), 100, 1e-9);        // not a tenth of the extent (10 km/s)
   InputEvent plus;
   plus.kind = InputKind::kKey;
@@ -45,7 +47,7 @@ TEST(FlySpeed, DefaultOnA100KmTerrainNearTheGroundIsSteerable) {
   plus.action = GLFW_PRESS;
   fly.handle(plus);
   EXPECT_NEAR(fly.speed_mps(), 125, 1e-9);
-  FlyOptions fixed;
+  FlyOptions fixed = o;
   fixed.speed_mps = 40;
   EXPECT_DOUBLE_EQ(FlyController(h, camera_at(700), fixed).speed_mps(), 40);
 }

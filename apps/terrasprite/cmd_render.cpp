@@ -225,7 +225,7 @@ nlohmann::json stats_json(const RenderOpts& o, const Checked& c, const RenderSta
       {"warp_margin_px", {stack.margin_x, stack.margin_y}},
       {"size", {c.w, c.h}},
       {"terrain", terrain_json(terrain)},
-      {"path", o.path},
+      {"path", o.look.look_at.empty() ? o.path : "look-at " + o.look.look_at},
       {"median_ms", run.median_ms},
       {"wall_ms", wall_ms},
       {"frame_range", {c.first, c.last}},

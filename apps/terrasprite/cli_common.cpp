@@ -53,6 +53,7 @@ void add_terrain_options(CLI::App& cmd, TerrainOptions& o) {
   cmd.add_option("--z-scale", o.z_scale, "multiply raw height samples (e.g. 0.1 for decimetres)");
   cmd.add_option("--spacing", o.spacing, "sample spacing in metres (overrides the file's)");
   cmd.add_option("--nodata", o.nodata, "nodata value for rasters that do not tag one");
+  add_fill_option(cmd, o);
   cmd.add_option_function<std::string>(
          "--encoding",
          [&o](const std::string& e) {
@@ -70,6 +71,29 @@ void add_terrain_options(CLI::App& cmd, TerrainOptions& o) {
                  "synthetic terrain samples per side, 2..8193 (default 513)");
   cmd.add_option("--erosion", o.erosion_passes,
                  "synthetic terrain erosion passes, 0..100 (default 2)");
+}
+
+void add_fill_option(CLI::App& cmd, TerrainOptions& o) {
+  // Holes are only described: every other command draws or writes whole heights.
+  const bool holes_ok = cmd.get_name() == "info";
+  cmd.add_option_function<std::string>(
+         "--fill",
+         [&o, holes_ok](const std::string& f) {
+           if (f == "none" && !holes_ok)
+             throw InputError(
+                 "--fill none: only info takes it; the renderers (GL and voxel) draw no holes "
+                 "and tile writes whole heights (use --fill amle or gdal, and --show-voids to see "
+                 "the filled cells)");
+           o.fill = f == "gdal" ? NodataFill::kGdal : f == "none" ? NodataFill::kNone : NodataFill::kAmle;
+         },
+         "how nodata cells (voids) are filled: amle (default; least steep surface from the rim), "
+         "gdal (GDALFillNodata, inverse distance) or none (info only: the voids stay holes)")
+      ->check(CLI::IsMember({"amle", "gdal", "none"}));
+}
+
+void add_show_voids_option(CLI::App& cmd, TerrainOptions& o) {
+  cmd.add_flag("--show-voids", o.show_voids,
+               "tint the terrain magenta where the DEM had nodata cells (filled by --fill)");
 }
 
 Terrain load_terrain_verbose(const TerrainOptions& o) {

@@ -24,6 +24,12 @@ std::string with_option_names(const std::string& library_message);
 /// --resample --seed --synthetic-size --erosion
 void add_terrain_options(CLI::App& cmd, TerrainOptions& o);
 
+/// --fill amle|gdal|none (part of add_terrain_options); none is refused
+/// (InputError) except by `info`: no renderer draws holes.
+void add_fill_option(CLI::App& cmd, TerrainOptions& o);
+/// --show-voids, for the commands that draw the terrain.
+void add_show_voids_option(CLI::App& cmd, TerrainOptions& o);
+
 /// Loads the terrain, printing loader warnings on stderr (one line each).
 Terrain load_terrain_verbose(const TerrainOptions& o);
 
@@ -56,8 +62,9 @@ void check_outputs(const OutputPolicy& policy, const std::string& out_dir,
                    std::initializer_list<std::string> files);
 
 /// The built-in camera paths every --path takes besides a JSON path file.
-inline constexpr const char* kPathChoices = "'paper' (the LOD-sprite paper's flight) | "
-                                            "'low-fast' (low and fast over the terrain)";
+inline constexpr const char* kPathChoices =
+    "'overview' (the paper's flight, brought closer over terrain flatter than the synthetic "
+    "one) | 'paper' (the LOD-sprite paper's flight) | 'low-fast' (low and fast over the terrain)";
 
 /// --path, defined once for every command that flies a path: a built-in path
 /// (kPathChoices) or a JSON path file. The help shows `default_text`, or

@@ -2,11 +2,47 @@
 // terrasprite info: what was loaded (size, spacing, extent, heights, nodata).
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "cli_common.h"
 #include "commands.h"
 #include "terrasprite/report/json_writer.h"
 
 namespace terrasprite::cli {
+
+namespace {
+
+// Share of this grid's samples that were nodata (a resampled grid: those
+// nearest a nodata source sample).
+double filled_fraction(const Heightfield& h) {
+  if (h.voids.empty()) return 0.0;
+  return double(std::count(h.voids.begin(), h.voids.end(), std::uint8_t{1})) / double(h.voids.size());
+}
+
+const char* fill_method_text(NodataFill f) {
+  switch (f) {
+    case NodataFill::kGdal:
+      return "GDALFillNodata (inverse distance)";
+    case NodataFill::kNone:
+      return "none (holes; AMLE heights underneath)";
+    default:
+      return "AMLE (least steep surface from the rim)";
+  }
+}
+
+nlohmann::json nodata_json(const Heightfield& h) {
+  return {{"count", h.nodata_count},
+          {"filled_fraction", filled_fraction(h)},
+          {"fill_method", to_string(h.fill_method)}};
+}
+
+std::string nodata_text(const Heightfield& h) {
+  if (h.nodata_count == 0) return "no nodata cells";
+  return fmt::format("{} nodata cells ({:.1f}% of the grid) filled by {}", h.nodata_count,
+                     100 * filled_fraction(h), fill_method_text(h.fill_method));
+}
+
+}  // namespace
 
 void add_info(CLI::App& app, const OutputPolicy& policy) {
   auto* cmd =
@@ -29,6 +65,7 @@ void add_info(CLI::App& app, const OutputPolicy& policy) {
                         {"height_min", h.min_height()},
                         {"height_max", h.max_height()},
                         {"nodata_count", h.nodata_count},
+                        {"nodata", nodata_json(h)},
                         {"resampled_to", nullptr},
                         {"texture", t.texture_name},
                         {"texture_size", {t.texture.width, t.texture.height}},
@@ -37,8 +74,8 @@ void add_info(CLI::App& app, const OutputPolicy& policy) {
     if (!o->json.empty()) report::write_json(j, o->json, policy);
     fmt::print("{}: {} x {} samples, spacing {:.3f} x {:.3f} m, extent {:.1f} x {:.1f} m\n", h.name,
                h.width, h.height, h.spacing_x, h.spacing_y, h.extent_x(), h.extent_y());
-    fmt::print("heights {:.2f} .. {:.2f} m, {} nodata cells filled{}\n", h.min_height(),
-               h.max_height(), h.nodata_count,
+    fmt::print("heights {:.2f} .. {:.2f} m, {}{}\n", h.min_height(), h.max_height(),
+               nodata_text(h),
                h.resampled_to ? fmt::format(", resampled to {} x {}", h.resampled_to->first,
                                             h.resampled_to->second)
                               : "");

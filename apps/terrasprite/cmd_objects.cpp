@@ -16,6 +16,7 @@
 #include "terrasprite/output/output_dir.h"
 #include "terrasprite/report/json_writer.h"
 #include "terrasprite/report/objects_report.h"
+#include "terrasprite/terrain/geo_frame.h"
 
 namespace terrasprite::cli {
 namespace {
@@ -153,6 +154,20 @@ void add_objects_table(CLI::App& objects, const OutputPolicy& policy) {
   });
 }
 
+// The view `objects scene` chose, and where the placed instances were written.
+void print_scene_camera(const Camera& c, const Heightfield& h, const std::string& dir) {
+  std::string where;
+  if (has_crs(h)) {
+    const auto [lon, lat] = GeoFrame(h, "camera").lonlat_of({c.position.x, c.position.y});
+    where = fmt::format(" (lon {:.6f}, lat {:.6f}, {:.0f} m above sea level)", lon, lat,
+                        c.position.z);
+  }
+  fmt::print("camera: eye [{:.1f}, {:.1f}, {:.1f}] m{}, heading {:.1f}, pitch {:.1f}, fov {:.0f} "
+             "degrees; instances as a scene file: {}/placed.json\n",
+             c.position.x, c.position.y, c.position.z, where, c.yaw_deg, c.pitch_deg, c.fov_y_deg,
+             dir);
+}
+
 struct SceneArgs {
   TerrainOptions terrain;
   std::string scene, models_dir = "../shared/data", size = "1280x720", json,
@@ -200,6 +215,7 @@ void add_objects_scene(CLI::App& objects, const OutputPolicy& policy) {
         "full renderer: median frame {:.1f} ms with the objects, {:.1f} ms terrain alone, at {}x{} "
         "on {}\n",
         r.median_ms, r.terrain_median_ms, r.width, r.height, r.gl_renderer);
+    print_scene_camera(r.camera, terrain.heights, out.final_path().string());
   });
 }
 

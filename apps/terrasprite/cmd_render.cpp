@@ -16,6 +16,7 @@
 #include "commands.h"
 #include "terrasprite/common/process_memory.h"
 #include "render_modes.h"
+#include "look_at_options.h"
 #include "objects_options.h"
 #include "terrasprite/terrain/image_io.h"
 #include "terrasprite/camera/camera_path.h"
@@ -35,10 +36,10 @@ namespace {
 struct RenderOpts {
   TerrainOptions terrain;
   std::string mode = "full";
-  int lod_quads = 16;
+  std::optional<int> lod_quads;  // unset: auto_lod_quads
   std::string mesh = "uniform";  // --mode sprite: its coarse mesh
   long long mesh_triangles = 0;
-  std::string path = "paper";
+  std::string path = "overview";
   int frames = 460;
   double duration_s = 0;  // > 0: frames = duration x --fps instead of --frames
   std::string size = "512x512";
@@ -59,6 +60,7 @@ struct RenderOpts {
   int memory_every = 100;
   std::string heap_trim = "on";
   ObjectsOptions objects;
+  LookAtOptions look;
 };
 
 // The soak's figures: RSS every `every` frames, its peak, and the growth a
@@ -180,7 +182,7 @@ Checked check_options(const RenderOpts& o, const OutputPolicy& policy) {
 }
 
 // The options read once the terrain is loaded, in the order they are reported.
-RenderStackOptions stack_options(const RenderOpts& o, Checked& c) {
+RenderStackOptions stack_options(const RenderOpts& o, Checked& c, const Heightfield& h) {
   if (!o.warp.empty()) c.warp = parse_warp_method(o.warp);
   if (o.real_every < 1)
     throw InputError(fmt::format("--real-every {}: must be at least 1", o.real_every));
@@ -192,7 +194,7 @@ RenderStackOptions stack_options(const RenderOpts& o, Checked& c) {
   so.mode = c.mode;
   so.width = c.w;
   so.height = c.h;
-  so.lod_quads = o.lod_quads;
+  so.lod_quads = o.lod_quads.value_or(auto_lod_quads(h));
   so.lighting = o.lighting;
   so.sprite_mesh = c.mesh;
   so.sprite_mesh_triangles = o.mesh_triangles;
@@ -269,7 +271,7 @@ nlohmann::json stats_json(const RenderOpts& o, const Checked& c, const RenderSta
       {"warp_margin_px", {stack.margin_x, stack.margin_y}},
       {"size", {c.w, c.h}},
       {"terrain", terrain_json(terrain)},
-      {"path", o.path},
+      {"path", o.look.look_at.empty() ? o.path : "look-at " + o.look.look_at},
       {"median_ms", run.median_ms},
       {"wall_ms", wall_ms},
       {"frame_range", {c.first, c.last}},
@@ -287,11 +289,19 @@ nlohmann::json stats_json(const RenderOpts& o, const Checked& c, const RenderSta
   return j;
 }
 
+// The cameras: --look-at's view (and an orbit of its target from there), or --path.
+std::vector<Camera> flight_path(const RenderOpts& o, const Heightfield& h, int frames,
+                                double aspect) {
+  if (const std::optional<LookAtView> v = parse_look_at(o.look, h))
+    return look_at_orbit(*v, h, frames, aspect);
+  return make_path(o.path, h, frames, aspect);
+}
+
 void run(const RenderOpts& o, const OutputPolicy& policy) {
   Checked c = check_options(o, policy);
   Terrain terrain = load_terrain_verbose(o.terrain);
-  std::vector<Camera> path = make_path(o.path, terrain.heights, c.frames, double(c.w) / c.h);
-  const RenderStackOptions so = stack_options(o, c);
+  std::vector<Camera> path = flight_path(o, terrain.heights, c.frames, double(c.w) / c.h);
+  const RenderStackOptions so = stack_options(o, c, terrain.heights);
   warn_warp_stride(o, c, path, terrain.heights);
   RenderStack stack = make_render_stack(terrain, so);
   const std::unique_ptr<GlSceneObjects> objects =
@@ -330,14 +340,15 @@ void add_render(CLI::App& app, const OutputPolicy& policy) {
                               o->mode))
       ->check(CLI::IsMember(render_mode_names()));
   cmd->add_option("--lod-quads", o->lod_quads,
-                  "coarse grid quads per side for lod modes (default 16)");
+                  "coarse grid quads per side for lod modes (default: from the terrain, a quad of "
+                  "about 32 samples or 1 km, at least 16; 16 is the paper setup)");
   cmd->add_option("--mesh", o->mesh,
                   "--mode sprite: coarse mesh, uniform (default, the --lod-quads grid) | adaptive "
                   "(per keyframe, a screen-space-error quadtree for its camera)");
   cmd->add_option("--mesh-triangles", o->mesh_triangles,
                   "--mesh adaptive: triangle budget (default 0 = the uniform grid's 2 x "
                   "lod-quads^2)");
-  add_path_option(*cmd, o->path);
+  CLI::Option* path = add_path_option(*cmd, o->path);
   auto* frames = cmd->add_option("--frames", o->frames, "frames along the path (default 460)");
   cmd->add_option("--duration", o->duration_s,
                   "instead of --frames: seconds of flight at --fps frames a second (frames = "
@@ -382,6 +393,8 @@ void add_render(CLI::App& app, const OutputPolicy& policy) {
                   "on: at each memory sample hand freed heap pages back to the OS (default on)")
       ->check(CLI::IsMember({"on", "off"}));
   add_objects_options(*cmd, o->objects);
+  add_look_at_options(*cmd, o->look)->excludes(path);
+  add_show_voids_option(*cmd, o->terrain);
   cmd->callback([o, &policy] { run(*o, policy); });
 }
 

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "cli_common.h"
+#include "look_at_options.h"
 #include "commands.h"
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/common/error.h"
@@ -29,6 +30,8 @@ struct ViewOpts {
   viewer::ViewerOptions viewer;
   bool lighting = false, free = false;
   bool sync_keyframes = false;  ///< sprite: keyframes drawn in the frame (no second thread)
+  LookAtOptions look;
+  std::optional<int> lod_quads;  ///< unset: auto_lod_quads
 };
 
 /// One --mode's renderer stack, built on the viewer's render thread. The
@@ -88,13 +91,21 @@ RenderStackOptions stack_options(const viewer::LiveSettings& s, int w, int h, bo
 }
 
 /// The first view: from half the extent south, a tenth of the extent above the
-/// highest point, looking north at the terrain centre's lowest level.
+/// highest point, looking north at the terrain centre's lowest level; the
+/// extent scaled as the overview path scales it (closer over flat terrain).
 Camera start_camera(const Heightfield& h, double aspect) {
-  const double e = h.extent();
+  const double e = h.extent() * overview_scale(h);
   Camera c = Camera::look_at({0, -0.5 * e, h.max_height() + 0.1 * e}, {0, 0, h.min_height()}, 60.0,
                              aspect);
   fit_clip_planes(c, h);
   return c;
+}
+
+/// --look-at's view, or the default first view.
+Camera first_camera(const LookAtOptions& look, const Heightfield& h, double aspect) {
+  if (const std::optional<LookAtView> v = parse_look_at(look, h))
+    return look_at_camera(*v, h, aspect);
+  return start_camera(h, aspect);
 }
 
 void run(ViewOpts& o, const OutputPolicy& policy) {
@@ -119,12 +130,13 @@ void run(ViewOpts& o, const OutputPolicy& policy) {
       !std::filesystem::is_directory(std::filesystem::absolute(o.stats).parent_path()))
     throw InputError(fmt::format("--stats {}: its directory does not exist", o.stats));
   Terrain terrain = load_terrain_verbose(o.terrain);
+  v.settings.lod_quads = o.lod_quads.value_or(auto_lod_quads(terrain.heights));
   if (!o.play.empty()) load_path_file(o.play, terrain.heights, 2, double(w) / h);  // validate
   v.play = o.play;
   v.record = o.record;
   const bool lighting = o.lighting, async_keyframes = !o.sync_keyframes;
   viewer::RunStats stats = viewer::run_viewer(
-      terrain.heights, start_camera(terrain.heights, double(w) / h), v,
+      terrain.heights, first_camera(o.look, terrain.heights, double(w) / h), v,
       [&terrain, w, h, lighting, async_keyframes, pyramid = std::shared_ptr<VoxelTerrain>()](
           const viewer::LiveSettings& s,
           GlContext* context) mutable -> std::unique_ptr<viewer::ViewRenderer> {
@@ -153,7 +165,9 @@ void add_view(CLI::App& app, const OutputPolicy& policy) {
          "renderer, switchable live (default sprite)")
       ->check(CLI::IsMember(render_mode_names()));
   cmd->add_option("--size", o->size, "window and render size WxH (default 1280x720)");
-  cmd->add_option("--lod-quads", o->viewer.settings.lod_quads, "coarse grid quads (default 16)");
+  cmd->add_option("--lod-quads", o->lod_quads,
+                  "coarse grid quads (default: from the terrain, a quad of about 32 samples or "
+                  "1 km, at least 16)");
   cmd->add_option("--threshold", o->viewer.settings.threshold_px,
                   "LOD-sprite keyframe threshold, pixels (default 1)");
   cmd->add_option("--voxel-ratio", o->viewer.settings.voxel_ratio,
@@ -176,10 +190,13 @@ void add_view(CLI::App& app, const OutputPolicy& policy) {
                   "seconds between recorded keyframes (default 0.5)");
   cmd->add_option("--play", o->play, "fly this path JSON file in real time");
   cmd->add_option("--speed", o->viewer.fly.speed_mps,
-                  "flying speed m/s (default: a tenth of the terrain extent per second)");
+                  "flying speed m/s (default: half the height above ground per second, 5 m/s to 2% of "
+                  "the extent per second; +/- scale it)");
   cmd->add_option("--clearance", o->viewer.fly.clearance_m,
                   "minimum height above ground, metres (default 0.5% of the extent)");
   cmd->add_flag("--free", o->free, "allow flying far outside the terrain");
+  add_look_at_options(*cmd, o->look);
+  add_show_voids_option(*cmd, o->terrain);
   cmd->add_flag("--shared-context", o->viewer.share_context,
                 "GL renderers draw in a context shared with the window, nothing read back "
                 "(default off: on llvmpipe the window then waits for the renderer)");

@@ -11,6 +11,7 @@
 
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/common/error.h"
+#include "terrasprite/terrain/geo_frame.h"
 
 namespace terrasprite {
 namespace {
@@ -77,25 +78,67 @@ nlohmann::json parse_document(std::string_view text, const std::string& path) {
   }
 }
 
+// "lon" and "lat" of `k` (both required), degrees.
+GeoPlace geo_place_of(const nlohmann::json& k, const std::string& where) {
+  if (!k.is_object() || !k.contains("lon") || !k.contains("lat"))
+    throw InputError(where + " needs both \"lon\" and \"lat\" (WGS 84 degrees)");
+  GeoPlace g;
+  g.lon = number_of(k, "lon", 0.0, where);
+  g.lat = number_of(k, "lat", 0.0, where);
+  if (!(g.lat >= -90 && g.lat <= 90))
+    throw InputError(fmt::format("{}.lat {}: must be within -90 .. 90 degrees", where, g.lat));
+  if (!(g.lon >= -180 && g.lon <= 360))
+    throw InputError(fmt::format("{}.lon {}: must be within -180 .. 360 degrees", where, g.lon));
+  return g;
+}
+
+// The eye: "position" in metres, or "lon", "lat" with "alt_m" or "agl_m".
+void keyframe_eye(const nlohmann::json& k, const std::string& where, PathKeyframe& key) {
+  const bool geo = k.contains("lon") || k.contains("lat");
+  if (geo && k.contains("position"))
+    throw InputError(where + ": give \"position\" or \"lon\"/\"lat\", not both");
+  if (!geo) {
+    if (!k.contains("position")) throw InputError(where + " has no position (or lon/lat)");
+    key.position = vec3_of(k["position"], where + ".position");
+    return;
+  }
+  GeoPlace g = geo_place_of(k, where);
+  if (k.contains("alt_m") == k.contains("agl_m"))
+    throw InputError(where + ": with lon/lat give one of \"alt_m\" (above sea level) or "
+                             "\"agl_m\" (above ground)");
+  g.above_ground = k.contains("agl_m");
+  g.height_m = number_of(k, g.above_ground ? "agl_m" : "alt_m", 0.0, where);
+  if (!(std::abs(g.height_m) <= kMaxCoordinateM))
+    throw InputError(fmt::format("{}.{} {}: must be within {:g} m", where,
+                                 g.above_ground ? "agl_m" : "alt_m", g.height_m, kMaxCoordinateM));
+  if (g.above_ground && g.height_m < 0)
+    throw InputError(fmt::format("{}.agl_m {}: must not be negative", where, g.height_m));
+  key.geo_position = g;
+}
+
 // Keyframe `k`, checked; `where` names it in errors.
 PathKeyframe keyframe_of(const nlohmann::json& k, const std::string& where) {
   if (!k.is_object()) throw InputError(where + " must be an object");
   if (!k.contains("t") || !k["t"].is_number())
     throw InputError(where + ".t must be a number (seconds)");
-  if (!k.contains("position")) throw InputError(where + " has no position");
   PathKeyframe key;
   key.t = k["t"].get<double>();
   if (!(std::abs(key.t) <= kMaxTimeS))
     throw InputError(
         fmt::format("{}.t {}: must be finite and within {:g} s", where, key.t, kMaxTimeS));
-  key.position = vec3_of(k["position"], where + ".position");
+  keyframe_eye(k, where, key);
   key.fov_deg = number_of(k, "fov_deg", 60.0, where);
   if (!(key.fov_deg > 0 && key.fov_deg < 180))
     throw InputError(where + ".fov_deg must be in (0, 180)");
+  if (k.contains("target") && k.contains("look_at"))
+    throw InputError(where + ": give \"target\" or \"look_at\", not both");
   if (k.contains("target")) {
     key.target = vec3_of(k["target"], where + ".target");
-    if (glm::length(*key.target - key.position) <= 0)
+    if (!key.geo_position && glm::length(*key.target - key.position) <= 0)
       throw InputError(where + ".target equals its position");
+    key.roll_deg = number_of(k, "roll_deg", 0.0, where);
+  } else if (k.contains("look_at")) {
+    key.geo_target = geo_place_of(k["look_at"], where + ".look_at");
     key.roll_deg = number_of(k, "roll_deg", 0.0, where);
   } else if (k.contains("yaw_deg") || k.contains("pitch_deg")) {
     key.yaw_deg = number_of(k, "yaw_deg", 0.0, where);
@@ -103,7 +146,7 @@ PathKeyframe keyframe_of(const nlohmann::json& k, const std::string& where) {
     key.roll_deg = number_of(k, "roll_deg", 0.0, where);
     if (std::abs(key.pitch_deg) > 90) throw InputError(where + ".pitch_deg must be in [-90, 90]");
   } else {
-    throw InputError(where + " needs \"target\" or \"yaw_deg\"/\"pitch_deg\"");
+    throw InputError(where + " needs \"target\", \"look_at\" or \"yaw_deg\"/\"pitch_deg\"");
   }
   return key;
 }
@@ -168,6 +211,7 @@ KeyframePath parse_path_json(std::string_view text, const std::string& path) {
       doc["keyframes"].empty())
     throw InputError(fmt::format("{}: needs a non-empty \"keyframes\" array", path));
   KeyframePath out;
+  out.name = path;
   for (std::size_t i = 0; i < doc["keyframes"].size(); ++i) {
     const std::string where = fmt::format("{}: keyframes[{}]", path, i);
     PathKeyframe key = keyframe_of(doc["keyframes"][i], where);
@@ -179,9 +223,38 @@ KeyframePath parse_path_json(std::string_view text, const std::string& path) {
   return out;
 }
 
-std::vector<Camera> sample_path(const KeyframePath& path, const Heightfield& h, int frames,
+namespace {
+
+// `path` with its geographic places put on `h` in world metres.
+KeyframePath placed_on(const KeyframePath& path, const Heightfield& h) {
+  KeyframePath out = path;
+  std::optional<GeoFrame> frame;
+  for (std::size_t i = 0; i < out.keyframes.size(); ++i) {
+    PathKeyframe& k = out.keyframes[i];
+    if (!k.geo_position && !k.geo_target) continue;
+    const std::string where = fmt::format("{}: keyframes[{}]", path.name, i);
+    if (!frame) frame.emplace(h, where);
+    if (const auto& g = k.geo_position) {
+      const WorldXY p = frame->world_of(g->lon, g->lat, GeoMargin::kNearTerrain, where + " lon,lat");
+      const double ground = h.sample(p.x, p.y);
+      k.position = {p.x, p.y, g->above_ground ? ground + g->height_m : g->height_m};
+    }
+    if (const auto& g = k.geo_target) {
+      const WorldXY p = frame->world_of(g->lon, g->lat, GeoMargin::kOnTerrain, where + ".look_at");
+      k.target = glm::dvec3(p.x, p.y, h.sample(p.x, p.y));
+    }
+    if (k.target && glm::length(*k.target - k.position) <= 0)
+      throw InputError(where + ": the eye is at its target");
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Camera> sample_path(const KeyframePath& given, const Heightfield& h, int frames,
                                 double aspect) {
   if (frames < 1) throw InputError(fmt::format("frames {}: must be at least 1", frames));
+  const KeyframePath path = placed_on(given, h);
   const std::vector<Key> keys = keys_of(path, aspect);
   std::vector<Camera> out;
   const double t0 = keys.front().t, t1 = keys.back().t;

@@ -11,11 +11,16 @@
 namespace terrasprite {
 namespace {
 constexpr double kPaperFrames = 460.0;
-}  // namespace
+// Relief over extent from which the paper path shows relief well (the
+// default synthetic terrain has 2 km over 15.36 km, 0.13), and the closest
+// the overview comes (in units of the paper path's distances) over flatter ones.
+constexpr double kPaperRelief = 0.12, kMinOverviewScale = 0.35;
 
-std::vector<Camera> paper_path(const Heightfield& h, int frames, double aspect, double fov_y_deg) {
+// The paper flight with its distances (and clearance) scaled by `scale`.
+std::vector<Camera> scaled_paper_path(const Heightfield& h, int frames, double aspect,
+                                      double fov_y_deg, double scale) {
   if (frames < 1) throw InputError(fmt::format("frames {}: must be at least 1", frames));
-  const double E = h.extent();
+  const double E = h.extent() * scale;
   const glm::dvec3 centre(0.0, 0.0, h.sample(0.0, 0.0));
   std::vector<Camera> path;
   path.reserve(frames);
@@ -45,10 +50,27 @@ std::vector<Camera> paper_path(const Heightfield& h, int frames, double aspect, 
   return path;
 }
 
+}  // namespace
+
+std::vector<Camera> paper_path(const Heightfield& h, int frames, double aspect, double fov_y_deg) {
+  return scaled_paper_path(h, frames, aspect, fov_y_deg, 1.0);
+}
+
+double overview_scale(const Heightfield& h) {
+  const double relief = (h.max_height() - h.min_height()) / std::max(1e-9, h.extent());
+  return std::clamp(relief / kPaperRelief, kMinOverviewScale, 1.0);
+}
+
+std::vector<Camera> overview_path(const Heightfield& h, int frames, double aspect,
+                                  double fov_y_deg) {
+  return scaled_paper_path(h, frames, aspect, fov_y_deg, overview_scale(h));
+}
+
 std::vector<Camera> make_path(const std::string& spec, const Heightfield& h, int frames,
                               double aspect) {
   if (spec.empty() || spec == "paper") return paper_path(h, frames, aspect);
   if (spec == "low-fast") return low_fast_path(h, frames, aspect);
+  if (spec == "overview") return overview_path(h, frames, aspect);
   return load_path_file(spec, h, frames, aspect);
 }
 

@@ -73,6 +73,15 @@ void add_voxel_renderer(RenderStack& s, const Terrain& terrain, const RenderStac
 
 }  // namespace
 
+int auto_lod_quads(const Heightfield& h) {
+  const int quads = std::min(h.width, h.height) - 1;
+  constexpr double kSamplesPerQuad = 32, kQuadMetres = 1000;
+  const double by_samples = quads / kSamplesPerQuad, by_metres = h.extent() / kQuadMetres;
+  const int most = std::max(1, quads / 8);
+  return std::min({quads, most > 16 ? most : 16,
+                   std::max(16, int(std::lround(std::max(by_samples, by_metres))))});
+}
+
 RenderStack make_render_stack(const Terrain& terrain, const RenderStackOptions& o) {
   if (o.warp && !(o.warp_margin >= 0 && o.warp_margin <= 1))
     throw InputError(fmt::format("warp_margin {}: must be within 0..1", o.warp_margin));

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "terrasprite/objects/object_layout_writer.h"
 #include "terrasprite/objects/quality_table_json.h"
 #include "terrasprite/report/json_writer.h"
 #include "terrasprite/report/plot.h"
@@ -241,6 +242,15 @@ void write_objects_table(const ObjectsTableResult& r, const TableOptions& o, Out
   if (!json_path.empty()) write_json(j, json_path, policy);
 }
 
+// The camera as a path-file keyframe (docs/formats.md), to fly or aim from.
+nlohmann::json scene_camera_json(const Camera& c) {
+  return {{"t", 0},
+          {"position", {c.position.x, c.position.y, c.position.z}},
+          {"yaw_deg", c.yaw_deg},
+          {"pitch_deg", c.pitch_deg},
+          {"fov_deg", c.fov_y_deg}};
+}
+
 nlohmann::json full_geometry_json(const FullGeometryResult& r) {
   nlohmann::json models = nlohmann::json::array();
   for (const FullGeometryModel& m : r.models)
@@ -260,12 +270,15 @@ nlohmann::json full_geometry_json(const FullGeometryResult& r) {
           {"frames", r.frames},
           {"median_ms", r.median_ms},
           {"terrain_median_ms", r.terrain_median_ms},
-          {"models", models}};
+          {"models", models},
+          {"camera", scene_camera_json(r.camera)},
+          {"placed_instances_file", "placed.json"}};
 }
 
 void write_full_geometry(const FullGeometryResult& r, OutputDir& out,
                          const std::string& json_path, const OutputPolicy& policy) {
   save_png(r.frame, out.file("frame.png"));
+  write_text(out.file("placed.json"), object_layout_json(r.placed));
   const nlohmann::json j = full_geometry_json(r);
   write_json(j, out.file("scene.json"), policy);
   if (!json_path.empty()) write_json(j, json_path, policy);

@@ -245,7 +245,11 @@ void set_spacing(const HeightRaster& r, const TerrainOptions& o, bool has_gt, co
                  Heightfield& hf, std::vector<std::string>* warnings) {
   GeoTransform geo;
   double sx = 30.0, sy = 30.0;
-  if (has_gt && detail::spacing_from_geo(r.ds.h, gt, r.w, r.h, sx, sy, geo)) hf.geo = geo;
+  if (has_gt && detail::spacing_from_geo(r.ds.h, gt, r.w, r.h, sx, sy, geo)) {
+    hf.geo = geo;
+    hf.geo_width = r.w;
+    hf.geo_height = r.h;
+  }
   if (o.spacing) {
     sx = sy = *o.spacing;
   } else if (!hf.geo && warnings) {
@@ -284,8 +288,14 @@ Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings
   hf.name = std::filesystem::path(path).filename().string();
   hf.heights.resize(r.n);
   for (std::size_t p = 0; p < r.n; ++p) hf.heights[p] = valid[p] ? float(raw[p] * o.z_scale) : 0.f;
+  if (std::find(valid.begin(), valid.end(), std::uint8_t{0}) != valid.end()) {
+    hf.voids.resize(r.n);
+    for (std::size_t p = 0; p < r.n; ++p) hf.voids[p] = valid[p] ? 0 : 1;
+  }
+  hf.fill_method = o.fill;
   try {
-    hf.nodata_count = fill_nodata(hf.heights, valid, r.w, r.h);
+    hf.nodata_count = o.fill == NodataFill::kGdal ? fill_nodata_gdal(hf.heights, valid, r.w, r.h)
+                                                  : fill_nodata(hf.heights, valid, r.w, r.h);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", path, e.what()));
   }

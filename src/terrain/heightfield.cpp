@@ -8,6 +8,17 @@
 
 namespace terrasprite {
 
+const char* to_string(NodataFill f) {
+  switch (f) {
+    case NodataFill::kGdal:
+      return "gdal";
+    case NodataFill::kNone:
+      return "none";
+    default:
+      return "amle";
+  }
+}
+
 float Heightfield::sample(double x, double y) const {
   return detail::sample_grid(width, height, spacing_x, spacing_y, x, y,
                              [this](int i, int j) { return at(i, j); });

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include <tbb/parallel_for.h>
 
+#include <cmath>
+
 #include "terrasprite/terrain/resample.h"
 
 namespace terrasprite {
@@ -18,6 +20,15 @@ Heightfield resample_heightfield(const Heightfield& src, int width, int height) 
   tbb::parallel_for(0, height, [&](int j) {
     for (int i = 0; i < width; ++i) out.at(i, j) = src.sample(out.world_x(i), out.world_y(j));
   });
+  if (!src.voids.empty()) {  // the nearest source sample's flag
+    out.voids.assign(out.heights.size(), 0);
+    for (int j = 0; j < height; ++j)
+      for (int i = 0; i < width; ++i) {
+        const long si = width > 1 ? std::lround(double(i) * (src.width - 1) / (width - 1)) : 0;
+        const long sj = height > 1 ? std::lround(double(j) * (src.height - 1) / (height - 1)) : 0;
+        out.voids[std::size_t(j) * width + i] = src.voids[std::size_t(sj) * src.width + si];
+      }
+  }
   return out;
 }
 

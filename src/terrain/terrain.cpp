@@ -123,6 +123,21 @@ void make_texture(const TerrainOptions& o, const Heightfield& source, const Heig
   }
 }
 
+// Blends kVoidTint half over the texels whose nearest height sample was nodata.
+void tint_voids(Image& tex, const std::array<double, 4>& rect, const Heightfield& h) {
+  if (h.voids.empty() || tex.empty()) return;
+  for (int y = 0; y < tex.height; ++y)
+    for (int x = 0; x < tex.width; ++x) {
+      const double s = ((x + 0.5) / tex.width - rect[0]) / rect[2];
+      const double t = ((y + 0.5) / tex.height - rect[1]) / rect[3];
+      if (s < 0 || s > 1 || t < 0 || t > 1) continue;
+      const long i = std::lround(s * (h.width - 1)), j = std::lround(t * (h.height - 1));
+      if (!h.voids[std::size_t(j) * h.width + i]) continue;
+      std::uint8_t* p = tex.px(x, y);
+      for (int c = 0; c < 3; ++c) p[c] = std::uint8_t((p[c] + kVoidTint[std::size_t(c)] + 1) / 2);
+    }
+}
+
 }  // namespace
 
 void check_spacing(const std::string& name, double spacing_x, double spacing_y) {
@@ -155,6 +170,7 @@ Terrain load_terrain(const TerrainOptions& o, std::vector<std::string>* warnings
 
   make_texture(o, source, height_sampler(t.heights), t.texture, t.tex_rect, t.texture_name,
                warnings);
+  if (o.show_voids) tint_voids(t.texture, t.tex_rect, t.heights);
   return t;
 }
 

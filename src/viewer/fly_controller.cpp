@@ -18,10 +18,29 @@ glm::dvec3 flat_forward(double yaw_deg) {
 
 }  // namespace
 
+double auto_speed_mps(double agl_m, double extent_m) {
+  const double top = std::max(5.0, 0.02 * extent_m);
+  return std::clamp(0.5 * agl_m, 5.0, top);
+}
+
+double FlyController::speed_mps() const {
+  if (speed_ > 0) return speed_;
+  const glm::dvec3& p = camera_.position;
+  const double agl = p.z - heights_.sample(p.x, p.y);
+  return speed_factor_ * auto_speed_mps(agl, std::max(1.0, heights_.extent()));
+}
+
+void FlyController::scale_speed(double f) {
+  if (speed_ > 0)
+    speed_ *= f;
+  else
+    speed_factor_ *= f;
+}
+
 FlyController::FlyController(const Heightfield& heights, const Camera& start, FlyOptions options)
     : heights_(heights), start_(start), camera_(start), options_(options) {
   const double e = std::max(1.0, heights.extent());
-  speed_ = options.speed_mps > 0 ? options.speed_mps : 0.1 * e;
+  speed_ = options.speed_mps > 0 ? options.speed_mps : 0.0;
   clearance_ = options.clearance_m > 0 ? options.clearance_m : 0.005 * e;
   min_height_ = heights.min_height();
   ceiling_ = std::max(double(heights.max_height()) + 2.0 * e, start.position.z);
@@ -37,8 +56,8 @@ void FlyController::handle(const InputEvent& e) {
       }
       if (e.action == GLFW_PRESS) {
         held_.insert(e.key);
-        if (e.key == GLFW_KEY_EQUAL || e.key == GLFW_KEY_KP_ADD) speed_ *= 1.25;
-        if (e.key == GLFW_KEY_MINUS || e.key == GLFW_KEY_KP_SUBTRACT) speed_ /= 1.25;
+        if (e.key == GLFW_KEY_EQUAL || e.key == GLFW_KEY_KP_ADD) scale_speed(1.25);
+        if (e.key == GLFW_KEY_MINUS || e.key == GLFW_KEY_KP_SUBTRACT) scale_speed(1 / 1.25);
         if (e.key == GLFW_KEY_O) toggle_orbit();
         if (e.key == GLFW_KEY_R) reset();
       }
@@ -54,7 +73,7 @@ void FlyController::handle(const InputEvent& e) {
       constrain();
       return;
     case InputKind::kWheel:
-      speed_ *= std::pow(1.25, e.dy);
+      scale_speed(std::pow(1.25, e.dy));
       return;
     default:
       return;
@@ -63,7 +82,7 @@ void FlyController::handle(const InputEvent& e) {
 
 void FlyController::update(double dt_s) {
   const double boost = held(GLFW_KEY_LEFT_SHIFT) || held(GLFW_KEY_RIGHT_SHIFT) ? 4.0 : 1.0;
-  const double step = speed_ * boost * dt_s;
+  const double step = speed_mps() * boost * dt_s;
   const double fwd = (held(GLFW_KEY_W) || held(GLFW_KEY_UP) ? 1.0 : 0.0) -
                      (held(GLFW_KEY_S) || held(GLFW_KEY_DOWN) ? 1.0 : 0.0);
   const double side = (held(GLFW_KEY_D) ? 1.0 : 0.0) - (held(GLFW_KEY_A) ? 1.0 : 0.0);

@@ -13,12 +13,19 @@
 namespace terrasprite::viewer {
 
 struct FlyOptions {
-  double speed_mps = 0;           ///< flying speed; 0: a tenth of the terrain extent per second
+  /// Flying speed, m/s. 0: follows the height above the ground (auto_speed_mps).
+  double speed_mps = 0;
   double look_deg_per_px = 0.15;  ///< mouse look sensitivity
   double turn_deg_per_s = 60;     ///< arrow-key turn rate
   double clearance_m = 0;         ///< minimum height above ground; 0: 0.005 x extent
   bool bounded = true;  ///< keep over the terrain's extent x 1.5 and below 2 extents above its top
 };
+
+/// The default flying speed at `agl_m` metres above the ground over a terrain
+/// `extent_m` across: half the height above ground per second (so the ground
+/// below crosses the view at the same angular rate at any height), at least
+/// 5 m/s and at most 2% of the extent per second.
+double auto_speed_mps(double agl_m, double extent_m);
 
 /// Turns events into camera motion. Key bindings (GLFW codes): W/S or UP/DOWN
 /// forward/back, A/D strafe, LEFT/RIGHT turn, Q up, E down, +/- or wheel speed
@@ -38,7 +45,8 @@ class FlyController {
   void set_camera(const Camera& c);  ///< e.g. from path playback; clearance applied
   void reset();
   bool orbiting() const { return orbit_; }
-  double speed_mps() const { return speed_; }
+  /// The current speed: the fixed one, or auto_speed_mps times the +/- factor.
+  double speed_mps() const;
   double clearance_m() const { return clearance_; }
   /// Where the view ray through the image centre meets the ground (or the
   /// point straight below the camera when it meets none).
@@ -47,12 +55,15 @@ class FlyController {
  private:
   bool held(int key) const { return held_.count(key) > 0; }
   void toggle_orbit();
+  void scale_speed(double f);
   void constrain();
 
   const Heightfield& heights_;
   Camera start_, camera_;
   FlyOptions options_;
-  double speed_ = 0, clearance_ = 0, min_height_ = 0, ceiling_ = 0;
+  double speed_ = 0;         // fixed speed, m/s; 0: auto
+  double speed_factor_ = 1;  // +/- and wheel on the auto speed
+  double clearance_ = 0, min_height_ = 0, ceiling_ = 0;
   std::set<int> held_;
   bool orbit_ = false;
   glm::dvec3 pivot_{0.0};

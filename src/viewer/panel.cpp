@@ -65,6 +65,10 @@ PanelActions draw_panel(const PanelInfo& info, LiveSettings& settings) {
                   k->late, k->in_flight ? ", one rendering" : "");
       ImGui::Text("last keyframe %.0f ms on the worker, landed after %.0f frames (mean %.1f)",
                   k->last_keyframe_ms, k->last_latency_frames, k->mean_latency_frames);
+      if (k->in_flight)  // until it lands, frames show the coarse mesh or an older sprite
+        ImGui::TextColored(ImVec4(1, .8f, .3f, 1),
+                           k->landed == 0 ? "keyframe pending: showing the coarse LOD mesh"
+                                          : "keyframe pending: showing the last one warped");
     }
     float th = float(settings.threshold_px);
     if (ImGui::SliderFloat("threshold px", &th, 0.25f, 8.f, "%.2f", ImGuiSliderFlags_Logarithmic))

@@ -211,8 +211,8 @@ TEST(ViewCli, ScriptedRunUnderXvfbMovesRecordsAndReplays) {
     {"t": 1.5, "type": "key", "key": "F1", "action": "press"},
     {"t": 1.6, "type": "screenshot", "file": ")"
                                   << (tmp / "shot.png") << R"("}]})";
-  auto r = view("--mode lod --script " + (tmp / "fly.json") + " --stats " + (tmp / "a.json") +
-                " --record " + (tmp / "rec.json") + " --record-every 0.25");
+  auto r = view("--mode lod --speed 1500 --script " + (tmp / "fly.json") + " --stats " +
+                (tmp / "a.json") + " --record " + (tmp / "rec.json") + " --record-every 0.25");
   ASSERT_EQ(r.status, 0) << r.output;
   auto a = read_json(tmp / "a.json");
   for (const char* k : {"mode", "size", "frames", "fps_median", "fps_low_1pct", "frame_ms_p50",

@@ -65,6 +65,12 @@ struct RenderStack {
 };
 
 /// Builds the stack for `options` over `terrain`, which must outlive it.
+/// The default coarse grid of the lod and sprite modes for `h`, quads per
+/// side: a quad of about 32 samples or 1 km, whichever is finer, at least 16
+/// quads (the paper setup on its 513-sample terrain) and at most one quad per
+/// 8 samples of the shorter side.
+int auto_lod_quads(const Heightfield& h);
+
 /// Throws InputError naming lod_quads when a lod or sprite grid does not fit
 /// the terrain, or naming warp_margin or real_every when out of range;
 /// DeviceError when a GL mode finds no GL device.

@@ -12,11 +12,12 @@ namespace terrasprite {
 
 /// Reads a height raster: any GDAL raster (GeoTIFF, SRTM .hgt, DTED, ASCII
 /// grid, VRT, 16-bit PNG, ...), or an 8-bit RGB PNG in terrain-RGB/Terrarium
-/// encoding. Uses these fields of `o`: dem, z_scale, spacing, nodata, encoding.
+/// encoding. Uses these fields of `o`: dem, z_scale, spacing, nodata, fill, encoding.
 /// Spacing comes from the geotransform (projected units converted to metres;
 /// geographic degrees converted at the raster's centre latitude) unless
 /// `o.spacing` is set; a raster without georeferencing gets 30 m and a warning.
-/// Nodata cells are filled from their neighbours (fill_nodata) and counted.
+/// Nodata cells are filled from their neighbours as `o.fill` says (AMLE,
+/// GDAL, or AMLE marked as holes for none), counted and flagged in `voids`.
 /// Throws InputError (naming the file) for a missing, unreadable, empty or
 /// all-nodata raster.
 Heightfield load_dem(const TerrainOptions& o, std::vector<std::string>* warnings = nullptr);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // A regular grid of terrain heights.
 #pragma once
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -9,6 +10,12 @@
 #include "terrasprite/common/image.h"
 
 namespace terrasprite {
+
+/// How a loader fills nodata cells (voids): AMLE (fill_nodata, the default),
+/// GDAL's inverse-distance GDALFillNodata, or none (the cells stay marked as
+/// holes; their heights are AMLE's so the grid stays whole).
+enum class NodataFill { kAmle, kGdal, kNone };
+const char* to_string(NodataFill f);
 
 /// Heights in metres on a regular grid. Row-major; row 0 is the northern edge,
 /// column 0 the western edge. Sample (i, j) (column i, row j) lies at world
@@ -23,7 +30,14 @@ struct Heightfield {
   double spacing_y = 1.0;           ///< metres between samples along y (> 0)
   std::vector<float> heights;       ///< width * height values, metres
   long long nodata_count = 0;       ///< cells that were nodata in the source (filled)
+  NodataFill fill_method = NodataFill::kAmle;  ///< how they were filled
+  /// 1 where a cell was nodata in the source, per sample (row-major, this
+  /// grid's size); empty when no cell was.
+  std::vector<std::uint8_t> voids;
   std::optional<GeoTransform> geo;  ///< source georeferencing, when known
+  /// Samples of the grid `geo` describes (the source's: a resampled grid
+  /// keeps its corners on the source's corner samples).
+  int geo_width = 0, geo_height = 0;
   std::optional<std::pair<int, int>> resampled_to;  ///< set when the grid was resampled
   std::optional<std::pair<int, int>> resampled_from;  ///< the source's samples, when resampled
   std::string name = "unnamed";

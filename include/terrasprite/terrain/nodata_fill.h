@@ -16,4 +16,11 @@ namespace terrasprite {
 long long fill_nodata(std::span<float> heights, std::span<std::uint8_t> valid, int width,
                       int height);
 
+/// fill_nodata by GDAL's GDALFillNodata instead: inverse-distance weighting
+/// of the valid cells found along rays from each void cell (searching the
+/// whole raster), then smoothed by 2 passes of a 3x3 filter. Same contract
+/// and result count as fill_nodata.
+long long fill_nodata_gdal(std::span<float> heights, std::span<std::uint8_t> valid, int width,
+                           int height);
+
 }  // namespace terrasprite

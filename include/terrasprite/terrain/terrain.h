@@ -35,6 +35,8 @@ struct TerrainOptions {
   double z_scale = 1.0;           ///< multiplies raw samples (after the band's own scale/offset)
   std::optional<double> spacing;  ///< metres between samples; overrides the file's
   std::optional<double> nodata;   ///< nodata value for files that do not tag one
+  NodataFill fill = NodataFill::kAmle;  ///< how nodata cells are filled
+  bool show_voids = false;  ///< tint the drape where the source had nodata (kVoidTint)
   HeightEncoding encoding = HeightEncoding::kAuto;
   double exaggeration = 1.0;  ///< display scale of heights
   int resample = 0;           ///< 0 = keep; else resample to N x N samples (N >= 2)
@@ -57,6 +59,9 @@ void check_spacing(const std::string& name, double spacing_x, double spacing_y);
 /// finite heights within kMaxAbsHeightM; `hint` ends the message when given.
 void check_height_range(const std::string& name, double lowest, double highest,
                         const std::string& hint = {});
+
+/// The --show-voids tint: blended half over the drape where cells were nodata.
+constexpr std::array<std::uint8_t, 3> kVoidTint = {255, 0, 255};
 
 /// Loads (or synthesises) heights, applies resampling and exaggeration, and
 /// builds the drape texture. Throws InputError naming the input on bad data

@@ -58,6 +58,16 @@ void time_frames(Scene& ground, GlSceneObjects& objects, const Camera& cam, int 
   }
 }
 
+// Every instance as drawn (grounded on the drawn surface), listed by model.
+ObjectLayout placed_layout(GlSceneObjects& objects) {
+  ObjectLayout out;
+  for (std::size_t m = 0; m < objects.model_count(); ++m) {
+    out.models.push_back(objects.layout_model(m));
+    for (const ObjectInstance& i : objects.instances(m)) out.instances.push_back({int(m), i, false});
+  }
+  return out;
+}
+
 std::vector<FullGeometryModel> loaded_models(GlSceneObjects& objects) {
   std::vector<FullGeometryModel> models;
   for (std::size_t m = 0; m < objects.model_count(); ++m)
@@ -88,7 +98,9 @@ FullGeometryResult run_full_geometry(const FullGeometryOptions& o, const Terrain
   r.instances = objects.instance_count();
   r.full_triangles = objects.full_triangles();
   r.models = loaded_models(objects);
+  r.placed = placed_layout(objects);
   const Camera cam = overview_camera(objects, terrain.heights, double(o.width) / o.height);
+  r.camera = cam;
   time_frames(ground, objects, cam, o.frames, r);
   r.median_ms = median(r.frame_ms);
   r.terrain_median_ms = median(r.terrain_ms);

@@ -5,7 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "terrasprite/camera/camera.h"
 #include "terrasprite/common/image.h"
+#include "terrasprite/objects/object_layout.h"
 #include "terrasprite/objects/representation_cache.h"
 #include "terrasprite/terrain/terrain.h"
 
@@ -44,6 +46,8 @@ struct FullGeometryResult {
   double median_ms = 0, terrain_median_ms = 0;  ///< common/stats median of the above
   std::vector<FullGeometryModel> models;
   Image frame;  ///< the last frame with the objects, RGBA8
+  Camera camera;        ///< the view timed and drawn
+  ObjectLayout placed;  ///< every instance where it was drawn (scene-file form: object_layout_json)
 };
 
 /// Loads the scene onto `terrain` (the default scene when options.scene is

@@ -21,8 +21,9 @@ glm::dvec3 flat_forward(double yaw_deg) {
 FlyController::FlyController(const Heightfield& heights, const Camera& start, FlyOptions options)
     : heights_(heights), start_(start), camera_(start), options_(options) {
   const double e = std::max(1.0, heights.extent());
-  speed_ = options.speed_mps > 0 ? options.speed_mps : 0.1 * e;
-  clearance_ = options.clearance_m > 0 ? options.clearance_m : 0.005 * e;
+  set_speed(options.speed_mps > 0 ? options.speed_mps : 0.1 * e);
+  clearance_ = options.clearance_m > 0 ? std::min(options.clearance_m, kMaxClearanceM)
+                                       : std::min(0.005 * e, kMaxClearanceM);
   min_height_ = heights.min_height();
   ceiling_ = std::max(double(heights.max_height()) + 2.0 * e, start.position.z);
   constrain();
@@ -37,8 +38,8 @@ void FlyController::handle(const InputEvent& e) {
       }
       if (e.action == GLFW_PRESS) {
         held_.insert(e.key);
-        if (e.key == GLFW_KEY_EQUAL || e.key == GLFW_KEY_KP_ADD) speed_ *= 1.25;
-        if (e.key == GLFW_KEY_MINUS || e.key == GLFW_KEY_KP_SUBTRACT) speed_ /= 1.25;
+        if (e.key == GLFW_KEY_EQUAL || e.key == GLFW_KEY_KP_ADD) set_speed(speed_ * 1.25);
+        if (e.key == GLFW_KEY_MINUS || e.key == GLFW_KEY_KP_SUBTRACT) set_speed(speed_ / 1.25);
         if (e.key == GLFW_KEY_O) toggle_orbit();
         if (e.key == GLFW_KEY_R) reset();
       }
@@ -54,7 +55,9 @@ void FlyController::handle(const InputEvent& e) {
       constrain();
       return;
     case InputKind::kWheel:
-      speed_ *= std::pow(1.25, e.dy);
+      // Notches past the speed's bounds leave it at the bound: a wheel offset
+      // of any size (or a NaN from a driver) never makes it unbounded.
+      if (std::isfinite(e.dy)) set_speed(speed_ * std::pow(1.25, std::clamp(e.dy, -1e3, 1e3)));
       return;
     default:
       return;
@@ -82,6 +85,10 @@ void FlyController::update(double dt_s) {
     camera_.position += (f * fwd + r * side + glm::dvec3(0, 0, 1) * lift) * step;
   }
   constrain();
+}
+
+void FlyController::set_speed(double s) {
+  speed_ = std::clamp(std::isfinite(s) ? s : kMaxSpeedMps, kMinSpeedMps, kMaxSpeedMps);
 }
 
 void FlyController::set_camera(const Camera& c) {

@@ -12,6 +12,9 @@
 
 namespace terrasprite::viewer {
 
+/// Bounds of the flying speed (m/s) whatever the wheel and +/- do, and of the clearance (m).
+constexpr double kMinSpeedMps = 0.01, kMaxSpeedMps = 1e6, kMaxClearanceM = 1e5;
+
 struct FlyOptions {
   double speed_mps = 0;           ///< flying speed; 0: a tenth of the terrain extent per second
   double look_deg_per_px = 0.15;  ///< mouse look sensitivity
@@ -22,7 +25,7 @@ struct FlyOptions {
 
 /// Turns events into camera motion. Key bindings (GLFW codes): W/S or UP/DOWN
 /// forward/back, A/D strafe, LEFT/RIGHT turn, Q up, E down, +/- or wheel speed
-/// x/÷ 1.25, SHIFT fast (x4), mouse look (yaw, pitch), O orbit around the
+/// x/÷ 1.25 (within kMinSpeedMps..kMaxSpeedMps), SHIFT fast (x4), mouse look (yaw, pitch), O orbit around the
 /// ground point at the view centre (mouse and A/D circle, W/S move in and
 /// out), R reset to the start view. The heightfield must outlive the controller.
 class FlyController {
@@ -48,6 +51,7 @@ class FlyController {
   bool held(int key) const { return held_.count(key) > 0; }
   void toggle_orbit();
   void constrain();
+  void set_speed(double s);
 
   const Heightfield& heights_;
   Camera start_, camera_;

@@ -58,6 +58,12 @@ constexpr double kMinScale = 0.001, kMaxScale = 1000, kMaxHeightM = 10000;
   throw InputError(fmt::format("{}: {}", name, what));
 }
 
+/// A name from the file as a message quotes it: at most 60 characters, so a
+/// megabyte-long name never makes a megabyte-long message.
+std::string shown(const std::string& text) {
+  return text.size() <= 60 ? text : text.substr(0, 57) + "...";
+}
+
 /// One JSON object of a scene file: `file` is the scene's name, `path` the
 /// object's place in it ("instances[3]"), so every message names the field.
 struct Where {
@@ -134,7 +140,7 @@ LayoutModel parse_model(const nlohmann::json& m, const Where& w, const std::stri
   out.name = string_of(m, "name", w, true);
   out.file = resolve(base, string_of(m, "file", w, true));
   const std::string up = m.contains("up") ? string_of(m, "up", w, true) : "y";
-  out.options.up = parse_up_axis(up, (w.file + ": " + w.field("up")).c_str());
+  out.options.up = parse_up_axis(shown(up), (w.file + ": " + w.field("up")).c_str());
   out.options.height_m = number_in(m, "height_m", w, 0.0, 0.0, kMaxHeightM);
   if (m.contains("texture")) out.options.texture = resolve(base, string_of(m, "texture", w, true));
   if (m.contains("color")) {
@@ -214,6 +220,18 @@ class SpacingGrid {
   std::vector<glm::dvec2> points_;
 };
 
+// Attempts between checks of a scatter's progress.
+constexpr long long kWindow = 65536;
+
+/// Whether a scatter that placed `recent` instances in its last kWindow
+/// attempts cannot place the `left` ones in its `attempts_left` even at 16
+/// times that rate. The chance of placing an instance only falls as instances
+/// fill the region, so such a scatter would fail anyway, only after all its
+/// attempts (200 per instance: 2e8 for a million).
+bool hopeless(long long recent, long long left, long long attempts_left) {
+  return 16.0 * double(recent + 1) / double(kWindow) * double(attempts_left) < double(left);
+}
+
 void scatter(const Scatter& s, const Where& w, const std::string& model_name, const Heightfield& h,
              const std::function<double(double, double)>& ground,
              std::vector<PlacedInstance>& placed) {
@@ -222,9 +240,13 @@ void scatter(const Scatter& s, const Where& w, const std::string& model_name, co
       heading(0, 360);
   SpacingGrid grid(s.region, s.min_spacing_m, s.count);
   for (const PlacedInstance& p : placed) grid.add(glm::dvec2(p.instance.position));
-  long long done = 0;
+  long long done = 0, done_before = 0;  // placed, and placed a window ago
   const long long attempts = 200LL * s.count + 1000;
   for (long long a = 0; a < attempts && done < s.count; ++a) {
+    if (a > 0 && a % kWindow == 0) {
+      if (hopeless(done - done_before, s.count - done, attempts - a)) break;
+      done_before = done;
+    }
     const double x = ux(rng), y = uy(rng), hd = heading(rng);
     if (slope_deg(h, x, y) > s.max_slope_deg) continue;
     if (grid.near(x, y)) continue;
@@ -236,7 +258,7 @@ void scatter(const Scatter& s, const Where& w, const std::string& model_name, co
     throw InputError(fmt::format(
         "{}: {} of '{}': placed only {} of {} instances (region too small, slope limit or "
         "spacing too strict)",
-        w.file, w.path, model_name, done, s.count));
+        w.file, w.path, shown(model_name), done, s.count));
 }
 
 void check_region(const std::array<double, 4>& r, const Heightfield& h, const Where& w) {
@@ -340,14 +362,16 @@ ObjectLayout parse_object_layout(const std::string& text, const std::string& nam
       scene.models.push_back(
           parse_model(models[m], {name, fmt::format("models[{}]", m)}, base_dir));
       if (!index.emplace(scene.models.back().name, int(scene.models.size()) - 1).second)
-        fail(name, fmt::format("models[{}].name '{}': appears twice", m, scene.models.back().name));
+        fail(name,
+             fmt::format("models[{}].name '{}': appears twice", m, shown(scene.models.back().name)));
     }
     if (scene.models.empty()) fail(name, "the scene has no models");
     const auto model_of = [&](const nlohmann::json& v, const Where& w) {
       if (!v.is_string()) w.fail("model", ": must be a model's name");
       const auto it = index.find(v.get<std::string>());
       if (it == index.end())
-        w.fail("model", fmt::format(" '{}': no such model in \"models\"", v.get<std::string>()));
+        w.fail("model",
+               fmt::format(" '{}': no such model in \"models\"", shown(v.get<std::string>())));
       return it->second;
     };
     const InstanceBounds bounds(h);

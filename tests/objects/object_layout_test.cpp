@@ -210,6 +210,27 @@ TEST(ObjectLayout, AHundredThousandScatteredInstancesKeepTheirSpacing) {
   EXPECT_EQ(close, 0);
 }
 
+// A scatter that cannot place its count says so as soon as its rate shows
+// it: a million on slopes no point of the ramp meets ends at once, not after
+// its 2e8 attempts; one that fills its region stops once it is full.
+TEST(ObjectLayout, AHopelessScatterFailsEarly) {
+  const ts::Heightfield h = ramp();
+  for (const char* scatter : {R"({"model": "b", "count": 1000000, "max_slope_deg": 1})",
+                              R"({"model": "b", "count": 1000000, "min_spacing_m": 10})"}) {
+    try {
+      ts::parse_object_layout(
+          std::string(R"({"models": [{"name": "b", "file": "x.obj"}], "scatter": [)") + scatter +
+              "]}",
+          "t.json", ".", h);
+      ADD_FAILURE() << scatter;
+    } catch (const ts::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("t.json: scatter[0] of 'b': placed only"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 // The default scene's placement is fixed by its seed: the same instances
 // wherever the spacing test looks them up (first and last of each model).
 TEST(ObjectLayout, DefaultScenePlacementIsFixedBySeed) {

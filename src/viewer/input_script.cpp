@@ -40,8 +40,20 @@ int key_code(const std::string& name) {
 
 namespace {
 
+/// A string from the script as a message quotes it: at most 60 characters.
+std::string shown(const std::string& text) {
+  return text.size() <= 60 ? text : text.substr(0, 57) + "...";
+}
+
+/// The event's string `key`; `dflt` when absent; "" (refused by the caller)
+/// when it is not a string.
+std::string string_or(const nlohmann::json& e, const char* key, const char* dflt) {
+  if (!e.contains(key)) return dflt;
+  return e[key].is_string() ? e[key].get<std::string>() : std::string();
+}
+
 int parse_action(const nlohmann::json& e, const std::string& where) {
-  const std::string a = e.value("action", "");
+  const std::string a = string_or(e, "action", "");
   if (a == "press") return GLFW_PRESS;
   if (a == "release") return GLFW_RELEASE;
   throw InputError(fmt::format("{}: \"action\" must be \"press\" or \"release\"", where));
@@ -119,7 +131,7 @@ InputEvent parse_event(const nlohmann::json& e, const std::string& where) {
     ev.kind = InputKind::kKey;
     const std::string k = e.contains("key") && e["key"].is_string() ? e["key"] : "";
     ev.key = key_code(k);
-    if (ev.key < 0) throw InputError(fmt::format("{}: unknown key \"{}\"", where, k));
+    if (ev.key < 0) throw InputError(fmt::format("{}: unknown key \"{}\"", where, shown(k)));
     ev.action = parse_action(e, where);
   } else if (type == "mouse") {
     ev.kind = InputKind::kMouse;
@@ -127,12 +139,12 @@ InputEvent parse_event(const nlohmann::json& e, const std::string& where) {
     ev.dy = number(e, "dy", where, 0, -kMaxMousePx, kMaxMousePx);
   } else if (type == "button") {
     ev.kind = InputKind::kButton;
-    const std::string b = e.value("button", "left");
+    const std::string b = string_or(e, "button", "left");
     ev.button = b == "left"     ? GLFW_MOUSE_BUTTON_LEFT
                 : b == "right"  ? GLFW_MOUSE_BUTTON_RIGHT
                 : b == "middle" ? GLFW_MOUSE_BUTTON_MIDDLE
                                 : -1;
-    if (ev.button < 0) throw InputError(fmt::format("{}: unknown button \"{}\"", where, b));
+    if (ev.button < 0) throw InputError(fmt::format("{}: unknown button \"{}\"", where, shown(b)));
     ev.action = parse_action(e, where);
   } else if (type == "wheel") {
     ev.kind = InputKind::kWheel;

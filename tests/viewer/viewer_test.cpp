@@ -90,7 +90,10 @@ TEST(InputScript, BadFilesAreOneLineInputErrors) {
       {R"({"events": [{"t": 1, "type": "key", "key": "W", "action": "hold"}]})", "\"action\""},
       {R"({"events": [{"t": -1, "type": "wheel", "dy": 1}]})", "\"t\""},
       {R"({"events": [{"t": 1, "type": "teleport"}]})", "\"type\""},
-      {R"({"events": [{"t": 1, "type": "mouse", "dx": "far"}]})", "\"dx\""}};
+      {R"({"events": [{"t": 1, "type": "mouse", "dx": "far"}]})", "\"dx\""},
+      {R"({"events": [{"t": 1, "type": "key", "key": "W", "action": 2.7}]})", "\"action\""},
+      {R"({"events": [{"t": 1, "type": "button", "button": 1, "action": "press"}]})",
+       "unknown button"}};
   int i = 0;
   for (const auto& [text, fragment] : cases) {
     const std::string f = tmp / ("bad" + std::to_string(i++) + ".json");

@@ -362,8 +362,8 @@ ObjectLayout parse_object_layout(const std::string& text, const std::string& nam
       scene.models.push_back(
           parse_model(models[m], {name, fmt::format("models[{}]", m)}, base_dir));
       if (!index.emplace(scene.models.back().name, int(scene.models.size()) - 1).second)
-        fail(name,
-             fmt::format("models[{}].name '{}': appears twice", m, shown(scene.models.back().name)));
+        fail(name, fmt::format("models[{}].name '{}': appears twice", m,
+                               shown(scene.models.back().name)));
     }
     if (scene.models.empty()) fail(name, "the scene has no models");
     const auto model_of = [&](const nlohmann::json& v, const Where& w) {

@@ -3,8 +3,8 @@
 // working directory holding the user's files: one line naming the input and
 // the field, exit status 2, nothing written and nothing removed. Scene files
 // are refused the same way by `objects scene --scene` and `render --objects`
-// (one parser). Every row fails before a window or GL context opens. CI cost:
-// ~3 s (the render rows start a GL context).
+// (one parser). Every view row fails before its window opens. CI cost: ~6 s
+// (the render rows start a GL context before they read the scene).
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <filesystem>
 #include <memory>
 #include <optional>
 
@@ -120,20 +119,31 @@ void run(ViewOpts& o, const OutputPolicy& policy) {
         fmt::format("--voxel-ratio {}: must be within (0, 64]", v.settings.voxel_ratio));
   if (v.settings.real_every < 1 || v.settings.real_every > 64)
     throw InputError(fmt::format("--real-every {}: must be within 1..64", v.settings.real_every));
-  if (!(v.record_every_s > 0))
-    throw InputError(fmt::format("--record-every {}: must be positive", v.record_every_s));
+  if (!(v.record_every_s > 0 && v.record_every_s <= 3600))
+    throw InputError(fmt::format("--record-every {:g}: must be in (0, 3600] seconds",
+                                 v.record_every_s));
+  if (!(v.fly.speed_mps >= 0 && v.fly.speed_mps <= viewer::kMaxSpeedMps))
+    throw InputError(fmt::format("--speed {:g}: must be in [0, {:g}] m/s (0: the default)",
+                                 v.fly.speed_mps, viewer::kMaxSpeedMps));
+  if (v.fly.speed_mps > 0 && v.fly.speed_mps < viewer::kMinSpeedMps)
+    throw InputError(fmt::format("--speed {:g}: must be at least {:g} m/s (0: the default)",
+                                 v.fly.speed_mps, viewer::kMinSpeedMps));
+  if (!(v.fly.clearance_m >= 0 && v.fly.clearance_m <= viewer::kMaxClearanceM))
+    throw InputError(fmt::format("--clearance {:g}: must be in [0, {:g}] m (0: the default)",
+                                 v.fly.clearance_m, viewer::kMaxClearanceM));
   if (!o.script.empty()) {
     v.script = viewer::load_input_script(o.script);
     v.scripted = true;
   }
-  if (!o.stats.empty() &&
-      !std::filesystem::is_directory(std::filesystem::absolute(o.stats).parent_path()))
-    throw InputError(fmt::format("--stats {}: its directory does not exist", o.stats));
+  // Every file the run writes is checked before the terrain loads and the window opens.
+  v.output = policy;
+  v.record = o.record;
+  viewer::check_view_outputs(v);
+  if (!o.stats.empty()) check_output_file(o.stats, policy);
   Terrain terrain = load_terrain_verbose(o.terrain);
   v.settings.lod_quads = o.lod_quads.value_or(auto_lod_quads(terrain.heights));
   if (!o.play.empty()) load_path_file(o.play, terrain.heights, 2, double(w) / h);  // validate
   v.play = o.play;
-  v.record = o.record;
   const bool lighting = o.lighting, async_keyframes = !o.sync_keyframes;
   viewer::RunStats stats = viewer::run_viewer(
       terrain.heights, first_camera(o.look, terrain.heights, double(w) / h), v,

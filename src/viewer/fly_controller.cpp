@@ -27,21 +27,24 @@ double FlyController::speed_mps() const {
   if (speed_ > 0) return speed_;
   const glm::dvec3& p = camera_.position;
   const double agl = p.z - heights_.sample(p.x, p.y);
-  return speed_factor_ * auto_speed_mps(agl, std::max(1.0, heights_.extent()));
+  return std::clamp(speed_factor_ * auto_speed_mps(agl, std::max(1.0, heights_.extent())),
+                    kMinSpeedMps, kMaxSpeedMps);
 }
 
 void FlyController::scale_speed(double f) {
+  if (!(f > 0) || !std::isfinite(f)) return;
   if (speed_ > 0)
-    speed_ *= f;
-  else
-    speed_factor_ *= f;
+    set_speed(speed_ * f);
+  else  // the auto speed is clamped in speed_mps; the factor stays a finite number
+    speed_factor_ = std::clamp(speed_factor_ * f, 1e-9, 1e9);
 }
 
 FlyController::FlyController(const Heightfield& heights, const Camera& start, FlyOptions options)
     : heights_(heights), start_(start), camera_(start), options_(options) {
   const double e = std::max(1.0, heights.extent());
-  speed_ = options.speed_mps > 0 ? options.speed_mps : 0.0;
-  clearance_ = options.clearance_m > 0 ? options.clearance_m : 0.005 * e;
+  speed_ = options.speed_mps > 0 ? std::clamp(options.speed_mps, kMinSpeedMps, kMaxSpeedMps) : 0.0;
+  clearance_ = options.clearance_m > 0 ? std::min(options.clearance_m, kMaxClearanceM)
+                                       : std::min(0.005 * e, kMaxClearanceM);
   min_height_ = heights.min_height();
   ceiling_ = std::max(double(heights.max_height()) + 2.0 * e, start.position.z);
   constrain();
@@ -73,7 +76,9 @@ void FlyController::handle(const InputEvent& e) {
       constrain();
       return;
     case InputKind::kWheel:
-      scale_speed(std::pow(1.25, e.dy));
+      // Notches past the speed's bounds leave it at the bound: a wheel offset
+      // of any size (or a NaN from a driver) never makes it unbounded.
+      if (std::isfinite(e.dy)) scale_speed(std::pow(1.25, std::clamp(e.dy, -1e3, 1e3)));
       return;
     default:
       return;
@@ -101,6 +106,10 @@ void FlyController::update(double dt_s) {
     camera_.position += (f * fwd + r * side + glm::dvec3(0, 0, 1) * lift) * step;
   }
   constrain();
+}
+
+void FlyController::set_speed(double s) {
+  speed_ = std::clamp(std::isfinite(s) ? s : kMaxSpeedMps, kMinSpeedMps, kMaxSpeedMps);
 }
 
 void FlyController::set_camera(const Camera& c) {

@@ -12,6 +12,9 @@
 
 namespace terrasprite::viewer {
 
+/// Bounds of the flying speed (m/s) whatever the wheel and +/- do, and of the clearance (m).
+constexpr double kMinSpeedMps = 0.01, kMaxSpeedMps = 1e6, kMaxClearanceM = 1e5;
+
 struct FlyOptions {
   /// Flying speed, m/s. 0: follows the height above the ground (auto_speed_mps).
   double speed_mps = 0;
@@ -29,7 +32,7 @@ double auto_speed_mps(double agl_m, double extent_m);
 
 /// Turns events into camera motion. Key bindings (GLFW codes): W/S or UP/DOWN
 /// forward/back, A/D strafe, LEFT/RIGHT turn, Q up, E down, +/- or wheel speed
-/// x/÷ 1.25, SHIFT fast (x4), mouse look (yaw, pitch), O orbit around the
+/// x/÷ 1.25 (within kMinSpeedMps..kMaxSpeedMps), SHIFT fast (x4), mouse look (yaw, pitch), O orbit around the
 /// ground point at the view centre (mouse and A/D circle, W/S move in and
 /// out), R reset to the start view. The heightfield must outlive the controller.
 class FlyController {
@@ -57,6 +60,7 @@ class FlyController {
   void toggle_orbit();
   void scale_speed(double f);
   void constrain();
+  void set_speed(double s);
 
   const Heightfield& heights_;
   Camera start_, camera_;

@@ -3,6 +3,7 @@
 // window or from a timed script (`view --script FILE`), one path for both.
 #pragma once
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace terrasprite::viewer {
@@ -32,9 +33,13 @@ struct ScriptEvent {
 /// "action": "press"}, {"type": "wheel", "dy": 1}]}. Keys: A-Z, 0-9, UP, DOWN,
 /// LEFT, RIGHT, SPACE, SHIFT, CTRL, ESCAPE, F1-F12 (also TAB, PLUS, MINUS).
 /// Events come back sorted by t (stable). Screenshot files are relative to the
-/// working directory. Throws InputError naming the file and
-/// the event for a missing or malformed file.
+/// working directory. Numbers are bounded: t in [0, 86400] s, mouse dx, dy
+/// within +-100000 px, wheel dx, dy within +-100. Throws InputError naming
+/// the file, the event's line and index for a missing or malformed file.
 std::vector<ScriptEvent> load_input_script(const std::string& file);
+
+/// load_input_script of a script's text; `file` names it in messages.
+std::vector<ScriptEvent> parse_input_script(std::string_view text, const std::string& file);
 
 /// GLFW key code of a script key name, or -1.
 int key_code(const std::string& name);

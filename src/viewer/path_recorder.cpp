@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/common/error.h"
@@ -33,13 +32,11 @@ nlohmann::json PathRecorder::json() const {
                     {"pitch_deg", c.pitch_deg},
                     {"roll_deg", c.roll_deg},
                     {"fov_deg", c.fov_y_deg}});
-  return {{"keyframes", keys}};
+  return {{"generator", generator_name()}, {"keyframes", keys}};
 }
 
-void PathRecorder::write(const std::string& file) const {
-  std::ofstream out(file);
-  out << json().dump(2) << "\n";
-  if (!out) throw InputError(fmt::format("{}: cannot write the recorded path", file));
+void PathRecorder::write(const std::string& file, OutputPolicy policy) const {
+  write_output_file(file, policy, json().dump(2) + "\n");
 }
 
 PathPlayer::PathPlayer(const std::string& file, const Heightfield& heights, double aspect) {

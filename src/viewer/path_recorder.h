@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "terrasprite/camera/camera.h"
+#include "terrasprite/output/output_file.h"
 #include "terrasprite/terrain/heightfield.h"
 
 namespace terrasprite::viewer {
@@ -21,10 +22,11 @@ class PathRecorder {
   /// Keeps the pose at `t_s` whatever the interval (e.g. the end of a flight).
   void close(double t_s, const Camera& c);
   std::size_t size() const { return keys_.size(); }
-  /// {"keyframes": [{"t", "position", "yaw_deg", "pitch_deg", "roll_deg", "fov_deg"}]}
+  /// {"generator", "keyframes": [{"t", "position", "yaw_deg", "pitch_deg", "roll_deg", "fov_deg"}]}
   nlohmann::json json() const;
-  /// Writes json(); throws InputError naming the file on failure.
-  void write(const std::string& file) const;
+  /// Writes json() by the output-file rules (write_output_file); throws
+  /// InputError naming the file on failure or when it may not be replaced.
+  void write(const std::string& file, OutputPolicy policy) const;
 
  private:
   double every_s_;

@@ -13,9 +13,12 @@
 #include <filesystem>
 #include <future>
 #include <optional>
+#include <set>
 
-#include "terrasprite/terrain/image_io.h"
+#include "terrasprite/common/error.h"
 #include "terrasprite/common/image.h"
+#include "terrasprite/output/output_file.h"
+#include "terrasprite/terrain/image_io.h"
 #include "viewer/frame_view.h"
 #include "viewer/panel.h"
 #include "viewer/path_recorder.h"
@@ -46,15 +49,16 @@ Image read_window(int w, int h) {
   return img;
 }
 
-/// Flips a read_window() image to top-down rows, makes it opaque and writes the PNG.
-void write_window_png(Image img, const std::string& file) {
+/// Flips a read_window() image to top-down rows, makes it opaque and writes
+/// the PNG by the output-file rules.
+void write_window_png(Image img, const std::string& file, OutputPolicy policy) {
   const int w = img.width, h = img.height;
   std::vector<std::uint8_t> row(std::size_t(w) * 4);
   for (int y = 0; y < h / 2; ++y) {  // GL's rows are bottom-up
     std::swap_ranges(img.px(0, y), img.px(0, y) + row.size(), img.px(0, h - 1 - y));
   }
   for (std::size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;
-  save_png(img, file);
+  write_output_file(file, policy, [&img](const std::string& tmp) { save_png(img, tmp); });
 }
 
 std::string free_name(const std::string& dir, const char* stem, const char* ext) {
@@ -95,6 +99,7 @@ class Loop {
   void start_recording(const std::string& file);
   void stop_recording();
   void start_playing(const std::string& file);
+  OutputPolicy policy_for(const std::string& file);
 
   const ViewerOptions& o_;
   const Heightfield& heights_;
@@ -123,7 +128,17 @@ class Loop {
   // the swap and count against the latency of every event that frame shows.
   std::vector<std::pair<Image, std::string>> shots_;
   std::vector<std::future<void>> writes_;
+  std::set<std::string> written_;  // files this run wrote (or is writing)
 };
+
+// The user's policy, and any file this run wrote may be written again
+// (a script's repeated screenshot, a recording stopped twice).
+OutputPolicy Loop::policy_for(const std::string& file) {
+  OutputPolicy p = o_.output;
+  p.overwrite = p.overwrite || written_.count(file) > 0;
+  written_.insert(file);
+  return p;
+}
 
 void Loop::start_recording(const std::string& file) {
   recorder_.emplace(o_.record_every_s);
@@ -134,7 +149,7 @@ void Loop::start_recording(const std::string& file) {
 void Loop::stop_recording() {
   if (!recorder_) return;
   recorder_->close(seconds(Clock::now() - t0_) - record_t0_, fly_.camera());
-  recorder_->write(record_file_);
+  recorder_->write(record_file_, policy_for(record_file_));
   info_.message = fmt::format("path written: {} ({} keyframes)", record_file_, recorder_->size());
   recorder_.reset();
 }
@@ -317,7 +332,8 @@ void Loop::present(std::optional<RenderedFrame>& f, Clock::time_point now) {
   const Clock::time_point swapped = Clock::now();
   last_swap_ = swapped;
   for (auto& [img, file] : shots_)
-    writes_.push_back(std::async(std::launch::async, write_window_png, std::move(img), file));
+    writes_.push_back(std::async(std::launch::async, write_window_png, std::move(img), file,
+                                 policy_for(file)));
   shots_.clear();
   if (!f) return;
   // Book-keeping of a newly shown frame: its interval and the events it shows.
@@ -389,8 +405,17 @@ RunStats Loop::run() {
 
 }  // namespace
 
+void check_view_outputs(const ViewerOptions& o) {
+  if (!std::filesystem::is_directory(o.screenshot_dir))
+    throw InputError(fmt::format("--screenshot-dir {}: not a directory", o.screenshot_dir));
+  if (!o.record.empty()) check_output_file(o.record, o.output);
+  for (const ScriptEvent& s : o.script)
+    if (s.event.kind == InputKind::kScreenshot) check_output_file(s.event.file, o.output);
+}
+
 RunStats run_viewer(const Heightfield& heights, const Camera& start, const ViewerOptions& options,
                     const ViewRendererFactory& factory) {
+  check_view_outputs(options);
   Loop loop(heights, start, options, factory);
   return loop.run();
 }

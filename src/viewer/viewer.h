@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "terrasprite/camera/camera.h"
+#include "terrasprite/output/output_file.h"
 #include "terrasprite/terrain/heightfield.h"
 #include "viewer/fly_controller.h"
 #include "viewer/input_event.h"
@@ -26,6 +27,9 @@ struct ViewerOptions {
   std::string play;                 ///< fly this path file from the start
   FlyOptions fly;
   std::string screenshot_dir = ".";  ///< where F2 screenshots go
+  /// Which existing files a script's screenshots and the recording may
+  /// replace (output_file.h); files this run wrote may always be replaced.
+  OutputPolicy output;
   /// GL renderers draw in a context sharing objects with the window's and the
   /// window shows their target's texture, nothing read back. Off (default):
   /// they draw in their own contexts and each frame's colour is read back and
@@ -33,6 +37,12 @@ struct ViewerOptions {
   /// waits for the other context's rendering).
   bool share_context = false;
 };
+
+/// Throws InputError unless every file the run is told to write can be
+/// written (check_output_file): the recording and each script screenshot;
+/// and `screenshot_dir` must be a directory. run_viewer calls it before the
+/// window opens.
+void check_view_outputs(const ViewerOptions& options);
 
 /// Runs the viewer until the window closes, ESCAPE, the script ends or
 /// `frames` frames were shown; returns what it measured. `heights` and the

@@ -90,7 +90,10 @@ TEST(InputScript, BadFilesAreOneLineInputErrors) {
       {R"({"events": [{"t": 1, "type": "key", "key": "W", "action": "hold"}]})", "\"action\""},
       {R"({"events": [{"t": -1, "type": "wheel", "dy": 1}]})", "\"t\""},
       {R"({"events": [{"t": 1, "type": "teleport"}]})", "\"type\""},
-      {R"({"events": [{"t": 1, "type": "mouse", "dx": "far"}]})", "\"dx\""}};
+      {R"({"events": [{"t": 1, "type": "mouse", "dx": "far"}]})", "\"dx\""},
+      {R"({"events": [{"t": 1, "type": "key", "key": "W", "action": 2.7}]})", "\"action\""},
+      {R"({"events": [{"t": 1, "type": "button", "button": 1, "action": "press"}]})",
+       "unknown button"}};
   int i = 0;
   for (const auto& [text, fragment] : cases) {
     const std::string f = tmp / ("bad" + std::to_string(i++) + ".json");
@@ -104,6 +107,59 @@ TEST(InputScript, BadFilesAreOneLineInputErrors) {
     }
   }
   EXPECT_THROW(load_input_script(tmp / "missing.json"), InputError);
+}
+
+// Numbers past their bounds are refused, naming FILE:LINE and the event.
+TEST(InputScript, OutOfRangeNumbersNameTheFileLineAndEvent) {
+  tstest::TempDir tmp;
+  const std::pair<const char*, const char*> cases[] = {
+      {"{\"events\": [\n  {\"type\": \"wheel\", \"dy\": 1},\n  {\"type\": \"wheel\", \"dy\": 1e308}]}",
+       ":3: event 1: \"dy\" 1e+308 must be between -100 and 100"},
+      {"{\"events\": [{\"type\": \"mouse\",\n \"dx\": 1}, {\"type\": \"mouse\", \"dx\": -1e6}]}",
+       ":2: event 1: \"dx\" -1e+06 must be between -100000 and 100000"},
+      {"{\"note\": \"[events\\\"]\",\n\"events\":\n[\n\n{\"t\": 1e300, \"type\": \"wheel\"}]}",
+       ":5: event 0: \"t\" 1e+300 must be between 0 and 86400"},
+      {"{\"events\": [], \"events\": [{\"type\": \"wheel\"},\n{\"type\": \"wheel\", \"dx\": -101}]}",
+       ":2: event 1: \"dx\" -101"}};
+  int i = 0;
+  for (const auto& [text, fragment] : cases) {
+    const std::string f = tmp / ("range" + std::to_string(i++) + ".json");
+    std::ofstream(f) << text;
+    try {
+      load_input_script(f);
+      ADD_FAILURE() << text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(f + fragment), std::string::npos) << e.what();
+    }
+  }
+}
+
+// However far the wheel turns, the speed stays within its bounds and a
+// free flight stays at finite positions.
+TEST(FlyController, WheelKeepsTheSpeedBounded) {
+  Heightfield h = flat(65, 10, 100);
+  Camera start;
+  start.position = {0, 0, 150};
+  FlyOptions o;
+  o.bounded = false;
+  FlyController fly(h, start, o);
+  InputEvent wheel;
+  wheel.kind = InputKind::kWheel;
+  wheel.dy = 1e308;
+  fly.handle(wheel);
+  EXPECT_EQ(fly.speed_mps(), kMaxSpeedMps);
+  fly.handle(key(GLFW_KEY_W, GLFW_PRESS));
+  fly.handle(key(GLFW_KEY_Q, GLFW_PRESS));
+  fly.update(1.0);
+  const glm::dvec3 p = fly.camera().position;
+  EXPECT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) << p.x << " " << p.y;
+  EXPECT_LE(glm::length(p - start.position), 1.001 * kMaxSpeedMps * std::sqrt(2.0));
+  wheel.dy = -1e308;
+  fly.handle(wheel);
+  EXPECT_EQ(fly.speed_mps(), kMinSpeedMps);
+  wheel.dy = std::nan("");
+  fly.handle(wheel);
+  EXPECT_EQ(fly.speed_mps(), kMinSpeedMps);
 }
 
 TEST(FlyController, ForwardKeyMovesAlongTheHeadingAndKeepsClearance) {
@@ -189,6 +245,25 @@ TEST(PathRecorder, KeyframesEveryIntervalAndTheLastPose) {
   EXPECT_EQ(j["keyframes"][3]["position"][0], 10.0);
 }
 
+// A recording replaces only a file terrasprite wrote (or any, with
+// overwrite): never the user's. It names its generator so a later run may
+// replace it.
+TEST(PathRecorder, WriteReplacesOnlyItsOwnFiles) {
+  tstest::TempDir tmp;
+  const std::string notes = tmp / "notes.tex", rec = tmp / "rec.json";
+  std::ofstream(notes) << "my notes\n";
+  PathRecorder r(0.5);
+  r.close(0.0, Camera{});
+  EXPECT_THROW(r.write(notes, {}), InputError);
+  std::ifstream in(notes);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "my notes\n");
+  r.write(rec, {});
+  EXPECT_EQ(read_json(rec)["generator"].get<std::string>().rfind("terrasprite", 0), 0u);
+  r.write(rec, {});  // its own file
+  r.write(notes, {.overwrite = true});
+  EXPECT_EQ(read_json(notes)["keyframes"].size(), 1u);
+}
+
 TEST(ViewCli, BadScriptsExitTwoWithOneLine) {
   tstest::TempDir tmp;
   std::ofstream(tmp / "bad.json") << R"({"events": [{"t": 1, "type": "key", "key": "?"}]})";
@@ -253,6 +328,36 @@ TEST(ViewCli, ScriptedRunUnderXvfbMovesRecordsAndReplays) {
   EXPECT_NEAR(b["camera_end"]["yaw_deg"].get<double>(), last["yaw_deg"].get<double>(), 1e-3);
   EXPECT_NEAR(b["camera_start"]["position"][0].get<double>(),
               rec["keyframes"][0]["position"][0].get<double>(), 1e-3);
+}
+
+// A script's screenshots may repeat a file this run wrote, a recording
+// replaces the one an earlier run wrote, and a wheel turned to its bound in a
+// free flight moves the camera at most the speed bound. CI cost: ~5 s.
+TEST(ViewCli, RepeatedOutputsAndAFarWheelUnderXvfb) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run missing";
+  tstest::TempDir tmp;
+  const std::string shot = tmp / "shot.png";
+  std::ofstream(tmp / "far.json") << R"({"events": [
+    {"t": 0.1, "type": "screenshot", "file": ")" << shot << R"("},
+    {"t": 0.2, "type": "wheel", "dy": 100}, {"t": 0.2, "type": "wheel", "dy": 100},
+    {"t": 0.2, "type": "wheel", "dy": 100},
+    {"t": 0.3, "type": "key", "key": "W", "action": "press"},
+    {"t": 0.8, "type": "key", "key": "W", "action": "release"},
+    {"t": 0.9, "type": "screenshot", "file": ")" << shot << R"("}]})";
+  auto r = view("--mode lod --free --script " + (tmp / "far.json") + " --stats " +
+                (tmp / "a.json") + " --record " + (tmp / "rec.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(shot));
+  const auto a = read_json(tmp / "a.json");
+  const auto& p0 = a["camera_start"]["position"];
+  const auto& p1 = a["camera_end"]["position"];
+  const double moved = std::hypot(p1[0].get<double>() - p0[0].get<double>(),
+                                  p1[1].get<double>() - p0[1].get<double>());
+  EXPECT_GT(moved, 1000.0) << a;              // the wheel sped the flight up
+  EXPECT_LE(moved, 10 * kMaxSpeedMps) << a;  // within the bound for the time held
+  std::ofstream(tmp / "short.json") << R"({"events": [{"t": 0.1, "type": "key", "key": "W", "action": "press"}]})";
+  r = view("--mode lod --script " + (tmp / "short.json") + " --record " + (tmp / "rec.json"));
+  EXPECT_EQ(r.status, 0) << r.output;
 }
 
 // Sprite mode with its keyframes on a second thread, through the window's

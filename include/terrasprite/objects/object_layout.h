@@ -44,9 +44,12 @@ struct ObjectLayout {
 /// terrain (its full-resolution triangles, grid_surface(heights, 0), as the
 /// GL renderers draw it); scattered ones are placed at random (seeded,
 /// reproducible) in their region, on slopes under the limit, at least the minimum spacing from
-/// every instance placed before. Throws InputError naming `name` for bad JSON,
-/// unknown keys' values, an unknown model, a region off the terrain, or a
-/// scatter that cannot place its count.
+/// every instance placed before (a grid as wide as the spacing: linear in the
+/// count). Throws InputError naming `name` and the JSON field for bad JSON, a
+/// value of the wrong type or out of its range (docs/formats.md "Scene
+/// files": positions near the terrain, scales in [0.001, 1000], counts up to
+/// 1,000,000, ...), an unknown model, a region off the terrain, or a scatter
+/// that cannot place its count. Headings are reduced into [0, 360).
 ObjectLayout parse_object_layout(const std::string& json_text, const std::string& name,
                                  const std::string& base_dir, const Heightfield& heights);
 

@@ -86,7 +86,7 @@ test-asan: deps
 # merges what it finds into a scratch corpus (build-fuzz/corpus/<target>/);
 # minimise and commit it by hand (see fuzz/README.md).
 FUZZ_SECONDS ?= 600
-FUZZ_TARGETS := dem png16 path obj gltf cache scene script
+FUZZ_TARGETS := dem png16 path obj gltf cache scene script tiles
 fuzz: deps
 	cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang-14 \
 	  -DCMAKE_CXX_COMPILER=clang++-14 -DTERRASPRITE_FUZZ=ON -DTERRASPRITE_BUILD_TESTS=OFF \

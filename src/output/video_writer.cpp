@@ -8,6 +8,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -333,6 +334,10 @@ void VideoWriter::finish() {
   else if (WEXITSTATUS(status) != 0)
     why = fmt::format("ffmpeg exited with status {}", WEXITSTATUS(status));
   if (!why.empty()) s.fail(why);
+  // The temporary file was created 0600; the video gets the usual umask-derived mode.
+  const mode_t mask = umask(0);
+  umask(mask);
+  chmod(s.partial.c_str(), 0666 & ~mask);
   std::error_code ec;
   s.guard->release_after([&] { fs::rename(s.partial, s.file, ec); });
   if (ec) s.fail(fmt::format("cannot move {} into place: {}", s.partial, ec.message()));

@@ -229,19 +229,12 @@ std::optional<GeoTransform> parse_geo(const nlohmann::json& j, const std::string
 
 }  // namespace
 
-TileSetInfo read_tile_set(const std::string& dir) {
-  detail::ensure_gdal();
-  const std::string path = dir + "/tiles.json";
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(
-        fmt::format("{}: cannot open (is {} a directory written by terrasprite tile?)", path, dir));
-  const std::string text = read_input_text(path, "tile set description");
+TileSetInfo parse_tile_set_json(const std::string& text, const std::string& path) {
   TileSetInfo t;
-  t.dir = dir;
   try {
     const nlohmann::json j = nlohmann::json::parse(text);
-    if (!j.is_object() || j.value("format", "") != kFormat || j.value("version", 0) != kVersion)
+    if (!j.is_object() || !j.contains("format") || !j["format"].is_string() ||
+        j["format"] != kFormat || !j.contains("version") || j["version"] != kVersion)
       throw InputError(fmt::format("{}: not a terrasprite tile set of version {}", path, kVersion));
     parse_grid(j, path, t.grid);
     parse_levels(j, path, t);
@@ -250,6 +243,18 @@ TileSetInfo read_tile_set(const std::string& dir) {
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: malformed: {}", path, e.what()));
   }
+  return t;
+}
+
+TileSetInfo read_tile_set(const std::string& dir) {
+  detail::ensure_gdal();
+  const std::string path = dir + "/tiles.json";
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(
+        fmt::format("{}: cannot open (is {} a directory written by terrasprite tile?)", path, dir));
+  TileSetInfo t = parse_tile_set_json(read_input_text(path, "tile set description"), path);
+  t.dir = dir;
   const TerrainGrid& g = t.grid;
   check_raster(t.height_file(), g.width, g.height, g.coarsest_level, 1);
   check_raster(t.color_file(), g.width, g.height, g.coarsest_level, 3);

@@ -16,6 +16,11 @@ namespace terrasprite {
 std::vector<std::vector<float>> tile_maxima(const TerrainGrid& grid,
                                             const std::vector<const float*>& bounds, int tile_log2);
 
+/// The grid, levels, fine levels and georeferencing `text` (a tiles.json named
+/// `path` in messages) describes, every value checked; the rasters beside it
+/// are not opened (read_tile_set does that). Throws InputError naming `path`.
+TileSetInfo parse_tile_set_json(const std::string& text, const std::string& path);
+
 /// Writes `path` (tiles.json) for a terrain of `grid` tiled with `options`;
 /// `tile_max` as tile_maxima's.
 void write_tile_set_json(const TerrainGrid& grid, const std::vector<std::vector<float>>& tile_max,

@@ -6,6 +6,7 @@
 #include <gdal_alg.h>
 
 #include <algorithm>
+#include <vector>
 
 #include "terrain/gdal_util.h"
 #include "terrasprite/common/error.h"

@@ -61,7 +61,7 @@ TEST(BenchOutputs, RenderHelpStatesItsDefaults) {
   const auto r = tstest::run_cli("render --help");
   ASSERT_EQ(r.status, 0) << r.output;
   for (const char* s : {"(default full)", "required unless --video", "'low-fast'",
-                        "(default paper)", "--duration"})
+                        "(default overview)", "--duration"})
     EXPECT_NE(r.output.find(s), std::string::npos) << s;
 }
 

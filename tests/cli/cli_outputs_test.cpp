@@ -223,6 +223,23 @@ TEST(CliOutputs, RerunsReplaceTheirOwnVideosAndNeverTouchTheUsersPartial) {
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
 }
 
+TEST(CliOutputs, AnInterruptedVideoLeavesNeitherItsStreamNorFfmpegsLog) {
+  if (!tstest::have_tool("ffmpeg")) GTEST_SKIP() << "no ffmpeg";
+  tstest::TempDir tmp;
+  fs::create_directory(tmp.path / "tmp");
+  const std::string script = fmt::format(
+      "TMPDIR={} {} render --synthetic-size 65 --mode lod --frames 100000 --size 32x32 --video "
+      "{} & pid=$!; for i in $(seq 600); do ls -A {} | grep -q tmp- && break; sleep 0.05; done; "
+      "sleep 0.3; kill -HUP $pid; wait $pid; echo status=$?",
+      tmp / "tmp", TS_CLI, tmp / "v.mp4", tmp.path.string());
+  const tstest::CliResult r = tstest::run_shell(script);
+  EXPECT_NE(r.output.find("status=129"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("interrupted by SIGHUP"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::is_empty(tmp.path / "tmp")) << "ffmpeg's log was left";
+  fs::remove(tmp.path / "tmp");
+  for (const auto& e : fs::directory_iterator(tmp.path)) ADD_FAILURE() << "left " << e.path();
+}
+
 TEST(CliOutputs, AFileSizeLimitFailsTheRunAndLeavesNothingComplete) {
   tstest::TempDir tmp;
   // 16 KB a file: the PNG frames of 256 x 256 do not fit.

@@ -20,8 +20,8 @@ struct ModelRow {
 
 const ModelRow kModelRows[] = {
     {"objects info --model t.obj --height-m 1e308", "--height-m: height 1e+308 m is not in"},
-    {"objects info --model t.obj --height-m inf", "--height-m: height inf m is not in"},
-    {"objects info --model t.obj --height-m nan", "--height-m: height nan m"},
+    {"objects info --model t.obj --height-m inf", "--height-m: inf is not a finite number"},
+    {"objects info --model t.obj --height-m nan", "--height-m: nan is not a finite number"},
     {"objects info --model t.obj --height-m -1", "--height-m"},
     {"objects info --model adir.obj", "adir.obj: is a directory"},
     {"objects info --model nosuch.obj", "nosuch.obj: no such model file"},

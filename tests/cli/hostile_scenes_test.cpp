@@ -29,7 +29,7 @@ const SceneRow kScenes[] = {
     {"count32.json",
      "count32.json: scatter[0].count 4294967297: must be a whole number in 0..1000000"},
     {"count1e10.json", "count1e10.json: scatter[0].count 10000000000: must be a whole number"},
-    {"upx.json", "upx.json: models[1].up: 'x' is not an up axis (y or z)"},
+    {"upx.json", "upx.json: models[1].up (model c): 'x' is not an up axis (y or z)"},
     {"slope.json", "slope.json: scatter[0].max_slope_deg 1e+308: must be in [0, 90]"},
 };
 

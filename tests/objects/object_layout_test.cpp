@@ -145,7 +145,7 @@ TEST(ObjectLayout, OutOfRangeValuesNameTheFieldInOneLine) {
               "scatter": [{"model": "b", "count": 1000000}]})",
        "scatter[0].count 1000000: the scene would hold more than 1000000 instances"},
       {R"({"models": [{"name": "b", "file": "x.obj", "up": "x"}]})",
-       "bad.json: models[0].up: 'x' is not an up axis"},
+       "bad.json: models[0].up (model b): 'x' is not an up axis"},
       {R"({"models": [{"name": "b", "file": "x.obj"}, {"name": "c", "file": "x.obj", "height_m": 1e308}]})",
        "bad.json: models[1].height_m 1e+308: must be in [0, 10000]"},
       {R"({"models": [{"name": "b", "file": "x.obj", "color": [1, 5, 0]}]})",

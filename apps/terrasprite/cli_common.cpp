@@ -227,8 +227,10 @@ CLI::Option* add_path_option(CLI::App& cmd, std::string& path, const std::string
 
 void print_bench_result(const nlohmann::json& j, const std::string& json_file,
                         const std::string& summary) {
-  if (json_file.empty()) {
-    fmt::print("{}\n", j.dump(2));
+  if (json_file.empty()) {  // the same object --json would write, generator included
+    nlohmann::json with_generator = j;
+    with_generator["generator"] = generator_name();
+    fmt::print("{}\n", with_generator.dump(2));
     return;
   }
   fmt::print("{}JSON: {}\n", summary, json_file);

@@ -23,8 +23,6 @@ const char* fill_method_text(NodataFill f) {
   switch (f) {
     case NodataFill::kGdal:
       return "GDALFillNodata (inverse distance)";
-    case NodataFill::kNone:
-      return "none (holes; AMLE heights underneath)";
     default:
       return "AMLE (least steep surface from the rim)";
   }
@@ -38,6 +36,11 @@ nlohmann::json nodata_json(const Heightfield& h) {
 
 std::string nodata_text(const Heightfield& h) {
   if (h.nodata_count == 0) return "no nodata cells";
+  if (h.fill_method == NodataFill::kNone)
+    return fmt::format(
+        "{} nodata cells ({:.1f}% of the grid) left as holes (--fill none; the renderers draw "
+        "every cell, so they take --fill amle or gdal)",
+        h.nodata_count, 100 * filled_fraction(h));
   return fmt::format("{} nodata cells ({:.1f}% of the grid) filled by {}", h.nodata_count,
                      100 * filled_fraction(h), fill_method_text(h.fill_method));
 }

@@ -192,7 +192,7 @@ void add_objects_scene(CLI::App& objects, const OutputPolicy& policy) {
                   "where the LOD chains and impostors are cached, or 'off' (default: "
                   "~/.cache/terrasprite/objects)");
   cmd->add_option("--json", a->json, "write the figures as JSON");
-  cmd->add_option("--out", a->out, "output directory (frame.png, scene.json)")
+  cmd->add_option("--out", a->out, "output directory (frame.png, scene.json, placed.json: the instances as placed)")
       ->capture_default_str();
   cmd->callback([a, &policy] {
     FullGeometryOptions o;

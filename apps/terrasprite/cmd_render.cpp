@@ -119,6 +119,7 @@ struct Checked {
   RenderMode mode = RenderMode::kFull;
   std::optional<WarpMethod> warp;
   CoarseMesh mesh = CoarseMesh::kUniform;
+  int lod_quads = 0;  ///< the coarse grid of the lod and sprite modes: --lod-quads, or chosen
 };
 
 // --frames, or --duration S at --fps N: S x N frames.
@@ -194,7 +195,7 @@ RenderStackOptions stack_options(const RenderOpts& o, Checked& c, const Heightfi
   so.mode = c.mode;
   so.width = c.w;
   so.height = c.h;
-  so.lod_quads = o.lod_quads.value_or(auto_lod_quads(h));
+  so.lod_quads = c.lod_quads = o.lod_quads.value_or(auto_lod_quads(h));
   so.lighting = o.lighting;
   so.sprite_mesh = c.mesh;
   so.sprite_mesh_triangles = o.mesh_triangles;
@@ -261,7 +262,7 @@ nlohmann::json stats_json(const RenderOpts& o, const Checked& c, const RenderSta
     frames.push_back({{"frame", s.frame},
                       {"class", frame_class_name(s.cls)},
                       {"ms", s.ms},
-                      {"gpu_ms", s.gpu_ms},
+                      {"gpu_ms", s.gpu_ms >= 0 ? nlohmann::json(s.gpu_ms) : nlohmann::json()},
                       {"triangles", s.triangles}});
   nlohmann::json j = {
       {"gl_renderer", stack.device},
@@ -270,6 +271,7 @@ nlohmann::json stats_json(const RenderOpts& o, const Checked& c, const RenderSta
       {"real_every", c.warp ? o.real_every : 1},
       {"warp_margin_px", {stack.margin_x, stack.margin_y}},
       {"size", {c.w, c.h}},
+      {"lod_quads", c.lod_quads},
       {"terrain", terrain_json(terrain)},
       {"path", o.look.look_at.empty() ? o.path : "look-at " + o.look.look_at},
       {"median_ms", run.median_ms},
@@ -322,8 +324,10 @@ void run(const RenderOpts& o, const OutputPolicy& policy) {
   if (!o.json.empty()) report::write_json(j, o.json, policy);
   const std::string beside = stats_beside_video(o);
   if (!beside.empty()) report::write_json(j, beside, policy);
-  fmt::print("{}: {} frames {}x{} ({}), median {:.2f} ms/frame, {:.0f} ms in all on {} -> {}{}\n",
-             o.mode, run.frames.size(), c.w, c.h, terrain.heights.name, run.median_ms, wall_ms,
+  const bool coarse = c.mode == RenderMode::kLod || c.mode == RenderMode::kSprite;
+  fmt::print("{}{}: {} frames {}x{} ({}), median {:.2f} ms/frame, {:.0f} ms in all on {} -> {}{}\n",
+             o.mode, coarse ? fmt::format(" ({} x {} coarse quads)", c.lod_quads, c.lod_quads) : "",
+             run.frames.size(), c.w, c.h, terrain.heights.name, run.median_ms, wall_ms,
              stack.device, sinks.out ? sinks.out->final_path().string() : o.video,
              beside.empty() ? "" : ", stats " + beside);
 }

@@ -58,8 +58,9 @@ WorldXY GeoFrame::world_of(double lon, double lat, GeoMargin margin,
   if (!std::isfinite(lon) || !std::isfinite(lat))
     throw InputError(fmt::format("{} {},{}: longitude and latitude must be finite", what, lon, lat));
   if (lat < -90 || lat > 90)
-    throw InputError(fmt::format("{} {},{}: latitude must be within -90 .. 90 degrees", what, lon,
-                                 lat));
+    throw InputError(fmt::format(
+        "{} {},{}: latitude must be within -90 .. 90 degrees (the order is longitude, latitude)",
+        what, lon, lat));
   if (lon < -180 || lon > 360)
     throw InputError(fmt::format("{} {},{}: longitude must be within -180 .. 360 degrees", what,
                                  lon, lat));

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <random>
 #include <string>
 
@@ -68,6 +69,23 @@ inline CliResult run_cli_prefixed(const std::string& prefix, const std::string& 
 /// run_cli with `dir` as the working directory.
 inline CliResult run_cli_in(const std::string& dir, const std::string& args) {
   return run_shell("cd '" + dir + "' && " + std::string(TS_CLI) + " " + args);
+}
+
+/// Every path under `dir` (links not followed) with its type, size and
+/// modification time: equal before and after a run when it touched nothing.
+inline std::map<std::string, std::string> snapshot(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::map<std::string, std::string> s;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    std::error_code ec;
+    const auto st = fs::symlink_status(e.path(), ec);
+    std::string info = std::to_string(int(st.type()));
+    if (fs::is_regular_file(st))
+      info += " " + std::to_string(fs::file_size(e.path(), ec)) + " " +
+              std::to_string(fs::last_write_time(e.path(), ec).time_since_epoch().count());
+    s[fs::relative(e.path(), dir).string()] = info;
+  }
+  return s;
 }
 
 /// ../shared/data beside the repository, or "" when it is absent.

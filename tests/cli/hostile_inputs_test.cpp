@@ -195,22 +195,7 @@ void make_fixtures(const fs::path& w) {
   write_tif(w / "hugescale.tif", GDT_Int16, 100, 1e300);
 }
 
-// Every path under `dir` (links not followed) with its size and modification time.
-std::map<std::string, std::string> snapshot(const fs::path& dir) {
-  std::map<std::string, std::string> s;
-  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator();
-       ++it) {
-    const fs::path& p = it->path();
-    std::error_code ec;
-    const auto st = fs::symlink_status(p);
-    std::string info = std::to_string(int(st.type()));
-    if (fs::is_regular_file(st))
-      info += " " + std::to_string(fs::file_size(p)) + " " +
-              std::to_string(fs::last_write_time(p, ec).time_since_epoch().count());
-    s[fs::relative(p, dir).string()] = info;
-  }
-  return s;
-}
+using tstest::snapshot;
 
 }  // namespace
 

@@ -91,19 +91,7 @@ void make_fixtures(const fs::path& w) {
              R"({"events": [{"t": 1e300, "type": "key", "key": "W", "action": "press"}]})");
 }
 
-// Every path under `dir` with its size and modification time.
-std::map<std::string, std::string> snapshot(const fs::path& dir) {
-  std::map<std::string, std::string> s;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    std::error_code ec;
-    std::string info = std::to_string(int(fs::symlink_status(e.path()).type()));
-    if (e.is_regular_file())
-      info += " " + std::to_string(e.file_size()) + " " +
-              std::to_string(fs::last_write_time(e.path(), ec).time_since_epoch().count());
-    s[fs::relative(e.path(), dir).string()] = info;
-  }
-  return s;
-}
+using tstest::snapshot;
 
 void expect_refused(const fs::path& work, const std::string& args, const std::string& fragment,
                     const std::map<std::string, std::string>& before) {

@@ -5,6 +5,7 @@
 #include <GLFW/glfw3.h>
 #include <gtest/gtest.h>
 
+#include "flat_field.h"
 #include "viewer/fly_controller.h"
 
 using namespace terrasprite;
@@ -12,13 +13,7 @@ using namespace terrasprite::viewer;
 
 namespace {
 
-Heightfield flat_field(int n, double spacing, float z) {
-  Heightfield h;
-  h.width = h.height = n;
-  h.spacing_x = h.spacing_y = spacing;
-  h.heights.assign(std::size_t(n) * n, z);
-  return h;
-}
+using viewer_test::flat_field;
 
 Camera camera_at(double z) {
   Camera c;

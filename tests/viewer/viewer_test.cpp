@@ -17,6 +17,7 @@
 #include "test_util.h"
 #include "viewer/fly_controller.h"
 #include "viewer/input_event.h"
+#include "flat_field.h"
 #include "viewer/path_recorder.h"
 #include "viewer/run_stats.h"
 
@@ -27,11 +28,7 @@ using namespace terrasprite::viewer;
 namespace {
 
 Heightfield flat(int n, double spacing, float z) {
-  Heightfield h;
-  h.width = h.height = n;
-  h.spacing_x = h.spacing_y = spacing;
-  h.heights.assign(std::size_t(n) * n, z);
-  return h;
+  return viewer_test::flat_field(n, spacing, z);
 }
 
 InputEvent key(int k, int action) {

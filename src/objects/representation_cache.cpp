@@ -53,7 +53,7 @@ struct Reader {
       return {};
     }
     std::vector<T> v(n);
-    std::memcpy(v.data(), in.data(), n * sizeof(T));
+    if (n > 0) std::memcpy(v.data(), in.data(), n * sizeof(T));  // an empty vector's data() may be null
     in.remove_prefix(n * sizeof(T));
     return v;
   }

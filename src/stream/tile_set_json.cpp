@@ -130,7 +130,7 @@ void write_tile_set_json(const TerrainGrid& g, const std::vector<std::vector<flo
 namespace {
 
 // Largest side of a tile set's level 0: keeps every sample index and count
-// within 32 bits (tile writes 2^15 + 1 today; a margin of 32x).
+// within 32 bits, with a margin of 32x over the largest set tile writes (2^15 + 1).
 constexpr int kMaxTileSetSide = (1 << 20) + 1;
 
 // A whole number of tiles.json within [lo, hi] (a float or a huge integer is

@@ -3,8 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <optional>
 
 #include "cli_common.h"
+#include "terrasprite/terrain/geo_frame.h"
 #include "commands.h"
 #include "terrasprite/report/json_writer.h"
 
@@ -45,6 +48,31 @@ std::string nodata_text(const Heightfield& h) {
                      100 * filled_fraction(h), fill_method_text(h.fill_method));
 }
 
+// Where a terrain with a CRS lies: its CRS and lon/lat box (what --look-at
+// and lon/lat path keys take).
+struct Place {
+  std::string crs;
+  std::array<double, 4> lonlat_box;  ///< west, south, east, north
+};
+
+std::optional<Place> place_of(const Heightfield& h) {
+  if (!has_crs(h)) return std::nullopt;
+  const GeoFrame f(h, "info");
+  return Place{f.crs_name(), f.lonlat_box()};
+}
+
+nlohmann::json place_json(const std::optional<Place>& p) {
+  if (!p) return nullptr;
+  return {{"crs", p->crs}, {"lonlat_box", p->lonlat_box}};
+}
+
+std::string place_text(const std::optional<Place>& p) {
+  if (!p) return "no CRS: places are given in metres from the centre";
+  const auto& b = p->lonlat_box;
+  return fmt::format("CRS {}; longitude {:.5f} .. {:.5f}, latitude {:.5f} .. {:.5f} (WGS 84)",
+                     p->crs, b[0], b[2], b[1], b[3]);
+}
+
 }  // namespace
 
 void add_info(CLI::App& app, const OutputPolicy& policy) {
@@ -61,6 +89,7 @@ void add_info(CLI::App& app, const OutputPolicy& policy) {
     check_outputs(policy, "", {o->json});
     Terrain t = load_terrain_verbose(o->terrain);
     const Heightfield& h = t.heights;
+    const std::optional<Place> place = place_of(h);
     nlohmann::json j = {{"name", h.name},
                         {"samples", {h.width, h.height}},
                         {"spacing_m", {h.spacing_x, h.spacing_y}},
@@ -72,7 +101,8 @@ void add_info(CLI::App& app, const OutputPolicy& policy) {
                         {"resampled_to", nullptr},
                         {"texture", t.texture_name},
                         {"texture_size", {t.texture.width, t.texture.height}},
-                        {"georeferenced", h.geo.has_value()}};
+                        {"georeferenced", h.geo.has_value()},
+                        {"place", place_json(place)}};
     if (h.resampled_to) j["resampled_to"] = {h.resampled_to->first, h.resampled_to->second};
     if (!o->json.empty()) report::write_json(j, o->json, policy);
     fmt::print("{}: {} x {} samples, spacing {:.3f} x {:.3f} m, extent {:.1f} x {:.1f} m\n", h.name,
@@ -82,6 +112,7 @@ void add_info(CLI::App& app, const OutputPolicy& policy) {
                h.resampled_to ? fmt::format(", resampled to {} x {}", h.resampled_to->first,
                                             h.resampled_to->second)
                               : "");
+    fmt::print("{}\n", place_text(place));
   });
 }
 

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <ogr_spatialref.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "terrain/gdal_util.h"
@@ -94,6 +95,28 @@ std::string GeoFrame::footprint_text() const {
   const auto [w, n] = lonlat_of({-0.5 * impl_->extent_x, 0.5 * impl_->extent_y});
   const auto [e, s] = lonlat_of({0.5 * impl_->extent_x, -0.5 * impl_->extent_y});
   return fmt::format("{:.5f},{:.5f} (north-west) and {:.5f},{:.5f} (south-east)", w, n, e, s);
+}
+
+std::string GeoFrame::crs_name() const {
+  const OGRSpatialReference& r = impl_->raster;
+  const char* name = r.GetName();
+  const char* authority = r.GetAuthorityName(nullptr);
+  const char* code = r.GetAuthorityCode(nullptr);
+  const std::string named = name ? name : "unnamed CRS";
+  if (!authority || !code) return named;
+  return fmt::format("{}:{} ({})", authority, code, named);
+}
+
+std::array<double, 4> GeoFrame::lonlat_box() const {
+  std::array<double, 4> box = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+  const double hx = 0.5 * impl_->extent_x, hy = 0.5 * impl_->extent_y;
+  for (double fx : {-1.0, 0.0, 1.0})
+    for (double fy : {-1.0, 0.0, 1.0}) {
+      const auto [lon, lat] = lonlat_of({fx * hx, fy * hy});
+      box = {std::min(box[0], lon), std::min(box[1], lat), std::max(box[2], lon),
+             std::max(box[3], lat)};
+    }
+  return box;
 }
 
 }  // namespace terrasprite

@@ -57,6 +57,15 @@ TEST(PlacesCli, RendersMtFujiByLonLatAndStatesItsVoids) {  // about 9 s: four lo
   const tstest::CliResult i = tstest::run_cli("info --dem " + fuji() + " --json " + tmp / "i.json");
   ASSERT_EQ(i.status, 0) << i.output;
   EXPECT_NE(i.output.find("(0.2% of the grid) filled by AMLE"), std::string::npos) << i.output;
+  // Where it lies, in the terms --look-at takes (the tile spans 138..139 E, 35..36 N).
+  EXPECT_NE(i.output.find("CRS EPSG:4326 (WGS 84); longitude 138.00000 .. 139.00000, latitude "
+                          "35.00000 .. 36.00000"),
+            std::string::npos)
+      << i.output;
+  const nlohmann::json place = read_json(tmp / "i.json")["place"];
+  EXPECT_EQ(place["crs"], "EPSG:4326 (WGS 84)");
+  for (int k = 0; k < 4; ++k)
+    EXPECT_NEAR(place["lonlat_box"][k].get<double>(), (k % 2 ? 35.0 : 138.0) + (k >= 2), 1e-6);
   const nlohmann::json n = read_json(tmp / "i.json")["nodata"];
   EXPECT_NEAR(n["filled_fraction"].get<double>(), 2437.0 / (1201 * 1201), 1e-9);
   EXPECT_EQ(n["fill_method"], "amle");

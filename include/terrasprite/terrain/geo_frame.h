@@ -3,6 +3,7 @@
 // world metres (x east, y north from the grid's centre), through the raster's
 // own CRS.
 #pragma once
+#include <array>
 #include <memory>
 #include <string>
 
@@ -41,6 +42,12 @@ class GeoFrame {
   std::pair<double, double> lonlat_of(WorldXY p) const;
   /// The corner samples' lon,lat, for messages.
   std::string footprint_text() const;
+  /// The raster's CRS as a user names it: "EPSG:4326 (WGS 84)", or its name
+  /// alone when it has no authority code.
+  std::string crs_name() const;
+  /// The smallest longitude/latitude box holding the terrain's corners and
+  /// edge midpoints: {west, south, east, north}, degrees.
+  std::array<double, 4> lonlat_box() const;
 
  private:
   struct Impl;

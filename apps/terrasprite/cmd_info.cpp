@@ -7,9 +7,9 @@
 #include <optional>
 
 #include "cli_common.h"
-#include "terrasprite/terrain/geo_frame.h"
 #include "commands.h"
 #include "terrasprite/report/json_writer.h"
+#include "terrasprite/terrain/geo_frame.h"
 
 namespace terrasprite::cli {
 
@@ -19,7 +19,8 @@ namespace {
 // nearest a nodata source sample).
 double filled_fraction(const Heightfield& h) {
   if (h.voids.empty()) return 0.0;
-  return double(std::count(h.voids.begin(), h.voids.end(), std::uint8_t{1})) / double(h.voids.size());
+  return double(std::count(h.voids.begin(), h.voids.end(), std::uint8_t{1})) /
+         double(h.voids.size());
 }
 
 const char* fill_method_text(NodataFill f) {
@@ -107,8 +108,7 @@ void add_info(CLI::App& app, const OutputPolicy& policy) {
     if (!o->json.empty()) report::write_json(j, o->json, policy);
     fmt::print("{}: {} x {} samples, spacing {:.3f} x {:.3f} m, extent {:.1f} x {:.1f} m\n", h.name,
                h.width, h.height, h.spacing_x, h.spacing_y, h.extent_x(), h.extent_y());
-    fmt::print("heights {:.2f} .. {:.2f} m, {}{}\n", h.min_height(), h.max_height(),
-               nodata_text(h),
+    fmt::print("heights {:.2f} .. {:.2f} m, {}{}\n", h.min_height(), h.max_height(), nodata_text(h),
                h.resampled_to ? fmt::format(", resampled to {} x {}", h.resampled_to->first,
                                             h.resampled_to->second)
                               : "");

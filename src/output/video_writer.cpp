@@ -5,6 +5,7 @@
 #include "terrasprite/output/video_writer.h"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
@@ -22,7 +23,6 @@
 #include <cstring>
 #include <deque>
 #include <filesystem>
-#include <fmt/format.h>
 #include <fstream>
 #include <mutex>
 #include <optional>
@@ -272,8 +272,8 @@ VideoWriter::VideoWriter(std::string file, int width, int height, const VideoOpt
     throw InputError(fmt::format("{}: directory {} does not exist", s.file, dir.string()));
   s.partial = create_temp_beside(s.file);
   if (s.partial.empty())
-    throw InputError(fmt::format("{}: cannot write in its directory ({})", s.file,
-                                 std::strerror(errno)));
+    throw InputError(
+        fmt::format("{}: cannot write in its directory ({})", s.file, std::strerror(errno)));
   s.width = width;
   s.height = height;
   s.enc_w = width + (width & 1);

@@ -147,10 +147,10 @@ void replace_axis_ranges(const LodspriteResult& j, std::string& gp) {
     lod_ssim.push_back(q.pass.mean_ssim);
   }
   const std::tuple<const char*, const char*, const std::vector<double>*> lines[] = {
-      {"XRANGE_FRAMES", "x", &frames},          {"YRANGE_FRAMES", "y", &by_frames},
-      {"XRANGE_THRESHOLD", "x", &thresholds},   {"YRANGE_THRESHOLD", "y", &by_threshold},
-      {"YRANGE_SPEEDUP", "y", &speedup},        {"XRANGE_LOD", "x", &quads},
-      {"Y2RANGE_LOD", "y2", &lod_ssim},         {"YRANGE_LOD", "y", &lod_speedup}};
+      {"XRANGE_FRAMES", "x", &frames},        {"YRANGE_FRAMES", "y", &by_frames},
+      {"XRANGE_THRESHOLD", "x", &thresholds}, {"YRANGE_THRESHOLD", "y", &by_threshold},
+      {"YRANGE_SPEEDUP", "y", &speedup},      {"XRANGE_LOD", "x", &quads},
+      {"Y2RANGE_LOD", "y2", &lod_ssim},       {"YRANGE_LOD", "y", &lod_speedup}};
   for (const auto& [key, axis, values] : lines) {
     const std::size_t at = gp.find(key);
     if (at != std::string::npos) gp.replace(at, std::string(key).size(), axis_range(axis, *values));

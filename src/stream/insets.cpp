@@ -100,8 +100,8 @@ Warped warp(const InsetSpec& s, const std::string& wkt) {
     throw;
   }
   const std::string sentinel = untagged_sentinel(src, s.path);
-  std::vector<const char*> argv = {"-of", "MEM",     "-t_srs",     wkt.c_str(), "-r",   "bilinear",
-                                   "-ot", "Float32", "-dstnodata", "nan"};
+  std::vector<const char*> argv = {"-of",      "MEM", "-t_srs",  wkt.c_str(),  "-r",
+                                   "bilinear", "-ot", "Float32", "-dstnodata", "nan"};
   if (!sentinel.empty()) argv.insert(argv.end(), {"-srcnodata", sentinel.c_str()});
   argv.push_back(nullptr);
   GDALWarpAppOptions* opts = GDALWarpAppOptionsNew(const_cast<char**>(argv.data()), nullptr);

@@ -137,8 +137,8 @@ constexpr int kMaxTileSetSide = (1 << 20) + 1;
 // refused before any conversion).
 long long whole(const nlohmann::json& v, const std::string& path, const char* what, long long lo,
                 long long hi) {
-  if (!v.is_number_integer() || (v.is_number_unsigned() && v.get<unsigned long long>() >
-                                                               (unsigned long long)hi))
+  if (!v.is_number_integer() ||
+      (v.is_number_unsigned() && v.get<unsigned long long>() > (unsigned long long)hi))
     throw InputError(fmt::format("{}: {} must be a whole number in {} .. {}", path, what, lo, hi));
   const long long x = v.get<long long>();
   if (x < lo || x > hi)

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Image loading through GDAL (every raster format, georeferencing kept) with
 // stb as a fallback, and PNG writing through stb.
+#include "terrasprite/terrain/image_io.h"
+
 #include <fmt/format.h>
 #include <gdal.h>
 #include <stb_image.h>
@@ -14,7 +16,6 @@
 #include <filesystem>
 
 #include "terrain/gdal_util.h"
-#include "terrasprite/terrain/image_io.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/common/image.h"
 
@@ -153,9 +154,9 @@ std::string text_chunk(const std::string& keyword, const std::string& text) {
   std::string chunk;
   append_big_endian(chunk, std::uint32_t(body.size() - 4));
   chunk += body;
-  append_big_endian(chunk, std::uint32_t(crc32(crc32(0, nullptr, 0),
-                                               reinterpret_cast<const Bytef*>(body.data()),
-                                               uInt(body.size()))));
+  append_big_endian(
+      chunk, std::uint32_t(crc32(crc32(0, nullptr, 0), reinterpret_cast<const Bytef*>(body.data()),
+                                 uInt(body.size()))));
   return chunk;
 }
 

@@ -3,12 +3,11 @@
 // wrote (or what --overwrite names), checks every output before the work,
 // and an interrupted run leaves nothing of its own behind.
 #include <fmt/format.h>
+#include <gdal.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
-
-#include <gdal.h>
 
 #include "test_util.h"
 
@@ -215,10 +214,10 @@ TEST(CliOutputs, RerunsReplaceTheirOwnVideosAndNeverTouchTheUsersPartial) {
                               (tmp / "theirs.mp4"))
                 .status,
             0);
-  expect_refused(tstest::run_cli(render + (tmp / "theirs.mp4")),
-                 "--video theirs.mp4", "theirs.mp4: exists and was not written by terrasprite");
-  expect_refused(tstest::run_cli(render + tmp.path.string()),
-                 "--video DIR", "is a directory, not an output file");
+  expect_refused(tstest::run_cli(render + (tmp / "theirs.mp4")), "--video theirs.mp4",
+                 "theirs.mp4: exists and was not written by terrasprite");
+  expect_refused(tstest::run_cli(render + tmp.path.string()), "--video DIR",
+                 "is a directory, not an output file");
   for (const auto& e : fs::directory_iterator(tmp.path))
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
 }
@@ -252,9 +251,10 @@ TEST(CliOutputs, AFileSizeLimitFailsTheRunAndLeavesNothingComplete) {
   EXPECT_FALSE(fs::exists(tmp / "o"));
   EXPECT_FALSE(fs::exists(tmp / "o.partial"));
   if (tstest::have_tool("ffmpeg")) {
-    r = tstest::run_shell(limited + TS_CLI +
-                          " render --synthetic-size 65 --frames 40 --size 256x256 --crf 0 --video " +
-                          (tmp / "v.mp4"));
+    r = tstest::run_shell(
+        limited + TS_CLI +
+        " render --synthetic-size 65 --frames 40 --size 256x256 --crf 0 --video " +
+        (tmp / "v.mp4"));
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find("v.mp4: video encoding failed"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(tmp / "v.mp4"));

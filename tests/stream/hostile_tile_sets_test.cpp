@@ -46,17 +46,48 @@ TEST(HostileTileSets, EachLieInTilesJsonIsRefusedNamingIt) {
   ASSERT_EQ(tile_set_error(t.path / "good"), "");
   const nlohmann::json good = nlohmann::json::parse(std::ifstream(t.path / "good/tiles.json"));
   const std::vector<Lie> lies = {
-      {"no_tiles", [](auto& j) { j["levels"][0]["tiles"] = {0, 0}; }, "level 0 lists 0 x 0"},
-      {"negative_tiles", [](auto& j) { j["levels"][0]["tiles"] = {-1, -1}; }, "tiles[0] -1"},
-      {"many_tiles", [](auto& j) { j["levels"][0]["tiles"] = {1000, 1000}; },
+      {"no_tiles",
+       [](auto& j) {
+         j["levels"][0]["tiles"] = {0, 0};
+       },
+       "level 0 lists 0 x 0"},
+      {"negative_tiles",
+       [](auto& j) {
+         j["levels"][0]["tiles"] = {-1, -1};
+       },
+       "tiles[0] -1"},
+      {"many_tiles",
+       [](auto& j) {
+         j["levels"][0]["tiles"] = {1000, 1000};
+       },
        "level 0 lists 1000 x 1000"},
-      {"zero_spacing", [](auto& j) { j["spacing_m"] = {0, 30}; }, "sample spacing 0 x 30"},
-      {"negative_spacing", [](auto& j) { j["spacing_m"] = {-30, -30}; }, "sample spacing -30"},
-      {"huge_spacing", [](auto& j) { j["spacing_m"] = {1e308, 1e308}; }, "sample spacing 1e+308"},
+      {"zero_spacing",
+       [](auto& j) {
+         j["spacing_m"] = {0, 30};
+       },
+       "sample spacing 0 x 30"},
+      {"negative_spacing",
+       [](auto& j) {
+         j["spacing_m"] = {-30, -30};
+       },
+       "sample spacing -30"},
+      {"huge_spacing",
+       [](auto& j) {
+         j["spacing_m"] = {1e308, 1e308};
+       },
+       "sample spacing 1e+308"},
       {"huge_height", [](auto& j) { j["height_max"] = 1e308; }, "not finite heights"},
       {"inverted_heights", [](auto& j) { j["height_min"] = 5000; }, "heights 5000"},
-      {"float_samples", [](auto& j) { j["samples"] = {1e308, 65}; }, "samples[0] must be"},
-      {"wrapping_samples", [](auto& j) { j["samples"] = {4294967361LL, 65}; }, "samples[0]"},
+      {"float_samples",
+       [](auto& j) {
+         j["samples"] = {1e308, 65};
+       },
+       "samples[0] must be"},
+      {"wrapping_samples",
+       [](auto& j) {
+         j["samples"] = {4294967361LL, 65};
+       },
+       "samples[0]"},
       {"huge_bound", [](auto& j) { j["levels"][1]["tile_max_height"][0] = -1e30; },
        "tile_max_height of level 1 holds -1e+30"},
       {"level_count", [](auto& j) { j["bound_levels"] = 1e9; }, "bound_levels"},

@@ -57,11 +57,13 @@ std::vector<double> frame_row(const std::string& line, const std::string& file, 
 RecordedFrame recorded_frame(const std::vector<double>& v,
                              const std::map<std::string, std::size_t>& column,
                              const std::string& file, int row) {
-  const RecordedFrame f{v[column.at("ms")], v[column.at("predicted_ms")], v[column.at("budget_ms")]};
+  const RecordedFrame f{v[column.at("ms")], v[column.at("predicted_ms")],
+                        v[column.at("budget_ms")]};
   if (!std::isfinite(f.ms) || f.ms <= 0)
     throw InputError(fmt::format("{}: line {}: ms {}: a frame time must be finite and positive",
                                  file, row, f.ms));
-  for (const auto& [name, x] : {std::pair{"predicted_ms", f.predicted_ms}, {"budget_ms", f.budget_ms}})
+  for (const auto& [name, x] :
+       {std::pair{"predicted_ms", f.predicted_ms}, {"budget_ms", f.budget_ms}})
     if (!std::isnan(x) && !(std::isfinite(x) && x >= 0))
       throw InputError(fmt::format("{}: line {}: {} {}: must be finite and non-negative, or NaN",
                                    file, row, name, x));
@@ -78,9 +80,9 @@ double within_10pct(const std::vector<double>& v) {
 /// One scenario of one run replayed under `controller` at `target_ms`.
 ReplaySeries replay_series(const std::string& run, WalkScenario scenario, double target_ms,
                            const BudgetControllerOptions& controller) {
-  const std::string file =
-      (std::filesystem::path(run) / (std::string("frames_") + walk_scenario_name(scenario) + ".dat"))
-          .string();
+  const std::string file = (std::filesystem::path(run) /
+                            (std::string("frames_") + walk_scenario_name(scenario) + ".dat"))
+                               .string();
   const std::vector<RecordedFrame> frames = read_recorded_frames(file);
   std::vector<double> ms;
   ReplaySeries s{run, scenario, target_ms};

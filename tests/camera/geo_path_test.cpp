@@ -2,7 +2,6 @@
 // Geographic cameras: path keyframes in lon/lat and the look-at form
 // (target, range, heading, pitch) on a terrain with a CRS.
 #include <gtest/gtest.h>
-#include <ogr_spatialref.h>
 
 #include <cmath>
 #include <functional>
@@ -11,32 +10,14 @@
 #include "terrasprite/camera/geo_view.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/terrain/terrain.h"
+#include "geo_test_util.h"
 #include "test_util.h"
 
 using namespace terrasprite;
 
 namespace {
 
-// 11 x 11 samples 100 m high, 0.1 degree pixels from 138 E, 36 N (WGS 84); 1 km spacing.
-Heightfield geographic_plain() {
-  Heightfield h;
-  h.width = h.height = 11;
-  h.spacing_x = h.spacing_y = 1000;
-  h.heights.assign(121, 100.f);
-  h.name = "plain";
-  OGRSpatialReference s;
-  s.importFromEPSG(4326);
-  char* w = nullptr;
-  s.exportToWkt(&w);
-  GeoTransform g;
-  const double gt[6] = {138.0, 0.1, 0, 36.0, 0, -0.1};
-  std::copy(gt, gt + 6, g.gt);
-  g.wkt = w;
-  CPLFree(w);
-  h.geo = g;
-  h.geo_width = h.geo_height = 11;
-  return h;
-}
+Heightfield geographic_plain() { return tstest::geographic_grid(100.f, "plain"); }
 
 std::string what_of(const std::function<void()>& f) {
   try {

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Geographic places on a terrain (GeoFrame) and the nodata fill choices.
 #include <gtest/gtest.h>
-#include <ogr_spatialref.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,37 +10,14 @@
 #include "terrasprite/terrain/nodata_fill.h"
 #include "terrasprite/terrain/resample.h"
 #include "terrasprite/terrain/terrain.h"
+#include "geo_test_util.h"
 #include "test_util.h"
 
 using namespace terrasprite;
 
 namespace {
 
-std::string wgs84_wkt() {
-  OGRSpatialReference s;
-  s.importFromEPSG(4326);
-  char* w = nullptr;
-  s.exportToWkt(&w);
-  std::string out = w;
-  CPLFree(w);
-  return out;
-}
-
-// 11 x 11 samples, 0.1 degree pixels from 138 E, 36 N; 1 km spacing.
-Heightfield geographic_grid() {
-  Heightfield h;
-  h.width = h.height = 11;
-  h.spacing_x = h.spacing_y = 1000;
-  h.heights.assign(121, 0.f);
-  h.name = "grid";
-  GeoTransform g;
-  const double gt[6] = {138.0, 0.1, 0, 36.0, 0, -0.1};
-  std::copy(gt, gt + 6, g.gt);
-  g.wkt = wgs84_wkt();
-  h.geo = g;
-  h.geo_width = h.geo_height = 11;
-  return h;
-}
+Heightfield geographic_grid() { return tstest::geographic_grid(0.f, "grid"); }
 
 }  // namespace
 

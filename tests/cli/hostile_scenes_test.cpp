@@ -11,6 +11,7 @@
 #include <fstream>
 #include <map>
 
+#include "hostile_row.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;
@@ -93,14 +94,7 @@ void make_fixtures(const fs::path& w) {
 
 using tstest::snapshot;
 
-void expect_refused(const fs::path& work, const std::string& args, const std::string& fragment,
-                    const std::map<std::string, std::string>& before) {
-  const tstest::CliResult r = tstest::run_cli_in(work.string(), args);
-  EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
-  EXPECT_NE(r.output.find(fragment), std::string::npos) << args << "\n" << r.output;
-  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << "\n" << r.output;
-  EXPECT_EQ(snapshot(work), before) << args << ": the working directory changed";
-}
+using tstest::expect_refused_untouched;
 
 }  // namespace
 
@@ -111,12 +105,12 @@ TEST(HostileScenes, ObjectsSceneAndRenderObjectsRefuseTheSameFiles) {
   make_fixtures(work);
   const auto before = snapshot(work);
   for (const SceneRow& row : kScenes) {
-    expect_refused(work,
+    expect_refused_untouched(work,
                    std::string("objects scene --synthetic-size 33 --size 16x16 --frames 1 "
                                "--cache off --out o --scene ") +
                        row.file,
                    row.fragment, before);
-    expect_refused(work,
+    expect_refused_untouched(work,
                    std::string("render --synthetic-size 33 --size 16x16 --frames 1 --mode full "
                                "--objects-cache off --out o --objects ") +
                        row.file,
@@ -130,5 +124,5 @@ TEST(HostileScenes, ViewRefusesBadNumbersScriptsAndTheUsersFiles) {
   fs::create_directory(work);
   make_fixtures(work);
   const auto before = snapshot(work);
-  for (const Row& row : kViewRows) expect_refused(work, row.args, row.fragment, before);
+  for (const Row& row : kViewRows) expect_refused_untouched(work, row.args, row.fragment, before);
 }

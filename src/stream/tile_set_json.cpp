@@ -124,6 +124,7 @@ void write_tile_set_json(const TerrainGrid& g, const std::vector<std::vector<flo
   j["levels"] = levels;
   std::ofstream f(path);
   f << j.dump(1) << '\n';
+  f.close();  // a write the buffer held fails here (a full disk, a file-size limit)
   if (!f) throw InputError(fmt::format("{}: cannot write", path));
 }
 

@@ -11,11 +11,11 @@
 #include "bench_commands.h"
 #include "cli_common.h"
 #include "llvmpipe_threads.h"
-#include "terrasprite/objects/quality_table_cache.h"
-#include "terrasprite/objects/quality_table_json.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/experiment/hybrid/hybrid.h"
 #include "terrasprite/objects/lod_chain.h"
+#include "terrasprite/objects/quality_table_cache.h"
+#include "terrasprite/objects/quality_table_json.h"
 #include "terrasprite/output/output_dir.h"
 #include "terrasprite/report/hybrid_report.h"
 #include "terrasprite/report/json_writer.h"
@@ -91,9 +91,9 @@ std::optional<double> target_ms(const std::string& text) {
 
 /// --calibration-sizes: the list, or auto (image height / 8, / 2 and x 2).
 std::vector<int> calibration_sizes(const std::string& text, int h) {
-  const std::vector<int> sizes = text == "auto"
-                                     ? std::vector<int>{std::max(8, h / 8), std::max(16, h / 2), 2 * h}
-                                     : int_list(text, "--calibration-sizes");
+  const std::vector<int> sizes =
+      text == "auto" ? std::vector<int>{std::max(8, h / 8), std::max(16, h / 2), 2 * h}
+                     : int_list(text, "--calibration-sizes");
   for (int px : sizes)
     if (px < 4 || px > 8192)
       throw InputError(fmt::format("--calibration-sizes: {} is outside 4..8192", px));
@@ -135,8 +135,8 @@ void check_table_options(HybridCommand& c) {
   check_resolutions(o.relief_resolutions, "--relief-resolutions");
   for (int px : o.table_sizes)
     if (px < kMinTableSizePx || px > kMaxTableSizePx)
-      throw InputError(fmt::format("--table-sizes: {} is outside {}..{}", px, kMinTableSizePx,
-                                   kMaxTableSizePx));
+      throw InputError(
+          fmt::format("--table-sizes: {} is outside {}..{}", px, kMinTableSizePx, kMaxTableSizePx));
   o.octahedral_resolutions = int_list(c.octahedral_resolutions, "--octahedral-resolutions");
   check_resolutions(o.octahedral_resolutions, "--octahedral-resolutions");
 }
@@ -146,8 +146,8 @@ void check_table_options(HybridCommand& c) {
 QualityTable cached_table(GlSceneObjects& set, std::size_t i, const TableOptions& o,
                           const std::string& cache) {
   const LayoutModel& sm = set.layout_model(i);
-  const TableCacheEntry entry =
-      table_cache_entry(cache, sm.file, set.model(i).model(), sm.options, o, lod_chain_key(set.lod()));
+  const TableCacheEntry entry = table_cache_entry(cache, sm.file, set.model(i).model(), sm.options,
+                                                  o, lod_chain_key(set.lod()));
   std::optional<QualityTable> t = read_table_cache(entry);
   if (!t) {
     fmt::print(stderr, "measuring the quality table of {} ({})\n", sm.name,
@@ -180,8 +180,7 @@ void run_bench_hybrid(HybridCommand& c, const OutputPolicy& policy) {
       return report::write_json(report::quality_diagnosis_json(r.quality_diagnosis),
                                 c.quality_diagnosis, policy);
     case HybridMode::kBudgetSweep:
-      return report::write_json(report::budget_sweep_json(r.budget_sweep), c.budget_sweep,
-                                policy);
+      return report::write_json(report::budget_sweep_json(r.budget_sweep), c.budget_sweep, policy);
     case HybridMode::kWalkthrough:
       break;
   }

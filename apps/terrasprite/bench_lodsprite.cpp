@@ -191,9 +191,9 @@ void add_bench_lodsprite(CLI::App& bench, const OutputPolicy& policy) {
     if (!o->json.empty()) report::write_json(j, o->json, policy);
     nlohmann::json summary = j;
     summary.erase("per_frame");
-    print_bench_result(summary, o->json,
-                       report::lodsprite_summary_text(result) +
-                           fmt::format("report: {}/index.html\n", o->out));
+    print_bench_result(
+        summary, o->json,
+        report::lodsprite_summary_text(result) + fmt::format("report: {}/index.html\n", o->out));
   });
 }
 

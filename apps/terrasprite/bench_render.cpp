@@ -30,10 +30,10 @@ void add_bench_render(CLI::App& bench, const OutputPolicy& policy) {
   add_terrain_options(*cmd, o->terrain);
   cmd->add_option("--lod-quads", o->lod_quads, "coarse grid quads per side (default 16)");
   add_path_option(*cmd, o->path);
-  cmd->add_option("--frames", o->frames, "frames (default 460)")
-      ->check(CLI::Range(1, 1000000));
+  cmd->add_option("--frames", o->frames, "frames (default 460)")->check(CLI::Range(1, 1000000));
   cmd->add_option("--size", o->size, "image size WxH (default 512x512)");
-  cmd->add_option("--json", o->json, "also write the JSON here (stdout then gets a short summary, not the JSON)");
+  cmd->add_option("--json", o->json,
+                  "also write the JSON here (stdout then gets a short summary, not the JSON)");
   add_objects_options(*cmd, o->objects);
   cmd->callback([o, &policy] {
     auto [w, h] = parse_size(o->size, "--size");

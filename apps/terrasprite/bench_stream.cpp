@@ -75,7 +75,7 @@ StreamBenchOptions study_options(const BenchStreamOpts& o) {
   s.frames = o.frames;
   s.threads = o.threads;
   s.first_view_ms = o.first_view_ms;
-  s.in_memory = o.in_memory == "yes" ? InMemoryRun::kYes
+  s.in_memory = o.in_memory == "yes"  ? InMemoryRun::kYes
                 : o.in_memory == "no" ? InMemoryRun::kNo
                                       : InMemoryRun::kAuto;
   s.peer_command = peer_command(o);

@@ -100,7 +100,8 @@ void run(const BenchVoxelOpts& o, const OutputPolicy& policy) {
   out.commit();
   if (!o.json.empty()) report::write_json(j, o.json, policy);
   j.erase("per_frame");
-  std::string summary = fmt::format("bench voxel: {} frames at {}x{}\n", r.frames, r.width, r.height);
+  std::string summary =
+      fmt::format("bench voxel: {} frames at {}x{}\n", r.frames, r.width, r.height);
   for (const auto& v : j["variants"])
     summary += fmt::format("  {}: median {} ms, mean SSIM {}\n", v["name"].get<std::string>(),
                            v["median_ms"].dump(), v["mean_ssim"].dump());
@@ -129,7 +130,8 @@ void add_bench_voxel(CLI::App& bench, const OutputPolicy& policy) {
                   "multires: coarsen where a voxel covers fewer pixels than this (default 1)");
   cmd->add_option("--supersample", o->supersample,
                   "reference rays per pixel side (default 2, i.e. 2x2)");
-  cmd->add_option("--json", o->json, "also write the JSON here (stdout then gets a short summary, not the JSON)");
+  cmd->add_option("--json", o->json,
+                  "also write the JSON here (stdout then gets a short summary, not the JSON)");
   cmd->add_option(
       "--out", o->out,
       "output directory: plot, reference and multires frames, JSON (default out/bench_voxel)");

@@ -95,7 +95,8 @@ void add_bench_warp(CLI::App& bench, const OutputPolicy& policy) {
   cmd->add_option(
       "--real-every", o->real_every,
       "K for the flythrough cost figure: one real frame per K output frames (default 4)");
-  cmd->add_option("--json", o->json, "also write the JSON here (stdout then gets a short summary, not the JSON)");
+  cmd->add_option("--json", o->json,
+                  "also write the JSON here (stdout then gets a short summary, not the JSON)");
   cmd->add_option("--out", o->out, "output directory: plot, JSON (default out/bench_warp)");
   cmd->callback([o, &policy] { run(*o, policy); });
 }

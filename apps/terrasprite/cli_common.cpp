@@ -84,7 +84,9 @@ void add_fill_option(CLI::App& cmd, TerrainOptions& o) {
                  "--fill none: only info takes it; the renderers (GL and voxel) draw no holes "
                  "and tile writes whole heights (use --fill amle or gdal, and --show-voids to see "
                  "the filled cells)");
-           o.fill = f == "gdal" ? NodataFill::kGdal : f == "none" ? NodataFill::kNone : NodataFill::kAmle;
+           o.fill = f == "gdal"   ? NodataFill::kGdal
+                    : f == "none" ? NodataFill::kNone
+                                  : NodataFill::kAmle;
          },
          "how nodata cells (voids) are filled: amle (default; least steep surface from the rim), "
          "gdal (GDALFillNodata, inverse distance) or none (info only: the voids stay holes)")
@@ -219,10 +221,9 @@ std::function<void(const char*, int, int)> stage_progress(std::string label) {
 }
 
 CLI::Option* add_path_option(CLI::App& cmd, std::string& path, const std::string& default_text) {
-  return cmd.add_option(
-      "--path", path,
-      fmt::format("camera path: {} | a JSON path file (default {})", kPathChoices,
-                  default_text.empty() ? path : default_text));
+  return cmd.add_option("--path", path,
+                        fmt::format("camera path: {} | a JSON path file (default {})", kPathChoices,
+                                    default_text.empty() ? path : default_text));
 }
 
 void print_bench_result(const nlohmann::json& j, const std::string& json_file,

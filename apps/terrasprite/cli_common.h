@@ -2,8 +2,8 @@
 // Options and helpers shared by the sub-commands.
 #pragma once
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 
@@ -69,7 +69,8 @@ inline constexpr const char* kPathChoices =
 /// --path, defined once for every command that flies a path: a built-in path
 /// (kPathChoices) or a JSON path file. The help shows `default_text`, or
 /// `path`'s value when that is empty.
-CLI::Option* add_path_option(CLI::App& cmd, std::string& path, const std::string& default_text = "");
+CLI::Option* add_path_option(CLI::App& cmd, std::string& path,
+                             const std::string& default_text = "");
 
 /// A bench's result on stdout: with no --json file (`json_file` empty), the
 /// JSON `j` itself (the contract scripts read); with one, the short human

@@ -159,13 +159,13 @@ void print_scene_camera(const Camera& c, const Heightfield& h, const std::string
   std::string where;
   if (has_crs(h)) {
     const auto [lon, lat] = GeoFrame(h, "camera").lonlat_of({c.position.x, c.position.y});
-    where = fmt::format(" (lon {:.6f}, lat {:.6f}, {:.0f} m above sea level)", lon, lat,
-                        c.position.z);
+    where =
+        fmt::format(" (lon {:.6f}, lat {:.6f}, {:.0f} m above sea level)", lon, lat, c.position.z);
   }
-  fmt::print("camera: eye [{:.1f}, {:.1f}, {:.1f}] m{}, heading {:.1f}, pitch {:.1f}, fov {:.0f} "
-             "degrees; instances as a scene file: {}/placed.json\n",
-             c.position.x, c.position.y, c.position.z, where, c.yaw_deg, c.pitch_deg, c.fov_y_deg,
-             dir);
+  fmt::print(
+      "camera: eye [{:.1f}, {:.1f}, {:.1f}] m{}, heading {:.1f}, pitch {:.1f}, fov {:.0f} "
+      "degrees; instances as a scene file: {}/placed.json\n",
+      c.position.x, c.position.y, c.position.z, where, c.yaw_deg, c.pitch_deg, c.fov_y_deg, dir);
 }
 
 struct SceneArgs {
@@ -192,7 +192,8 @@ void add_objects_scene(CLI::App& objects, const OutputPolicy& policy) {
                   "where the LOD chains and impostors are cached, or 'off' (default: "
                   "~/.cache/terrasprite/objects)");
   cmd->add_option("--json", a->json, "write the figures as JSON");
-  cmd->add_option("--out", a->out, "output directory (frame.png, scene.json, placed.json: the instances as placed)")
+  cmd->add_option("--out", a->out,
+                  "output directory (frame.png, scene.json, placed.json: the instances as placed)")
       ->capture_default_str();
   cmd->callback([a, &policy] {
     FullGeometryOptions o;

@@ -14,13 +14,12 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "terrasprite/common/process_memory.h"
-#include "render_modes.h"
 #include "look_at_options.h"
 #include "objects_options.h"
-#include "terrasprite/terrain/image_io.h"
+#include "render_modes.h"
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/common/error.h"
+#include "terrasprite/common/process_memory.h"
 #include "terrasprite/common/stats.h"
 #include "terrasprite/experiment/render_run.h"
 #include "terrasprite/experiment/render_stack.h"
@@ -29,6 +28,7 @@
 #include "terrasprite/output/output_file.h"
 #include "terrasprite/output/video_writer.h"
 #include "terrasprite/report/json_writer.h"
+#include "terrasprite/terrain/image_io.h"
 
 namespace terrasprite::cli {
 namespace {
@@ -127,9 +127,8 @@ int frame_count(const RenderOpts& o) {
   int frames = o.frames;
   if (o.duration_s != 0) {
     if (!(o.duration_s > 0 && o.duration_s <= 1e5))
-      throw InputError(
-          fmt::format("--duration {}: must be a number of seconds, above 0 and at most 100000",
-                      o.duration_s));
+      throw InputError(fmt::format(
+          "--duration {}: must be a number of seconds, above 0 and at most 100000", o.duration_s));
     if (!(o.video_opts.fps > 0 && o.video_opts.fps <= 1000))
       throw InputError(fmt::format("--fps {}: must be above 0 and at most 1000", o.video_opts.fps));
     frames = int(std::lround(o.duration_s * o.video_opts.fps));
@@ -246,8 +245,7 @@ RenderRunResult fly_frames(const RenderOpts& o, const Checked& c, Renderer& rend
   Progress progress("render");
   ro.progress = std::ref(progress);
   const auto t0 = std::chrono::steady_clock::now();
-  RenderRunResult r =
-      run_render(renderer, std::span(path).subspan(c.first, c.last - c.first), ro);
+  RenderRunResult r = run_render(renderer, std::span(path).subspan(c.first, c.last - c.first), ro);
   if (sinks.video) sinks.video->finish();
   wall_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -339,9 +337,9 @@ void add_render(CLI::App& app, const OutputPolicy& policy) {
                                  "render a camera path with one renderer: PNG frames + stats JSON");
   auto o = std::make_shared<RenderOpts>();
   add_terrain_options(*cmd, o->terrain);
-  cmd->add_option("--mode", o->mode,
-                  fmt::format("renderer: {} (default {})", fmt::join(render_mode_names(), " | "),
-                              o->mode))
+  cmd->add_option(
+         "--mode", o->mode,
+         fmt::format("renderer: {} (default {})", fmt::join(render_mode_names(), " | "), o->mode))
       ->check(CLI::IsMember(render_mode_names()));
   cmd->add_option("--lod-quads", o->lod_quads,
                   "coarse grid quads per side for lod modes (default: from the terrain, a quad of "

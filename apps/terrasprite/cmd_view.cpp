@@ -8,8 +8,8 @@
 #include <optional>
 
 #include "cli_common.h"
-#include "look_at_options.h"
 #include "commands.h"
+#include "look_at_options.h"
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/experiment/render_stack.h"
@@ -40,8 +40,7 @@ struct ViewOpts {
 class StackRenderer : public viewer::ViewRenderer {
  public:
   StackRenderer(const Terrain& t, const RenderStackOptions& o)
-      : stack_(make_render_stack(t, o)),
-        sprite_(dynamic_cast<SpriteRenderer*>(stack_.real.get())) {
+      : stack_(make_render_stack(t, o)), sprite_(dynamic_cast<SpriteRenderer*>(stack_.real.get())) {
     if (o.mode == RenderMode::kVoxel)
       stack_.device = fmt::format(
           "cpu voxel {}, ratio {:.2f}{}",
@@ -120,8 +119,8 @@ void run(ViewOpts& o, const OutputPolicy& policy) {
   if (v.settings.real_every < 1 || v.settings.real_every > 64)
     throw InputError(fmt::format("--real-every {}: must be within 1..64", v.settings.real_every));
   if (!(v.record_every_s > 0 && v.record_every_s <= 3600))
-    throw InputError(fmt::format("--record-every {:g}: must be in (0, 3600] seconds",
-                                 v.record_every_s));
+    throw InputError(
+        fmt::format("--record-every {:g}: must be in (0, 3600] seconds", v.record_every_s));
   if (!(v.fly.speed_mps >= 0 && v.fly.speed_mps <= viewer::kMaxSpeedMps))
     throw InputError(fmt::format("--speed {:g}: must be in [0, {:g}] m/s (0: the default)",
                                  v.fly.speed_mps, viewer::kMaxSpeedMps));
@@ -153,14 +152,13 @@ void run(ViewOpts& o, const OutputPolicy& policy) {
         if (s.mode == RenderMode::kVoxel && !pyramid)
           pyramid = std::make_shared<VoxelTerrain>(terrain);
         return std::make_unique<StackRenderer>(
-            terrain,
-            stack_options(s, w, h, lighting, async_keyframes, context, pyramid.get()));
+            terrain, stack_options(s, w, h, lighting, async_keyframes, context, pyramid.get()));
       });
   nlohmann::json j = viewer::stats_json(stats);
   if (!o.stats.empty()) report::write_json(j, o.stats, policy);
   fmt::print("view {}: {} frames, median {:.1f} fps, 1% low {:.1f} fps, latency p95 {:.0f} ms\n",
-             to_string(stats.mode), stats.frames, double(j["fps_median"]), double(j["fps_low_1pct"]),
-             double(j["latency_ms_p95"]));
+             to_string(stats.mode), stats.frames, double(j["fps_median"]),
+             double(j["fps_low_1pct"]), double(j["latency_ms_p95"]));
 }
 
 }  // namespace
@@ -199,9 +197,10 @@ void add_view(CLI::App& app, const OutputPolicy& policy) {
   cmd->add_option("--record-every", o->viewer.record_every_s,
                   "seconds between recorded keyframes (default 0.5)");
   cmd->add_option("--play", o->play, "fly this path JSON file in real time");
-  cmd->add_option("--speed", o->viewer.fly.speed_mps,
-                  "flying speed m/s (default: half the height above ground per second, 5 m/s to 2% of "
-                  "the extent per second; +/- scale it)");
+  cmd->add_option(
+      "--speed", o->viewer.fly.speed_mps,
+      "flying speed m/s (default: half the height above ground per second, 5 m/s to 2% of "
+      "the extent per second; +/- scale it)");
   cmd->add_option("--clearance", o->viewer.fly.clearance_m,
                   "minimum height above ground, metres (default 0.5% of the extent)");
   cmd->add_flag("--free", o->free, "allow flying far outside the terrain");

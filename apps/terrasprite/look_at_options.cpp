@@ -33,8 +33,8 @@ std::optional<LookAtView> parse_look_at(const LookAtOptions& o, const Heightfiel
   LookAtView v;
   char extra = 0;
   if (std::sscanf(o.look_at.c_str(), "%lf,%lf%c", &v.lon, &v.lat, &extra) != 2)
-    throw InputError(
-        fmt::format("--look-at {}: expected LON,LAT in degrees (e.g. 138.7274,35.3606)", o.look_at));
+    throw InputError(fmt::format(
+        "--look-at {}: expected LON,LAT in degrees (e.g. 138.7274,35.3606)", o.look_at));
   v.range_m = o.range_m.value_or(0.2 * h.extent());
   v.heading_deg = o.heading_deg.value_or(0.0);
   v.pitch_deg = o.pitch_deg.value_or(-30.0);

@@ -16,13 +16,14 @@ constexpr double kMinRangeM = 1.0, kMaxRangeM = 1e7;
 
 void check_view(const LookAtView& v) {
   if (!(v.range_m >= kMinRangeM && v.range_m <= kMaxRangeM))
-    throw InputError(fmt::format("--range {}: must be within {:g} .. {:g} m", v.range_m,
-                                 kMinRangeM, kMaxRangeM));
+    throw InputError(fmt::format("--range {}: must be within {:g} .. {:g} m", v.range_m, kMinRangeM,
+                                 kMaxRangeM));
   if (!(v.pitch_deg >= -90 && v.pitch_deg <= 90))
-    throw InputError(fmt::format("--pitch {}: must be within -90 .. 90 degrees (negative looks down)",
-                                 v.pitch_deg));
+    throw InputError(fmt::format(
+        "--pitch {}: must be within -90 .. 90 degrees (negative looks down)", v.pitch_deg));
   if (!std::isfinite(v.heading_deg))
-    throw InputError(fmt::format("--heading {}: must be a finite number of degrees", v.heading_deg));
+    throw InputError(
+        fmt::format("--heading {}: must be a finite number of degrees", v.heading_deg));
 }
 
 // The eye `range` metres back from `target` along the view (heading, pitch).

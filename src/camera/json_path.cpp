@@ -104,8 +104,9 @@ void keyframe_eye(const nlohmann::json& k, const std::string& where, PathKeyfram
   }
   GeoPlace g = geo_place_of(k, where);
   if (k.contains("alt_m") == k.contains("agl_m"))
-    throw InputError(where + ": with lon/lat give one of \"alt_m\" (above sea level) or "
-                             "\"agl_m\" (above ground)");
+    throw InputError(where +
+                     ": with lon/lat give one of \"alt_m\" (above sea level) or "
+                     "\"agl_m\" (above ground)");
   g.above_ground = k.contains("agl_m");
   g.height_m = number_of(k, g.above_ground ? "agl_m" : "alt_m", 0.0, where);
   if (!(std::abs(g.height_m) <= kMaxCoordinateM))
@@ -235,7 +236,8 @@ KeyframePath placed_on(const KeyframePath& path, const Heightfield& h) {
     const std::string where = fmt::format("{}: keyframes[{}]", path.name, i);
     if (!frame) frame.emplace(h, where);
     if (const auto& g = k.geo_position) {
-      const WorldXY p = frame->world_of(g->lon, g->lat, GeoMargin::kNearTerrain, where + " lon,lat");
+      const WorldXY p =
+          frame->world_of(g->lon, g->lat, GeoMargin::kNearTerrain, where + " lon,lat");
       const double ground = h.sample(p.x, p.y);
       k.position = {p.x, p.y, g->above_ground ? ground + g->height_m : g->height_m};
     }

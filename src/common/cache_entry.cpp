@@ -35,8 +35,7 @@ bool take_raw(std::string_view& in, T& x) {
 /// is corrupt (its checksum included), holds another size or has bytes after it.
 bool decompress_frame(std::string_view in, std::uint64_t size, std::string& out) {
   constexpr std::uint64_t kFirstChunk = 1 << 20;
-  const std::unique_ptr<ZSTD_DCtx, std::size_t (*)(ZSTD_DCtx*)> d(ZSTD_createDCtx(),
-                                                                  ZSTD_freeDCtx);
+  const std::unique_ptr<ZSTD_DCtx, std::size_t (*)(ZSTD_DCtx*)> d(ZSTD_createDCtx(), ZSTD_freeDCtx);
   if (!d) return false;
   ZSTD_inBuffer src{in.data(), in.size(), 0};
   out.clear();
@@ -89,8 +88,7 @@ std::string encode_cache_entry(std::string_view key, std::string_view payload) {
   // empty texels and shrinks several times.
   const std::size_t header = out.size();
   out.resize(header + ZSTD_compressBound(payload.size()));
-  const std::unique_ptr<ZSTD_CCtx, std::size_t (*)(ZSTD_CCtx*)> c(ZSTD_createCCtx(),
-                                                                  ZSTD_freeCCtx);
+  const std::unique_ptr<ZSTD_CCtx, std::size_t (*)(ZSTD_CCtx*)> c(ZSTD_createCCtx(), ZSTD_freeCCtx);
   if (!c) return {};
   ZSTD_CCtx_setParameter(c.get(), ZSTD_c_compressionLevel, 1);
   ZSTD_CCtx_setParameter(c.get(), ZSTD_c_checksumFlag, 1);
@@ -133,8 +131,8 @@ CacheEntryRead decode_cache_entry(std::string_view bytes, std::string_view key,
     return r;
   }
   if (size > max_payload) {
-    r.problem = fmt::format("claims {} bytes, more than such an entry holds ({})", size,
-                            max_payload);
+    r.problem =
+        fmt::format("claims {} bytes, more than such an entry holds ({})", size, max_payload);
     return r;
   }
   if (const char* p = frame_problem(in, size)) {
@@ -163,8 +161,8 @@ CacheEntryRead read_cache_entry(const std::filesystem::path& file, std::string_v
   }
   // Every entry of this key and payload bound fits in this many bytes.
   const std::uint64_t largest =
-      kFixedHeader + key.size() + ZSTD_compressBound(std::size_t(std::min<std::uint64_t>(
-                                      max_payload, std::uint64_t(1) << 40)));
+      kFixedHeader + key.size() +
+      ZSTD_compressBound(std::size_t(std::min<std::uint64_t>(max_payload, std::uint64_t(1) << 40)));
   if (bytes_on_disk > largest) {
     r.problem = fmt::format("{} bytes, more than such an entry holds", bytes_on_disk);
     return r;

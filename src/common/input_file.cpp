@@ -17,7 +17,8 @@ std::string read_input_text(const std::string& path, std::string_view what,
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
   if (!fs::exists(st)) throw InputError(fmt::format("{}: no such {}", path, what));
-  if (fs::is_directory(st)) throw InputError(fmt::format("{}: is a directory, not a {}", path, what));
+  if (fs::is_directory(st))
+    throw InputError(fmt::format("{}: is a directory, not a {}", path, what));
   if (!fs::is_regular_file(st))
     throw InputError(fmt::format("{}: is not a regular file (a {} is expected)", path, what));
   const std::uintmax_t size = fs::file_size(path, ec);

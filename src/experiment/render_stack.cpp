@@ -18,8 +18,9 @@ namespace {
 void check_lod_quads(int quads, const Heightfield& h) {
   const int most = std::min(h.width, h.height) - 1;
   if (quads < 1 || quads > most)
-    throw InputError(fmt::format("lod_quads {}: must be between 1 and {} for the {}x{}-sample terrain",
-                                 quads, most, h.width, h.height));
+    throw InputError(
+        fmt::format("lod_quads {}: must be between 1 and {} for the {}x{}-sample terrain", quads,
+                    most, h.width, h.height));
 }
 
 // GL modes: the caller's current context, else one of our own.

@@ -14,12 +14,12 @@ std::string absolute_path(const std::string& file) {
 }
 
 nlohmann::json layout_model_json(const LayoutModel& m) {
-  nlohmann::json j = {{"name", m.name},
-                      {"file", absolute_path(m.file)},
-                      {"up", m.options.up == UpAxis::kZ ? "z" : "y"},
-                      {"height_m", m.options.height_m},
-                      {"color",
-                       {m.options.color.r, m.options.color.g, m.options.color.b, m.options.color.a}}};
+  nlohmann::json j = {
+      {"name", m.name},
+      {"file", absolute_path(m.file)},
+      {"up", m.options.up == UpAxis::kZ ? "z" : "y"},
+      {"height_m", m.options.height_m},
+      {"color", {m.options.color.r, m.options.color.g, m.options.color.b, m.options.color.a}}};
   if (!m.options.texture.empty()) j["texture"] = absolute_path(m.options.texture);
   if (m.options.double_sided) j["double_sided"] = *m.options.double_sided;
   return j;

@@ -26,16 +26,15 @@ std::string table_params(const TableOptions& o, const std::string& chain) {
   params += fmt::format("|r{}|s{}|a{}|fs{}|v{}|n{}|t{}|{}|ms{}|h{}", fmt::join(o.resolutions, ","),
                         fmt::join(o.sizes_px, ","), o.angle_step_deg, o.full_sphere, o.views,
                         o.timing_instances, fmt::join(o.ssim_targets, ","),
-                        fmt::join(o.psnr_targets, ","), o.samples,
-                        fmt::join(o.headings_deg, ","));
+                        fmt::join(o.psnr_targets, ","), o.samples, fmt::join(o.headings_deg, ","));
   return params;
 }
 
 }  // namespace
 
 TableCacheEntry table_cache_entry(const std::string& cache_dir, const std::string& model_file,
-                                  const Model& model, const ModelOptions& m,
-                                  const TableOptions& o, const std::string& chain) {
+                                  const Model& model, const ModelOptions& m, const TableOptions& o,
+                                  const std::string& chain) {
   const std::string source = model_source_key(model, m), params = table_params(o, chain);
   TableCacheEntry e;
   e.file = std::filesystem::path(cache_dir.empty() ? default_cache_dir() : cache_dir) /

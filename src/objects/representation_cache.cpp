@@ -53,7 +53,8 @@ struct Reader {
       return {};
     }
     std::vector<T> v(n);
-    if (n > 0) std::memcpy(v.data(), in.data(), n * sizeof(T));  // an empty vector's data() may be null
+    if (n > 0)
+      std::memcpy(v.data(), in.data(), n * sizeof(T));  // an empty vector's data() may be null
     in.remove_prefix(n * sizeof(T));
     return v;
   }
@@ -67,8 +68,7 @@ std::string default_cache_dir() {
 
 std::uint64_t model_content_hash(const Model& m) {
   const auto bytes = [](const auto& v) {
-    return std::string_view(reinterpret_cast<const char*>(v.data()),
-                            v.size() * sizeof(*v.data()));
+    return std::string_view(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(*v.data()));
   };
   std::uint64_t h = fnv1a(bytes(m.positions));
   h = fnv1a(bytes(m.normals), h);
@@ -84,9 +84,9 @@ std::uint64_t model_content_hash(const Model& m) {
     fields += fmt::format("t{}x{};", t.width, t.height);
     h = fnv1a(bytes(t.rgba), h);
   }
-  fields += fmt::format("n{}|s{}|b{},{},{},{},{},{}", m.normals_from_file, m.scale_to_m,
-                        m.bounds_min.x, m.bounds_min.y, m.bounds_min.z, m.bounds_max.x,
-                        m.bounds_max.y, m.bounds_max.z);
+  fields +=
+      fmt::format("n{}|s{}|b{},{},{},{},{},{}", m.normals_from_file, m.scale_to_m, m.bounds_min.x,
+                  m.bounds_min.y, m.bounds_min.z, m.bounds_max.x, m.bounds_max.y, m.bounds_max.z);
   return fnv1a(fields, h);
 }
 
@@ -96,8 +96,8 @@ std::string model_source_key(const Model& model, const ModelOptions& m) {
   // one still gets entries of its own. faces3: a double-sided material's
   // opposite twins drawn single-sided.
   const std::string params =
-      fmt::format("up{}|h{}|c{},{},{},{}|faces3|ds{}", int(m.up), m.height_m, m.color.r,
-                  m.color.g, m.color.b, m.color.a, m.double_sided ? int(*m.double_sided) : -1);
+      fmt::format("up{}|h{}|c{},{},{},{}|faces3|ds{}", int(m.up), m.height_m, m.color.r, m.color.g,
+                  m.color.b, m.color.a, m.double_sided ? int(*m.double_sided) : -1);
   return fmt::format("{:016x}{:016x}", model_content_hash(model), fnv1a(params));
 }
 
@@ -201,10 +201,12 @@ std::uint64_t lod_chain_max_bytes(const Model& model, const LodOptions& o) {
   constexpr double kPerTriangle = 3 * sizeof(std::uint32_t) + sizeof(MeshPart) +
                                   3 * (2 * sizeof(glm::vec3) + sizeof(glm::vec2));
   const double t = double(model.triangles()), ratio = std::clamp(o.ratio, 0.0, 1.0);
-  const double later = ratio < 1 ? std::min(kMaxLevels * t, 2 * t * ratio / (1 - ratio)) + kMaxLevels
-                                 : kMaxLevels * t;
+  const double later = ratio < 1
+                           ? std::min(kMaxLevels * t, 2 * t * ratio / (1 - ratio)) + kMaxLevels
+                           : kMaxLevels * t;
   const double level0 = double(model.vertices()) * (2 * sizeof(glm::vec3) + sizeof(glm::vec2)) +
-                        t * 3 * sizeof(std::uint32_t) + double(model.parts.size()) * sizeof(MeshPart);
+                        t * 3 * sizeof(std::uint32_t) +
+                        double(model.parts.size()) * sizeof(MeshPart);
   return std::uint64_t(8 + kMaxLevels * kLevelFields + level0 + later * kPerTriangle);
 }
 

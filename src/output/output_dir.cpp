@@ -115,7 +115,8 @@ OutputDir::OutputDir(const std::string& dir, OutputPolicy policy) : policy_(poli
   marker << generator_name() << "\n";
   marker.close();
   if (!marker)
-    throw InputError(fmt::format("{}: cannot write in output directory {}", dir, partial_.string()));
+    throw InputError(
+        fmt::format("{}: cannot write in output directory {}", dir, partial_.string()));
 }
 
 OutputDir::~OutputDir() {

@@ -55,7 +55,8 @@ Frame MeshRenderer::draw(const Camera& camera) {
                                      : DrapeSampling::kTrilinear;
   terrain.draw(mesh, vp, s_->options.lighting, sampling, s_->options.cull_back_faces);
   const long long triangles = mesh.triangles + s_->scene.draw_objects(camera);
-  return make_frame(camera, timer().end(), s_->quads <= 0 ? FrameClass::kFull : FrameClass::kLod, triangles);
+  return make_frame(camera, timer().end(), s_->quads <= 0 ? FrameClass::kFull : FrameClass::kLod,
+                    triangles);
 }
 
 }  // namespace terrasprite

@@ -101,9 +101,12 @@ nlohmann::json full_json(const LodspriteResult& r) {
 }
 
 nlohmann::json lod_json(const LodSummary& l) {
-  return {{"total_ms", l.total_ms},   {"median_ms", l.median_ms},
-          {"mean_psnr", l.mean_psnr}, {"mean_psnr_sprite_frames", number_or_null(l.mean_psnr_sprite_frames)},
-          {"mean_ssim", l.mean_ssim}, {"min_ssim", l.min_ssim},
+  return {{"total_ms", l.total_ms},
+          {"median_ms", l.median_ms},
+          {"mean_psnr", l.mean_psnr},
+          {"mean_psnr_sprite_frames", number_or_null(l.mean_psnr_sprite_frames)},
+          {"mean_ssim", l.mean_ssim},
+          {"min_ssim", l.min_ssim},
           {"mean_flip", l.mean_flip}};
 }
 
@@ -138,12 +141,12 @@ nlohmann::json bound_json(const SpeedupBound& b) {
 nlohmann::json targets_json(const LodspriteTargets& t) {
   nlohmann::json j = {{"paper_speedup", 12.32}, {"paper_keyframes", 28}};
   nlohmann::json why = nlohmann::json::object();
-  for (const auto& [key, check] : {
-           std::pair<const char*, const TargetCheck*>{"keyframes_at_most_28", &t.keyframes_at_most_28},
-           {"efficiency_at_least_0_9", &t.efficiency_at_least_0_9},
-           {"ssim_above_lod_on_95pct", &t.ssim_above_lod_on_95pct},
-           {"mean_psnr_above_lod", &t.mean_psnr_above_lod},
-           {"mean_psnr_above_lod_on_sprite_frames", &t.mean_psnr_above_lod_on_sprite_frames}}) {
+  for (const auto& [key, check] :
+       {std::pair<const char*, const TargetCheck*>{"keyframes_at_most_28", &t.keyframes_at_most_28},
+        {"efficiency_at_least_0_9", &t.efficiency_at_least_0_9},
+        {"ssim_above_lod_on_95pct", &t.ssim_above_lod_on_95pct},
+        {"mean_psnr_above_lod", &t.mean_psnr_above_lod},
+        {"mean_psnr_above_lod_on_sprite_frames", &t.mean_psnr_above_lod_on_sprite_frames}}) {
     if (check->state == TargetState::kNotApplicable) {
       j[key] = nullptr;
       why[key] = check->why;

@@ -2,8 +2,6 @@
 // index.html for `bench lodsprite` and `demo` (its figures: lodsprite_plots.cpp).
 #include "terrasprite/report/lodsprite_report.h"
 
-#include "report/lodsprite_plots.h"
-
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -12,6 +10,7 @@
 #include <sstream>
 #include <vector>
 
+#include "report/lodsprite_plots.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/report/plot.h"
 
@@ -27,7 +26,6 @@ namespace {
 std::string flip_text(double flip) {
   return flip < 0 ? "n/a" : fmt::format("{:.4f}", flip);
 }
-
 
 std::string row(const std::string& name, const std::string& value) {
   return fmt::format("<tr><th>{}</th><td>{}</td></tr>\n", name, value);
@@ -46,7 +44,6 @@ std::string pass(const TargetCheck& c) {
 std::string figure(double v, const char* format, const char* why) {
   return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : fmt::format("n/a ({})", why);
 }
-
 
 // Whether the benchmarked grid is the input's own or a resampling of it.
 std::string grid_origin(const TerrainInfo& t) {
@@ -248,19 +245,17 @@ std::string plot_caption(const LodspriteResult& j, const std::string& file) {
   if (file == "fig10_keyframes_vs_frames.png")
     return "Keyframes / frames when the same path is flown with more or fewer frames: smaller "
            "steps between frames give fewer keyframes per frame." +
-           std::string(flat(j.frame_count_sweep, [](const FrameCountPoint& p) {
-                          return p.keyframe_fraction;
-                        })
-                            ? " Flat here: every frame count gave the same fraction."
-                            : "");
+           std::string(flat(j.frame_count_sweep,
+                            [](const FrameCountPoint& p) { return p.keyframe_fraction; })
+                           ? " Flat here: every frame count gave the same fraction."
+                           : "");
   if (file == "fig11_keyframes_vs_threshold.png")
     return "Keyframes / frames at each error threshold." +
-           std::string(flat(j.threshold_sweep, [](const ThresholdPoint& p) {
-                          return p.pass.keyframes;
-                        })
-                            ? " Flat here: every threshold gave the same keyframes, so the "
-                              "error trigger did not decide them (see the table of triggers)."
-                            : "");
+           std::string(
+               flat(j.threshold_sweep, [](const ThresholdPoint& p) { return p.pass.keyframes; })
+                   ? " Flat here: every threshold gave the same keyframes, so the "
+                     "error trigger did not decide them (see the table of triggers)."
+                   : "");
   if (file == "fig12_speedup_vs_threshold.png")
     return "Speed-up over full resolution at each threshold: measured from totals, and derived "
            "from the per-class medians.";
@@ -312,9 +307,10 @@ void html_plots(const LodspriteResult& j, const std::string& plot_error, std::os
   }
   h << "<h2>Plots (the paper's Figs. 8-12 from our data)</h2>\n";
   for (const char* p : plot_files(j))
-    h << fmt::format("<figure style='display:block'><img src='{0}' alt='{0}'><figcaption>{1}"
-                     "</figcaption></figure>\n",
-                     p, plot_caption(j, p));
+    h << fmt::format(
+        "<figure style='display:block'><img src='{0}' alt='{0}'><figcaption>{1}"
+        "</figcaption></figure>\n",
+        p, plot_caption(j, p));
 }
 
 void html_sweeps(const LodspriteResult& j, std::ostringstream& h) {
@@ -411,10 +407,9 @@ std::string lodsprite_summary_text(const LodspriteResult& r) {
   std::vector<std::string> triggers;
   for (const KeyframeTriggerRow& t : r.keyframes_by_trigger())
     triggers.push_back(fmt::format("{} {}", t.keyframes, to_string(t.trigger)));
-  text += fmt::format(
-      "keyframes {} of {} ({}); speed-up {:.2f}x over full resolution, r {}\n",
-      r.sprite.keyframes, r.frames, fmt::join(triggers, ", "), r.speedup,
-      figure(r.bound.r, "{:.1f}", "no sprite frames"));
+  text += fmt::format("keyframes {} of {} ({}); speed-up {:.2f}x over full resolution, r {}\n",
+                      r.sprite.keyframes, r.frames, fmt::join(triggers, ", "), r.speedup,
+                      figure(r.bound.r, "{:.1f}", "no sprite frames"));
   const LodspriteTargets t = r.targets();
   text += fmt::format(
       "targets: keyframes <= 28 {}; efficiency >= 0.9 {}; SSIM above LOD on 95% {}; mean PSNR "

@@ -184,9 +184,10 @@ std::vector<std::string> objects_report_warnings(const TableOptions& o) {
   std::vector<int> sizes = o.sizes_px;
   std::sort(sizes.begin(), sizes.end());
   if (std::unique(sizes.begin(), sizes.end()) - sizes.begin() < 2)
-    w.push_back(fmt::format("--sizes-px {}: one size; the fig2 lines (quality against size) "
-                            "are single points",
-                            o.sizes_px.front()));
+    w.push_back(
+        fmt::format("--sizes-px {}: one size; the fig2 lines (quality against size) "
+                    "are single points",
+                    o.sizes_px.front()));
   return w;
 }
 
@@ -275,8 +276,8 @@ nlohmann::json full_geometry_json(const FullGeometryResult& r) {
           {"placed_instances_file", "placed.json"}};
 }
 
-void write_full_geometry(const FullGeometryResult& r, OutputDir& out,
-                         const std::string& json_path, const OutputPolicy& policy) {
+void write_full_geometry(const FullGeometryResult& r, OutputDir& out, const std::string& json_path,
+                         const OutputPolicy& policy) {
   save_png(r.frame, out.file("frame.png"));
   write_text(out.file("placed.json"), object_layout_json(r.placed));
   const nlohmann::json j = full_geometry_json(r);

@@ -28,34 +28,33 @@ nlohmann::json cog_json(const StreamSourceInfo& s) {
 }
 
 nlohmann::json streamed_json(const StreamSummary& s) {
-  return {
-      {"median_ms", s.median_ms},
-      {"p99_ms", s.p99_ms},
-      {"stall_frames", s.stall_frames},
-      {"slow_frames_without_streaming", s.slow_frames_without_streaming},
-      {"degraded_samples_total", s.degraded_samples_total},
-      {"degraded_fraction_after_warmup", number_or_null(s.degraded_fraction_after_warmup)},
-      {"hit_rate", s.hit_rate},
-      {"hit_rate_after_warmup", s.hit_rate_after_warmup},
-      {"io_mb_s", s.io_mb_s},
-      {"bytes_read_mb", s.bytes_read_mb},
-      {"peak_rss_mb", s.peak_rss_mb},
-      {"pinned_mb", s.pinned_mb},
-      {"first_frame_ms", s.first_frame_ms},
-      {"first_frame_parts_ms",
-       {{"open", s.open_ms},
-        {"path", s.path_ms},
-        {"pinned_levels", s.pinned_ms},
-        {"first_view", s.first_view_ms}}},
-      {"first_view",
-       {{"max_wait_ms", s.first_view_max_wait_ms},
-        {"tiles_missed", s.first_view_tiles_missed},
-        {"still_missing", s.first_view_still_missing}}},
-      {"first_frame_method",
-       "from the start of the command to the first frame shown: open, then the path planned "
-       "while the pinned levels load (the two overlap), then the first view (an unshown draw "
-       "at frame 0's camera, then a wait of at most first_view.max_wait_ms for the tiles it "
-       "missed), then frame 0; the in-memory peer's load is not counted"}};
+  return {{"median_ms", s.median_ms},
+          {"p99_ms", s.p99_ms},
+          {"stall_frames", s.stall_frames},
+          {"slow_frames_without_streaming", s.slow_frames_without_streaming},
+          {"degraded_samples_total", s.degraded_samples_total},
+          {"degraded_fraction_after_warmup", number_or_null(s.degraded_fraction_after_warmup)},
+          {"hit_rate", s.hit_rate},
+          {"hit_rate_after_warmup", s.hit_rate_after_warmup},
+          {"io_mb_s", s.io_mb_s},
+          {"bytes_read_mb", s.bytes_read_mb},
+          {"peak_rss_mb", s.peak_rss_mb},
+          {"pinned_mb", s.pinned_mb},
+          {"first_frame_ms", s.first_frame_ms},
+          {"first_frame_parts_ms",
+           {{"open", s.open_ms},
+            {"path", s.path_ms},
+            {"pinned_levels", s.pinned_ms},
+            {"first_view", s.first_view_ms}}},
+          {"first_view",
+           {{"max_wait_ms", s.first_view_max_wait_ms},
+            {"tiles_missed", s.first_view_tiles_missed},
+            {"still_missing", s.first_view_still_missing}}},
+          {"first_frame_method",
+           "from the start of the command to the first frame shown: open, then the path planned "
+           "while the pinned levels load (the two overlap), then the first view (an unshown draw "
+           "at frame 0's camera, then a wait of at most first_view.max_wait_ms for the tiles it "
+           "missed), then frame 0; the in-memory peer's load is not counted"}};
 }
 
 nlohmann::json in_memory_json(const std::optional<InMemorySummary>& m) {
@@ -97,29 +96,29 @@ nlohmann::json stream_bench_json(const StreamBenchResult& r) {
 
 nlohmann::json stream_definitions_json() {
   const std::string warm = std::to_string(kStreamWarmupFrames);
-  return {
-      {"median_ms", "median streamed frame time: the draw, the cache's update included"},
-      {"p99_ms", "99th percentile of the streamed frame times"},
-      {"stall_frames",
-       "frames over twice their in-memory time (without the in-memory run: over twice the "
-       "median of the 21 frames around them) in which the cache streamed: a tile lookup "
-       "missed, or tiles were loaded, evicted or failed"},
-      {"slow_frames_without_streaming",
-       "frames as slow as a stall but with no streaming in them: timing noise of this machine"},
-      {"degraded_samples_total",
-       "height reads over the run served from a coarser level than the ray march asked"},
-      {"degraded_fraction_after_warmup",
-       "of the height reads from frame " + warm +
-           " on, the share served coarser than asked (0..1); null when the run has no frame "
-           "past frame " + warm},
-      {"hit_rate", "tile lookups that found their tile resident, over all lookups (0..1)"},
-      {"hit_rate_after_warmup", "the same from frame " + warm + " on"},
-      {"io_mb_s", "tile bytes decoded from disk per second of the streamed run"},
-      {"peak_rss_mb", "the streaming process's peak resident memory"},
-      {"first_frame_ms", "from the command's start to the first frame shown"},
-      {"verdict",
-       "'fell behind' with any stall frame; else 'served coarser data' when over 1% of reads "
-       "after the warm-up were degraded; else 'kept up'"}};
+  return {{"median_ms", "median streamed frame time: the draw, the cache's update included"},
+          {"p99_ms", "99th percentile of the streamed frame times"},
+          {"stall_frames",
+           "frames over twice their in-memory time (without the in-memory run: over twice the "
+           "median of the 21 frames around them) in which the cache streamed: a tile lookup "
+           "missed, or tiles were loaded, evicted or failed"},
+          {"slow_frames_without_streaming",
+           "frames as slow as a stall but with no streaming in them: timing noise of this machine"},
+          {"degraded_samples_total",
+           "height reads over the run served from a coarser level than the ray march asked"},
+          {"degraded_fraction_after_warmup",
+           "of the height reads from frame " + warm +
+               " on, the share served coarser than asked (0..1); null when the run has no frame "
+               "past frame " +
+               warm},
+          {"hit_rate", "tile lookups that found their tile resident, over all lookups (0..1)"},
+          {"hit_rate_after_warmup", "the same from frame " + warm + " on"},
+          {"io_mb_s", "tile bytes decoded from disk per second of the streamed run"},
+          {"peak_rss_mb", "the streaming process's peak resident memory"},
+          {"first_frame_ms", "from the command's start to the first frame shown"},
+          {"verdict",
+           "'fell behind' with any stall frame; else 'served coarser data' when over 1% of reads "
+           "after the warm-up were degraded; else 'kept up'"}};
 }
 
 std::string stream_summary_text(const StreamBenchResult& r) {
@@ -130,9 +129,9 @@ std::string stream_summary_text(const StreamBenchResult& r) {
                         100 * s.degraded_fraction_after_warmup, kStreamWarmupFrames)
           : fmt::format("degraded reads after the warm-up n/a (no frame past frame {})",
                         kStreamWarmupFrames);
-  const std::string vs_memory =
-      r.in_memory ? fmt::format(", {:.2f}x the in-memory median", r.ratio_median)
-                  : std::string(", no in-memory run to compare");
+  const std::string vs_memory = r.in_memory
+                                    ? fmt::format(", {:.2f}x the in-memory median", r.ratio_median)
+                                    : std::string(", no in-memory run to compare");
   std::string text = fmt::format(
       "bench stream: {} frames at {}x{} over {}x{} samples, {} MB cache: median {:.1f} ms, "
       "p99 {:.1f} ms{}\n",
@@ -163,8 +162,8 @@ nlohmann::json stream_per_frame_json(const StreamBenchResult& r) {
     a.push_back({{"frame", i},
                  {"ms", f.ms},
                  {"update_ms", f.update_ms},
-                 {"in_memory_ms", f.in_memory_ms ? nlohmann::json(*f.in_memory_ms)
-                                                 : nlohmann::json(nullptr)},
+                 {"in_memory_ms",
+                  f.in_memory_ms ? nlohmann::json(*f.in_memory_ms) : nlohmann::json(nullptr)},
                  {"degraded_samples", f.stats.degraded_samples},
                  {"tiles_requested", f.stats.requested},
                  {"tiles_loaded", f.stats.loaded},

@@ -15,9 +15,9 @@ nlohmann::json terrain_json(const TerrainInfo& t) {
           {"height_max", t.height_max},
           {"texture", t.texture},
           // null: the input's own grid; else its samples before --resample
-          {"resampled_from", t.resampled_from ? nlohmann::json{t.resampled_from->first,
-                                                               t.resampled_from->second}
-                                              : nlohmann::json(nullptr)}};
+          {"resampled_from", t.resampled_from
+                                 ? nlohmann::json{t.resampled_from->first, t.resampled_from->second}
+                                 : nlohmann::json(nullptr)}};
 }
 
 nlohmann::json terrain_json(const Terrain& t) {

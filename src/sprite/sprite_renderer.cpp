@@ -17,8 +17,8 @@
 #include "sprite/keyframe.h"
 #include "sprite/keyframe_cache.h"
 #include "sprite/sprite_pass.h"
-#include "terrasprite/sprite/adaptive_mesh.h"
 #include "terrasprite/common/error.h"
+#include "terrasprite/sprite/adaptive_mesh.h"
 
 namespace terrasprite {
 

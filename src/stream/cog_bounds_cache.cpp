@@ -110,7 +110,8 @@ bool load_cog_bounds(const std::string& dir, const std::string& key, int W, int 
   }
   if (!r.payload) {
     if (!r.problem.empty())
-      fmt::print(stderr, "terrasprite: note: ignoring the cached bounds {}: {}; computing them again\n",
+      fmt::print(stderr,
+                 "terrasprite: note: ignoring the cached bounds {}: {}; computing them again\n",
                  file, r.problem);
     return false;
   }

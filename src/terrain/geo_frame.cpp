@@ -17,13 +17,16 @@ struct GeoFrame::Impl {
   OGRSpatialReference wgs84, raster;
   std::unique_ptr<OGRCoordinateTransformation> to_raster, to_wgs84;
   double gt[6] = {0, 1, 0, 0, 0, 1};
-  int geo_w = 0, geo_h = 0;       // samples `gt` describes
+  int geo_w = 0, geo_h = 0;           // samples `gt` describes
   double extent_x = 0, extent_y = 0;  // world metres
 };
 
-bool has_crs(const Heightfield& h) { return h.geo && !h.geo->wkt.empty(); }
+bool has_crs(const Heightfield& h) {
+  return h.geo && !h.geo->wkt.empty();
+}
 
-GeoFrame::GeoFrame(const Heightfield& h, const std::string& what) : impl_(std::make_unique<Impl>()) {
+GeoFrame::GeoFrame(const Heightfield& h, const std::string& what)
+    : impl_(std::make_unique<Impl>()) {
   if (!has_crs(h))
     throw InputError(fmt::format(
         "{}: {} has no coordinate reference system, so geographic places cannot be put on it "
@@ -35,8 +38,8 @@ GeoFrame::GeoFrame(const Heightfield& h, const std::string& what) : impl_(std::m
   m.wgs84.SetWellKnownGeogCS("WGS84");
   m.wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   if (m.raster.importFromWkt(h.geo->wkt.c_str()) != OGRERR_NONE)
-    throw InputError(fmt::format("{}: the CRS of {} cannot be read ({})", what, h.name,
-                                 capture.last()));
+    throw InputError(
+        fmt::format("{}: the CRS of {} cannot be read ({})", what, h.name, capture.last()));
   m.raster.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   m.to_raster.reset(OGRCreateCoordinateTransformation(&m.wgs84, &m.raster));
   m.to_wgs84.reset(OGRCreateCoordinateTransformation(&m.raster, &m.wgs84));
@@ -57,14 +60,15 @@ GeoFrame& GeoFrame::operator=(GeoFrame&&) noexcept = default;
 WorldXY GeoFrame::world_of(double lon, double lat, GeoMargin margin,
                            const std::string& what) const {
   if (!std::isfinite(lon) || !std::isfinite(lat))
-    throw InputError(fmt::format("{} {},{}: longitude and latitude must be finite", what, lon, lat));
+    throw InputError(
+        fmt::format("{} {},{}: longitude and latitude must be finite", what, lon, lat));
   if (lat < -90 || lat > 90)
     throw InputError(fmt::format(
         "{} {},{}: latitude must be within -90 .. 90 degrees (the order is longitude, latitude)",
         what, lon, lat));
   if (lon < -180 || lon > 360)
-    throw InputError(fmt::format("{} {},{}: longitude must be within -180 .. 360 degrees", what,
-                                 lon, lat));
+    throw InputError(
+        fmt::format("{} {},{}: longitude must be within -180 .. 360 degrees", what, lon, lat));
   const Impl& m = *impl_;
   double X = lon, Y = lat;
   if (!m.to_raster->Transform(1, &X, &Y))
@@ -75,10 +79,10 @@ WorldXY GeoFrame::world_of(double lon, double lat, GeoMargin margin,
   const double fy = ((Y - m.gt[3]) / m.gt[5] - 0.5) / (m.geo_h - 1);
   const double slack = margin == GeoMargin::kOnTerrain ? 1e-9 : 1.0;
   if (!(fx >= -slack && fx <= 1 + slack && fy >= -slack && fy <= 1 + slack))
-    throw InputError(fmt::format(
-        "{} {},{}: {} the terrain (its corners are {})", what, lon, lat,
-        margin == GeoMargin::kOnTerrain ? "not on" : "more than one extent away from",
-        footprint_text()));
+    throw InputError(
+        fmt::format("{} {},{}: {} the terrain (its corners are {})", what, lon, lat,
+                    margin == GeoMargin::kOnTerrain ? "not on" : "more than one extent away from",
+                    footprint_text()));
   return {(fx - 0.5) * m.extent_x, (0.5 - fy) * m.extent_y};
 }
 

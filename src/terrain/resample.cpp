@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
+#include "terrasprite/terrain/resample.h"
+
 #include <tbb/parallel_for.h>
 
 #include <cmath>
-
-#include "terrasprite/terrain/resample.h"
 
 namespace terrasprite {
 

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The terrain pipeline's first stage: heights from a file or the generator,
 // resampling, exaggeration, then the drape texture registered over them.
-#include "terrasprite/terrain/image_io.h"
 #include "terrasprite/terrain/terrain.h"
 
 #include <fmt/format.h>
@@ -14,6 +13,7 @@
 #include "terrain/grid_sample.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/terrain/dem_loader.h"
+#include "terrasprite/terrain/image_io.h"
 #include "terrasprite/terrain/resample.h"
 #include "terrasprite/terrain/synth.h"
 #include "terrasprite/terrain/texture_gen.h"
@@ -152,9 +152,9 @@ void check_height_range(const std::string& name, double lowest, double highest,
                         const std::string& hint) {
   if (!(std::abs(lowest) <= kMaxAbsHeightM && std::abs(highest) <= kMaxAbsHeightM &&
         lowest <= highest))
-    throw InputError(fmt::format("{}: heights {:g} .. {:g} m are not finite heights within {:g} m{}",
-                                 name, lowest, highest, kMaxAbsHeightM,
-                                 hint.empty() ? "" : "; " + hint));
+    throw InputError(
+        fmt::format("{}: heights {:g} .. {:g} m are not finite heights within {:g} m{}", name,
+                    lowest, highest, kMaxAbsHeightM, hint.empty() ? "" : "; " + hint));
 }
 
 Terrain load_terrain(const TerrainOptions& o, std::vector<std::string>* warnings) {

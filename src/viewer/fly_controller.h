@@ -32,9 +32,9 @@ double auto_speed_mps(double agl_m, double extent_m);
 
 /// Turns events into camera motion. Key bindings (GLFW codes): W/S or UP/DOWN
 /// forward/back, A/D strafe, LEFT/RIGHT turn, Q up, E down, +/- or wheel speed
-/// x/÷ 1.25 (within kMinSpeedMps..kMaxSpeedMps), SHIFT fast (x4), mouse look (yaw, pitch), O orbit around the
-/// ground point at the view centre (mouse and A/D circle, W/S move in and
-/// out), R reset to the start view. The heightfield must outlive the controller.
+/// x/÷ 1.25 (within kMinSpeedMps..kMaxSpeedMps), SHIFT fast (x4), mouse look (yaw, pitch), O orbit
+/// around the ground point at the view centre (mouse and A/D circle, W/S move in and out), R reset
+/// to the start view. The heightfield must outlive the controller.
 class FlyController {
  public:
   FlyController(const Heightfield& heights, const Camera& start, FlyOptions options = {});

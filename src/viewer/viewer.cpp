@@ -293,7 +293,8 @@ void Loop::present(std::optional<RenderedFrame>& f, Clock::time_point now) {
     }
     info_.render_ms = f->frame.ms;
     info_.triangles = f->frame.triangles;
-    info_.cls = std::string(frame_class_name(f->frame.cls)) + (f->landed ? " (keyframe landed)" : "");
+    info_.cls =
+        std::string(frame_class_name(f->frame.cls)) + (f->landed ? " (keyframe landed)" : "");
     info_.error_px = f->error_px;
     info_.keyframes = f->keyframes;
     info_.device = f->device;
@@ -332,16 +333,16 @@ void Loop::present(std::optional<RenderedFrame>& f, Clock::time_point now) {
   const Clock::time_point swapped = Clock::now();
   last_swap_ = swapped;
   for (auto& [img, file] : shots_)
-    writes_.push_back(std::async(std::launch::async, write_window_png, std::move(img), file,
-                                 policy_for(file)));
+    writes_.push_back(
+        std::async(std::launch::async, write_window_png, std::move(img), file, policy_for(file)));
   shots_.clear();
   if (!f) return;
   // Book-keeping of a newly shown frame: its interval and the events it shows.
   if (stats_.frames > 0) {
     const double ms = seconds(swapped - last_new_swap_) * 1000;
     stats_.frame_ms.push_back(ms);
-    info_.history.push_back(
-        {float(ms), f->frame.cls == FrameClass::kKey || f->frame.cls == FrameClass::kVoxel || f->landed});
+    info_.history.push_back({float(ms), f->frame.cls == FrameClass::kKey ||
+                                            f->frame.cls == FrameClass::kVoxel || f->landed});
     if (info_.history.size() > 240) info_.history.pop_front();
     double sum = 0;
     for (const auto& s : info_.history) sum += s.ms;

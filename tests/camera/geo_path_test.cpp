@@ -6,18 +6,20 @@
 #include <cmath>
 #include <functional>
 
+#include "geo_test_util.h"
 #include "terrasprite/camera/camera_path.h"
 #include "terrasprite/camera/geo_view.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/terrain/terrain.h"
-#include "geo_test_util.h"
 #include "test_util.h"
 
 using namespace terrasprite;
 
 namespace {
 
-Heightfield geographic_plain() { return tstest::geographic_grid(100.f, "plain"); }
+Heightfield geographic_plain() {
+  return tstest::geographic_grid(100.f, "plain");
+}
 
 std::string what_of(const std::function<void()>& f) {
   try {
@@ -51,8 +53,9 @@ TEST(GeoPath, GeographicKeysNeedACrsAndValidPlaces) {
   plain.geo.reset();
   const std::string k = R"({"keyframes": [{"t": 0, "lon": 138.55, "lat": 35.45, "agl_m": 10,
                                             "yaw_deg": 0}]})";
-  EXPECT_NE(what_of([&] { path_from_json(k, "geo.json", plain, 1, 1.0); })
-                .find("no coordinate reference system"),
+  EXPECT_NE(what_of([&] {
+              path_from_json(k, "geo.json", plain, 1, 1.0);
+            }).find("no coordinate reference system"),
             std::string::npos);
   const Heightfield h = geographic_plain();
   auto error = [&](const std::string& key) {
@@ -61,9 +64,9 @@ TEST(GeoPath, GeographicKeysNeedACrsAndValidPlaces) {
     });
   };
   EXPECT_NE(error(R"("lon": 138.5, "lat": 35.4, "yaw_deg": 0)").find("alt_m"), std::string::npos);
-  EXPECT_NE(error(R"("lon": 138.5, "lat": 35.4, "alt_m": 1, "agl_m": 1, "yaw_deg": 0)")
-                .find("one of"),
-            std::string::npos);
+  EXPECT_NE(
+      error(R"("lon": 138.5, "lat": 35.4, "alt_m": 1, "agl_m": 1, "yaw_deg": 0)").find("one of"),
+      std::string::npos);
   EXPECT_NE(error(R"("lon": 138.5, "lat": 135, "alt_m": 1, "yaw_deg": 0)").find("lat 135"),
             std::string::npos);
   EXPECT_NE(error(R"("lon": 138.5, "lat": 35.4, "position": [0,0,1], "alt_m": 1, "yaw_deg": 0)")

@@ -26,8 +26,7 @@ TEST(BenchOutputs, LodspriteBenchmarksTheInputsOwnGridAndSummarisesWithJson) {
   const auto r = tstest::run_cli(kLodsprite + "--json " + tmp / "a.json" + " --out " + tmp / "a");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(r.output.find("\"per_frame\""), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("65 x 65 samples, the input's own grid"), std::string::npos)
-      << r.output;
+  EXPECT_NE(r.output.find("65 x 65 samples, the input's own grid"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("targets: keyframes <= 28 n/a"), std::string::npos) << r.output;
   const nlohmann::json j = read_json(tmp / "a.json");
   EXPECT_EQ(j["terrain"]["samples"], nlohmann::json({65, 65}));

@@ -105,16 +105,18 @@ TEST(HostileScenes, ObjectsSceneAndRenderObjectsRefuseTheSameFiles) {
   make_fixtures(work);
   const auto before = snapshot(work);
   for (const SceneRow& row : kScenes) {
-    expect_refused_untouched(work,
-                   std::string("objects scene --synthetic-size 33 --size 16x16 --frames 1 "
-                               "--cache off --out o --scene ") +
-                       row.file,
-                   row.fragment, before);
-    expect_refused_untouched(work,
-                   std::string("render --synthetic-size 33 --size 16x16 --frames 1 --mode full "
-                               "--objects-cache off --out o --objects ") +
-                       row.file,
-                   row.fragment, before);
+    expect_refused_untouched(
+        work,
+        std::string("objects scene --synthetic-size 33 --size 16x16 --frames 1 "
+                    "--cache off --out o --scene ") +
+            row.file,
+        row.fragment, before);
+    expect_refused_untouched(
+        work,
+        std::string("render --synthetic-size 33 --size 16x16 --frames 1 --mode full "
+                    "--objects-cache off --out o --objects ") +
+            row.file,
+        row.fragment, before);
   }
 }
 

@@ -27,7 +27,9 @@ void expect_one_line_error(const std::string& args, const std::string& fragment)
   EXPECT_LE(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << "\n" << r.output;
 }
 
-nlohmann::json read_json(const std::string& f) { return nlohmann::json::parse(std::ifstream(f)); }
+nlohmann::json read_json(const std::string& f) {
+  return nlohmann::json::parse(std::ifstream(f));
+}
 
 }  // namespace
 
@@ -51,7 +53,8 @@ TEST(PlacesCli, RendersMtFujiByLonLatAndStatesItsVoids) {  // about 9 s: four lo
   const tstest::CliResult r = tstest::run_cli(
       "render --dem " + fuji() +
       " --look-at 138.7274,35.3606 --range 15000 --heading 0 --pitch -20 --frames 1 --size "
-      "32x32 --out " + tmp / "la");
+      "32x32 --out " +
+      tmp / "la");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(fs::exists(tmp / "la/frame_0000.png"));
   const tstest::CliResult i = tstest::run_cli("info --dem " + fuji() + " --json " + tmp / "i.json");
@@ -69,11 +72,11 @@ TEST(PlacesCli, RendersMtFujiByLonLatAndStatesItsVoids) {  // about 9 s: four lo
   const nlohmann::json n = read_json(tmp / "i.json")["nodata"];
   EXPECT_NEAR(n["filled_fraction"].get<double>(), 2437.0 / (1201 * 1201), 1e-9);
   EXPECT_EQ(n["fill_method"], "amle");
-  ASSERT_EQ(tstest::run_cli("info --fill gdal --dem " + fuji() + " --json " + tmp / "g.json").status,
-            0);
+  ASSERT_EQ(
+      tstest::run_cli("info --fill gdal --dem " + fuji() + " --json " + tmp / "g.json").status, 0);
   EXPECT_EQ(read_json(tmp / "g.json")["nodata"]["fill_method"], "gdal");
-  ASSERT_EQ(tstest::run_cli("info --fill none --dem " + fuji() + " --json " + tmp / "n.json").status,
-            0);
+  ASSERT_EQ(
+      tstest::run_cli("info --fill none --dem " + fuji() + " --json " + tmp / "n.json").status, 0);
   EXPECT_EQ(read_json(tmp / "n.json")["nodata"]["fill_method"], "none");
 }
 
@@ -84,9 +87,11 @@ TEST(PlacesCli, ObjectsSceneReportsItsCameraAndWritesPlacedInstances) {  // abou
   std::ofstream(tmp / "s.json") << R"({"models": [{"name": "pot", "file": ")" << d
                                 << R"(/models_scans/teapot.obj", "height_m": 20}],
       "scatter": [{"model": "pot", "count": 5, "seed": 2, "min_spacing_m": 40}]})";
-  const tstest::CliResult r = tstest::run_cli(
-      "objects scene --synthetic-size 65 --scene " + tmp / "s.json" + " --frames 1 --size 64x64 "
-      "--cache off --out " + tmp / "sc");
+  const tstest::CliResult r =
+      tstest::run_cli("objects scene --synthetic-size 65 --scene " + tmp / "s.json" +
+                      " --frames 1 --size 64x64 "
+                      "--cache off --out " +
+                      tmp / "sc");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("camera: eye ["), std::string::npos) << r.output;
   const nlohmann::json s = read_json(tmp / "sc/scene.json");

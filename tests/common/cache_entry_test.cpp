@@ -79,8 +79,8 @@ TEST(CacheEntry, ASizeClaimBeyondTheCallersBoundIsRefusedBeforeDecoding) {
   const std::string payload = some_payload();
   const std::string e = ts::encode_cache_entry(kKey, payload);
   const std::size_t at = 8 + 4 + 4 + kKey.size();
-  for (const std::uint64_t claim : {std::uint64_t(1) << 40, std::uint64_t(4) << 30,
-                                    ~std::uint64_t(0), ~std::uint64_t(0) - 1}) {
+  for (const std::uint64_t claim :
+       {std::uint64_t(1) << 40, std::uint64_t(4) << 30, ~std::uint64_t(0), ~std::uint64_t(0) - 1}) {
     std::string bad = e;
     std::memcpy(bad.data() + at, &claim, 8);
     const ts::CacheEntryRead r = ts::decode_cache_entry(bad, kKey, 1 << 20);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The experiment driver with fake renderers (no GL): what it draws, reads
 // back, scores and keeps, frame by frame. CI cost: well under a second.
+#include "terrasprite/experiment/experiment.h"
+
 #include <gtest/gtest.h>
 
 #include <map>
@@ -8,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "terrasprite/experiment/experiment.h"
 #include "terrasprite/experiment/flythrough.h"
 
 namespace terrasprite {
@@ -99,7 +100,7 @@ TEST(Experiment, DrawsReadsAndScoresInOrderAgainstTheReference) {
   // Times and classes come from the frames: a draws 1, 11, 21, 31.
   EXPECT_EQ(ra.ms().median, 16.0) << "median of 1, 11, 21, 31";
   EXPECT_EQ(ra.ms().p90, 31.0) << "nearest rank: the 4th of 4";
-  EXPECT_EQ(ra.count(FrameClass::kKey), 4);  // the odd frames
+  EXPECT_EQ(ra.count(FrameClass::kKey), 4);             // the odd frames
   EXPECT_EQ(r.run("b").count(FrameClass::kSprite), 2);  // the even frames
   EXPECT_THROW(r.run("nobody"), std::out_of_range);
 }

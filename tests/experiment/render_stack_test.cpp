@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: MIT
 // Render modes named in one place, and the voxel + warp stack assembled
 // once: sizes, margins and the frames it returns (CPU only, no GL).
+#include "terrasprite/experiment/render_stack.h"
+
 #include <gtest/gtest.h>
 
-#include "terrasprite/common/error.h"
 #include "experiment_test_util.h"
+#include "terrasprite/common/error.h"
 #include "terrasprite/experiment/render_mode.h"
 #include "terrasprite/experiment/render_run.h"
-#include "terrasprite/experiment/render_stack.h"
 
 namespace terrasprite {
 namespace {
@@ -23,7 +24,9 @@ TEST(RenderMode, EveryNameParsesBackToItsMode) {
   }
 }
 
-Terrain tiny_terrain() { return tiny_synthetic_terrain(33); }
+Terrain tiny_terrain() {
+  return tiny_synthetic_terrain(33);
+}
 
 Camera overview(const Terrain& t, double aspect) {
   const double e = t.heights.extent();
@@ -61,7 +64,7 @@ TEST(RenderStack, VoxelWithAWarpDrawsRealFramesWithTheMarginAndWarpsBetween) {
   o.warp = WarpMethod::kPoly2;
   o.real_every = 3;
   RenderStack s = make_render_stack(t, o);
-  EXPECT_FALSE(s.voxel);  // the shared pyramids are used
+  EXPECT_FALSE(s.voxel);     // the shared pyramids are used
   EXPECT_EQ(s.margin_x, 2);  // 0.05 x 40
   EXPECT_EQ(s.margin_y, 2);  // 0.05 x 30 = 1.5, rounded away from zero
   ASSERT_TRUE(s.warp);

@@ -15,11 +15,11 @@
 #include <filesystem>
 #include <memory>
 
-#include "terrasprite/terrain/image_io.h"
 #include "terrasprite/gl/gl_context.h"
-#include "terrasprite/raster/mesh_renderer.h"
 #include "terrasprite/quality/quality.h"
+#include "terrasprite/raster/mesh_renderer.h"
 #include "terrasprite/sprite/sprite_renderer.h"
+#include "terrasprite/terrain/image_io.h"
 #include "terrasprite/terrain/terrain.h"
 #include "terrasprite/voxel/voxel_renderer.h"
 

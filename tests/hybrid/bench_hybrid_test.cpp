@@ -153,18 +153,19 @@ TEST(BenchReplayController, BadRunsExitTwoNamingTheFile) {
   std::ofstream(dir / "run/hybrid.json") << R"({"target_ms": 10})";
   std::ofstream(dir / "run/frames_pm.dat") << "frame ms predicted_ms budget_ms\n0 9 8 8\n1 9 x 8\n";
   std::ofstream(dir / "run/frames_mixed-optimal.dat") << "frame ms\n0 9\n";
-  std::ofstream(dir / "run/frames_mixed.dat") << "frame ms predicted_ms budget_ms\n0 9 8 8\n1 NaN 8 8\n";
+  std::ofstream(dir / "run/frames_mixed.dat")
+      << "frame ms predicted_ms budget_ms\n0 9 8 8\n1 NaN 8 8\n";
   std::ofstream(dir / "run/frames_full.dat") << "frame ms predicted_ms budget_ms\n0 9 8 -inf\n";
   struct Case {
     std::string args, names;
   };
-  for (const Case& c :
-       std::vector<Case>{{dir / "nothing", "hybrid.json"},
-                         {dir / "run" + " --scenarios pm", "line 3: 'x' is not a number"},
-                         {dir / "run" + " --scenarios mixed-optimal", "no 'predicted_ms' column"},
-                         {dir / "run" + " --scenarios mixed", "line 3: ms nan: a frame time"},
-                         {dir / "run" + " --scenarios full", "line 2: budget_ms -inf"},
-                         {dir / "run" + " --scenarios ibr", "frames_ibr.dat: no such frames file"}}) {
+  for (const Case& c : std::vector<Case>{
+           {dir / "nothing", "hybrid.json"},
+           {dir / "run" + " --scenarios pm", "line 3: 'x' is not a number"},
+           {dir / "run" + " --scenarios mixed-optimal", "no 'predicted_ms' column"},
+           {dir / "run" + " --scenarios mixed", "line 3: ms nan: a frame time"},
+           {dir / "run" + " --scenarios full", "line 2: budget_ms -inf"},
+           {dir / "run" + " --scenarios ibr", "frames_ibr.dat: no such frames file"}}) {
     const tstest::CliResult r =
         tstest::run_cli("bench replay-controller " + c.args + " --json " + (dir / "r.json"));
     EXPECT_EQ(r.status, 2) << c.args << ": " << r.output;

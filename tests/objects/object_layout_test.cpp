@@ -9,8 +9,8 @@
 #include <fstream>
 
 #include "terrasprite/common/error.h"
-#include "terrasprite/terrain/terrain.h"
 #include "terrasprite/terrain/grid_mesh.h"
+#include "terrasprite/terrain/terrain.h"
 #include "test_util.h"
 
 namespace ts = terrasprite;

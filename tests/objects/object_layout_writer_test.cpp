@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 // Placed instances written as a scene file read back to the same instances.
+#include "terrasprite/objects/object_layout_writer.h"
+
 #include <gtest/gtest.h>
 
 #include "terrasprite/objects/object_layout.h"
-#include "terrasprite/objects/object_layout_writer.h"
 
 using namespace terrasprite;
 

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 // objects table's report text: Table 1's Markdown and the warnings for
 // options that would make a figure degenerate. No GL; well under a second.
+#include "terrasprite/report/objects_report.h"
+
 #include <gtest/gtest.h>
 
 #include <sstream>
-
-#include "terrasprite/report/objects_report.h"
 
 namespace terrasprite {
 namespace {

@@ -9,14 +9,14 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "object_test_util.h"
-#include "test_util.h"
 #include "terrasprite/objects/quality_table_json.h"
 #include "terrasprite/objects/representation_cache.h"
+#include "test_util.h"
 
 namespace ts = terrasprite;
 namespace fs = std::filesystem;
@@ -91,8 +91,9 @@ TEST_F(TableCaching, AFlippedByteOrATruncationIsAMiss) {
   EXPECT_NE(note_of([&] { got = ts::read_table_cache(e); }).find("not a regular file"),
             std::string::npos);
   EXPECT_FALSE(got);
-  EXPECT_NE(note_of([&] { ts::write_table_cache(e, ts::table_json(ts::QualityTable{}, o)); })
-                .find("cannot write"),
+  EXPECT_NE(note_of([&] {
+              ts::write_table_cache(e, ts::table_json(ts::QualityTable{}, o));
+            }).find("cannot write"),
             std::string::npos);
 }
 

@@ -8,16 +8,16 @@
 #include <gtest/gtest.h>
 #include <zstd.h>
 
-#include <filesystem>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 
 #include "gl/render_target.h"
 #include "object_test_util.h"
-#include "test_util.h"
 #include "terrasprite/gl/gl_context.h"
 #include "terrasprite/objects/object_renderer.h"
+#include "test_util.h"
 
 namespace ts = terrasprite;
 namespace fs = std::filesystem;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Videos through ffmpeg: exact frame count, rate and size by ffprobe; failures
 // are one line and leave no file; split-and-join by frame range matches one run.
+#include "terrasprite/output/video_writer.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,7 +12,6 @@
 #include <nlohmann/json.hpp>
 
 #include "terrasprite/common/error.h"
-#include "terrasprite/output/video_writer.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;
@@ -48,7 +49,8 @@ Probe probe(const std::string& file) {
 
 /// Decoded RGB bytes of every frame.
 std::string decode(const std::string& file) {
-  return tstest::run_shell("ffmpeg -v error -i '" + file + "' -f rawvideo -pix_fmt rgb24 - 2>/dev/null")
+  return tstest::run_shell("ffmpeg -v error -i '" + file +
+                           "' -f rawvideo -pix_fmt rgb24 - 2>/dev/null")
       .output;
 }
 
@@ -222,9 +224,9 @@ TEST(RenderVideo, SplitByFrameRangeJoinsToTheSingleRun) {
   EXPECT_EQ(j["frames"][0]["frame"], 5);
   std::ofstream(tmp / "list.txt") << "file '" << (tmp / "a.mp4") << "'\nfile '" << (tmp / "b.mp4")
                                   << "'\n";
-  const auto joined_run = tstest::run_shell("ffmpeg -v error -f concat -safe 0 -i '" +
-                                            (tmp / "list.txt") + "' -c copy '" +
-                                            (tmp / "joined.mp4") + "'");
+  const auto joined_run =
+      tstest::run_shell("ffmpeg -v error -f concat -safe 0 -i '" + (tmp / "list.txt") +
+                        "' -c copy '" + (tmp / "joined.mp4") + "'");
   ASSERT_EQ(joined_run.status, 0) << joined_run.output;
   Probe all = probe(tmp / "all.mp4"), joined = probe(tmp / "joined.mp4");
   EXPECT_EQ(all.frames, 12);

@@ -410,9 +410,8 @@ TEST(CogBoundsCache, AWrongKeyADamagedOrAnImpossibleEntryIsAMiss) {
   std::vector<float> v(payload->size() / 4);
   std::memcpy(v.data(), payload->data(), payload->size());
   std::fill(v.begin() + 2, v.end(), -1e30f);
-  std::ofstream(a_entry, std::ios::binary | std::ios::trunc)
-      << encode_cache_entry(key, std::string_view(reinterpret_cast<const char*>(v.data()),
-                                                  v.size() * 4));
+  std::ofstream(a_entry, std::ios::binary | std::ios::trunc) << encode_cache_entry(
+      key, std::string_view(reinterpret_cast<const char*>(v.data()), v.size() * 4));
   reopen("bounds no pass can make");
 }
 

@@ -5,19 +5,21 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geo_test_util.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/terrain/geo_frame.h"
 #include "terrasprite/terrain/nodata_fill.h"
 #include "terrasprite/terrain/resample.h"
 #include "terrasprite/terrain/terrain.h"
-#include "geo_test_util.h"
 #include "test_util.h"
 
 using namespace terrasprite;
 
 namespace {
 
-Heightfield geographic_grid() { return tstest::geographic_grid(0.f, "grid"); }
+Heightfield geographic_grid() {
+  return tstest::geographic_grid(0.f, "grid");
+}
 
 }  // namespace
 

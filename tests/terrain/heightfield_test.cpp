@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: MIT
 // Heightfield::sample: bilinear inside the grid, clamped to its border
 // outside, and never indexing outside it, whatever the coordinates.
+#include "terrasprite/terrain/heightfield.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <utility>
 #include <vector>
-
-#include "terrasprite/terrain/heightfield.h"
 
 namespace {
 using namespace terrasprite;
@@ -25,10 +25,10 @@ Heightfield three_by_two() {
 
 TEST(HeightfieldSample, BilinearInsideAndClampedOutside) {
   const Heightfield h = three_by_two();
-  EXPECT_FLOAT_EQ(h.sample(0, 0), 3.5f);      // the middle of samples 2 and 5
-  EXPECT_FLOAT_EQ(h.sample(-10, 5), 1.0f);    // sample (0, 0), the north-west corner
-  EXPECT_FLOAT_EQ(h.sample(-1e6, 5), 1.0f);   // far west: the border
-  EXPECT_FLOAT_EQ(h.sample(1e6, -1e6), 6.0f); // far south-east: the corner
+  EXPECT_FLOAT_EQ(h.sample(0, 0), 3.5f);       // the middle of samples 2 and 5
+  EXPECT_FLOAT_EQ(h.sample(-10, 5), 1.0f);     // sample (0, 0), the north-west corner
+  EXPECT_FLOAT_EQ(h.sample(-1e6, 5), 1.0f);    // far west: the border
+  EXPECT_FLOAT_EQ(h.sample(1e6, -1e6), 6.0f);  // far south-east: the corner
 }
 
 TEST(HeightfieldSample, NonFiniteCoordinatesReadTheBorder) {

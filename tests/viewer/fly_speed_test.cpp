@@ -33,9 +33,9 @@ TEST(FlySpeed, FollowsTheHeightAboveGroundWithinBounds) {
 TEST(FlySpeed, DefaultOnA100KmTerrainNearTheGroundIsSteerable) {
   const Heightfield h = flat_field(1001, 100, 500);  // 100 km across
   FlyOptions o;
-  o.clearance_m = 20;                             // the default speed; a low clearance
-  FlyController fly(h, camera_at(700), o);        // 200 m above the ground
-  EXPECT_NEAR(fly.speed_mps(), 100, 1e-9);        // not a tenth of the extent (10 km/s)
+  o.clearance_m = 20;                       // the default speed; a low clearance
+  FlyController fly(h, camera_at(700), o);  // 200 m above the ground
+  EXPECT_NEAR(fly.speed_mps(), 100, 1e-9);  // not a tenth of the extent (10 km/s)
   InputEvent plus;
   plus.kind = InputKind::kKey;
   plus.key = GLFW_KEY_EQUAL;

@@ -12,12 +12,12 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "flat_field.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/terrain/terrain.h"
 #include "test_util.h"
 #include "viewer/fly_controller.h"
 #include "viewer/input_event.h"
-#include "flat_field.h"
 #include "viewer/path_recorder.h"
 #include "viewer/run_stats.h"
 
@@ -110,13 +110,15 @@ TEST(InputScript, BadFilesAreOneLineInputErrors) {
 TEST(InputScript, OutOfRangeNumbersNameTheFileLineAndEvent) {
   tstest::TempDir tmp;
   const std::pair<const char*, const char*> cases[] = {
-      {"{\"events\": [\n  {\"type\": \"wheel\", \"dy\": 1},\n  {\"type\": \"wheel\", \"dy\": 1e308}]}",
+      {"{\"events\": [\n  {\"type\": \"wheel\", \"dy\": 1},\n  {\"type\": \"wheel\", \"dy\": "
+       "1e308}]}",
        ":3: event 1: \"dy\" 1e+308 must be between -100 and 100"},
       {"{\"events\": [{\"type\": \"mouse\",\n \"dx\": 1}, {\"type\": \"mouse\", \"dx\": -1e6}]}",
        ":2: event 1: \"dx\" -1e+06 must be between -100000 and 100000"},
       {"{\"note\": \"[events\\\"]\",\n\"events\":\n[\n\n{\"t\": 1e300, \"type\": \"wheel\"}]}",
        ":5: event 0: \"t\" 1e+300 must be between 0 and 86400"},
-      {"{\"events\": [], \"events\": [{\"type\": \"wheel\"},\n{\"type\": \"wheel\", \"dx\": -101}]}",
+      {"{\"events\": [], \"events\": [{\"type\": \"wheel\"},\n{\"type\": \"wheel\", \"dx\": "
+       "-101}]}",
        ":2: event 1: \"dx\" -101"}};
   int i = 0;
   for (const auto& [text, fragment] : cases) {
@@ -335,12 +337,14 @@ TEST(ViewCli, RepeatedOutputsAndAFarWheelUnderXvfb) {
   tstest::TempDir tmp;
   const std::string shot = tmp / "shot.png";
   std::ofstream(tmp / "far.json") << R"({"events": [
-    {"t": 0.1, "type": "screenshot", "file": ")" << shot << R"("},
+    {"t": 0.1, "type": "screenshot", "file": ")"
+                                  << shot << R"("},
     {"t": 0.2, "type": "wheel", "dy": 100}, {"t": 0.2, "type": "wheel", "dy": 100},
     {"t": 0.2, "type": "wheel", "dy": 100},
     {"t": 0.3, "type": "key", "key": "W", "action": "press"},
     {"t": 0.8, "type": "key", "key": "W", "action": "release"},
-    {"t": 0.9, "type": "screenshot", "file": ")" << shot << R"("}]})";
+    {"t": 0.9, "type": "screenshot", "file": ")"
+                                  << shot << R"("}]})";
   auto r = view("--mode lod --free --script " + (tmp / "far.json") + " --stats " +
                 (tmp / "a.json") + " --record " + (tmp / "rec.json"));
   ASSERT_EQ(r.status, 0) << r.output;
@@ -350,9 +354,10 @@ TEST(ViewCli, RepeatedOutputsAndAFarWheelUnderXvfb) {
   const auto& p1 = a["camera_end"]["position"];
   const double moved = std::hypot(p1[0].get<double>() - p0[0].get<double>(),
                                   p1[1].get<double>() - p0[1].get<double>());
-  EXPECT_GT(moved, 1000.0) << a;              // the wheel sped the flight up
+  EXPECT_GT(moved, 1000.0) << a;             // the wheel sped the flight up
   EXPECT_LE(moved, 10 * kMaxSpeedMps) << a;  // within the bound for the time held
-  std::ofstream(tmp / "short.json") << R"({"events": [{"t": 0.1, "type": "key", "key": "W", "action": "press"}]})";
+  std::ofstream(tmp / "short.json")
+      << R"({"events": [{"t": 0.1, "type": "key", "key": "W", "action": "press"}]})";
   r = view("--mode lod --script " + (tmp / "short.json") + " --record " + (tmp / "rec.json"));
   EXPECT_EQ(r.status, 0) << r.output;
 }

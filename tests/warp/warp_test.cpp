@@ -14,9 +14,9 @@
 #include <random>
 #include <tuple>
 
+#include "terrasprite/camera/renderer.h"
 #include "terrasprite/common/error.h"
 #include "terrasprite/quality/quality.h"
-#include "terrasprite/camera/renderer.h"
 #include "terrasprite/terrain/terrain.h"
 #include "terrasprite/voxel/voxel_renderer.h"
 #include "warp/bilinear.h"

@@ -47,7 +47,7 @@ double overview_scale(const Heightfield& h);
 struct PathKeyframe {
   double t = 0;  ///< seconds
   glm::dvec3 position{0.0};
-  std::optional<glm::dvec3> target;  ///< looked at; without one, yaw_deg and pitch_deg
+  std::optional<glm::dvec3> target;      ///< looked at; without one, yaw_deg and pitch_deg
   std::optional<GeoPlace> geo_position;  ///< "lon", "lat", "alt_m" | "agl_m": replaces position
   std::optional<GeoPlace> geo_target;    ///< "look_at": {"lon", "lat"}: replaces target
   double yaw_deg = 0, pitch_deg = 0, roll_deg = 0;

@@ -27,7 +27,16 @@ constexpr bool has(ReadBack set, ReadBack flag) {
 /// keyframe (kKey), a sprite (kSprite) or plain LOD before the first keyframe
 /// (kLod). kReference: the voxel caster's supersampled reference; kObjects:
 /// a hybrid-objects frame.
-enum class FrameClass : std::uint8_t { kFull, kLod, kKey, kSprite, kVoxel, kWarp, kReference, kObjects };
+enum class FrameClass : std::uint8_t {
+  kFull,
+  kLod,
+  kKey,
+  kSprite,
+  kVoxel,
+  kWarp,
+  kReference,
+  kObjects
+};
 /// "full", "lod", "key", "sprite", "voxel", "warp", "reference", "objects".
 const char* frame_class_name(FrameClass c);
 

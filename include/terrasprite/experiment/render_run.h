@@ -27,7 +27,7 @@ struct RenderRunOptions {
 };
 
 struct RenderFrameRecord {
-  int frame = 0;         ///< the run's index
+  int frame = 0;  ///< the run's index
   FrameClass cls = FrameClass::kFull;
   double ms = 0, gpu_ms = -1;
   long long triangles = 0;

@@ -45,8 +45,8 @@ struct StreamBenchOptions {
 
 /// One streamed frame.
 struct StreamFrame {
-  double ms = 0;         ///< the draw, the cache's update included
-  double update_ms = 0;  ///< the cache's update alone
+  double ms = 0;                       ///< the draw, the cache's update included
+  double update_ms = 0;                ///< the cache's update alone
   std::optional<double> in_memory_ms;  ///< the same frame in memory, when compared
   StreamFrameStats stats;
 };
@@ -98,9 +98,9 @@ struct StreamSummary {
 
 /// The one-line judgement of a streamed run.
 enum class StreamVerdict {
-  kKeptUp,       ///< no stall frame, at most 1% of reads degraded after the warm-up
-  kDegraded,     ///< no stall frame, but over 1% of reads degraded after the warm-up
-  kFellBehind,   ///< stall frames
+  kKeptUp,      ///< no stall frame, at most 1% of reads degraded after the warm-up
+  kDegraded,    ///< no stall frame, but over 1% of reads degraded after the warm-up
+  kFellBehind,  ///< stall frames
 };
 /// "kept up", "served coarser data", "fell behind".
 const char* to_string(StreamVerdict v);

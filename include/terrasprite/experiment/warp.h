@@ -43,13 +43,13 @@ WarpStride warp_stride(const std::vector<Camera>& path, int real_every, const He
 inline constexpr std::array kWarpBenchMethods = {WarpMethod::kPoly2, WarpMethod::kDepth};
 
 struct WarpBenchOptions {
-  RenderMode renderer = RenderMode::kVoxel;  ///< of the real frames: kVoxel or kFull
-  int width = 1920, height = 1080;           ///< output pixels
+  RenderMode renderer = RenderMode::kVoxel;                ///< of the real frames: kVoxel or kFull
+  int width = 1920, height = 1080;                         ///< output pixels
   std::vector<std::string> paths = {"paper", "low-fast"};  ///< make_path specs, flown in turn
   int frames = 460;                                        ///< frames along each path, >= 2
-  int k_max = 8;          ///< warp up to this many frames past a real one, 1..64
-  double margin = 0.05;   ///< real frames this fraction wider on each side, 0..1
-  int real_every = 4;     ///< K of the flythrough cost figure, 1..64
+  int k_max = 8;         ///< warp up to this many frames past a real one, 1..64
+  double margin = 0.05;  ///< real frames this fraction wider on each side, 0..1
+  int real_every = 4;    ///< K of the flythrough cost figure, 1..64
   std::function<void(int done, int total)> progress;  ///< per path
 };
 
@@ -60,9 +60,9 @@ struct WarpScore {
   double psnr_masked = 0;               ///< PSNR over the pixels the warp filled
   double holes = 0;                     ///< hole fraction
   int frame = 0, k = 0;                 ///< frame along the path, frames past the real one
-  double turn_deg = 0;     ///< angle between the real and the warped view direction
-  double moved_m = 0;      ///< eye displacement since the real frame
-  double clearance_m = 0;  ///< eye height above the ground below it
+  double turn_deg = 0;                  ///< angle between the real and the warped view direction
+  double moved_m = 0;                   ///< eye displacement since the real frame
+  double clearance_m = 0;               ///< eye height above the ground below it
 };
 
 /// One method along one path: its warp times and scores by k.
@@ -91,7 +91,7 @@ struct WarpMethodSummary {
   /// The lowest-PSNR warps (at most 5), lowest first: where the method breaks.
   std::vector<WarpScore> worst;
   double warp_ms_median = 0, real_ms_median = 0;
-  double cost_fraction = 0;  ///< warp / real median
+  double cost_fraction = 0;        ///< warp / real median
   std::vector<WarpKSummary> by_k;  ///< the k with scores, in order
 };
 
@@ -113,8 +113,8 @@ struct WarpBenchResult {
   RenderMode renderer = RenderMode::kVoxel;
   std::vector<std::string> paths;
   int frames = 0, k_max = 0;
-  int margin_x = 0, margin_y = 0;  ///< pixels each side of the real frames
-  std::vector<WarpPathRun> runs;   ///< per path
+  int margin_x = 0, margin_y = 0;          ///< pixels each side of the real frames
+  std::vector<WarpPathRun> runs;           ///< per path
   std::vector<WarpMethodSummary> methods;  ///< per path, methods within
   std::vector<WarpFlythrough> flythrough;  ///< per path, methods within
 };

@@ -29,7 +29,7 @@ struct TableOptions {
   /// phi in [0, 360), theta in [0, 90] (or [0, 180]); straight above (theta 0)
   /// and below (180) are sampled once, at phi 0.
   double angle_step_deg = 30.0;  ///< kMinTableAngleStepDeg..180
-  bool full_sphere = false;  ///< theta up to 180 (from below too)
+  bool full_sphere = false;      ///< theta up to 180 (from below too)
   /// Compass headings, degrees in [0, 360), the model is drawn at. The sun
   /// is fixed in the world and an instance's heading turns its normals, so
   /// the heading says from which side the model is lit; phi and theta stay

@@ -27,8 +27,8 @@ struct TableCacheEntry {
 /// The entry of the table measured on `model` (loaded from `model_file` with
 /// `m`) with `o` on the chain `chain`, in `cache_dir` (empty: default_cache_dir()).
 TableCacheEntry table_cache_entry(const std::string& cache_dir, const std::string& model_file,
-                                  const Model& model, const ModelOptions& m,
-                                  const TableOptions& o, const std::string& chain);
+                                  const Model& model, const ModelOptions& m, const TableOptions& o,
+                                  const std::string& chain);
 
 /// The cached table, if an entry of this key is there, intact and readable;
 /// a present but unusable one is a note on stderr (one line) and a miss.

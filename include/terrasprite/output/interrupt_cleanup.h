@@ -8,11 +8,11 @@ namespace terrasprite {
 
 /// Blocks SIGINT, SIGTERM and SIGHUP in the calling thread and starts one
 /// thread that waits for them; ignores SIGXFSZ, so a write past a file-size
-/// limit fails (EFBIG) and is reported like a full disk. Call it first thing in main(), before any other thread
-/// exists, so every later thread inherits the blocked mask. On a signal that
-/// thread removes every path currently registered with a CleanupOnInterrupt,
-/// prints one line on stderr naming them, and exits with status 128 + signal.
-/// Without this call the registry below is inert (tests, library users).
+/// limit fails (EFBIG) and is reported like a full disk. Call it first thing in main(), before any
+/// other thread exists, so every later thread inherits the blocked mask. On a signal that thread
+/// removes every path currently registered with a CleanupOnInterrupt, prints one line on stderr
+/// naming them, and exits with status 128 + signal. Without this call the registry below is inert
+/// (tests, library users).
 void install_interrupt_cleanup();
 
 /// Runs `step` (e.g. creating a directory inside a registered path) unless an

@@ -50,7 +50,7 @@ nlohmann::json full_geometry_json(const FullGeometryResult& r);
 
 /// `objects scene`'s files: frame.png and scene.json in `out` and, unless
 /// `json_path` is empty, the same JSON there.
-void write_full_geometry(const FullGeometryResult& r, OutputDir& out,
-                         const std::string& json_path, const OutputPolicy& policy);
+void write_full_geometry(const FullGeometryResult& r, OutputDir& out, const std::string& json_path,
+                         const OutputPolicy& policy);
 
 }  // namespace terrasprite::report

@@ -26,8 +26,7 @@ nlohmann::json stream_definitions_json();
 std::string stream_summary_text(const StreamBenchResult& r);
 
 /// Saves r.snapshots as `dir`/frame_NNNN.png; returns the file names.
-std::vector<std::string> write_stream_snapshots(const StreamBenchResult& r,
-                                                const std::string& dir);
+std::vector<std::string> write_stream_snapshots(const StreamBenchResult& r, const std::string& dir);
 
 /// One entry a frame: frame, ms, update_ms, in_memory_ms, degraded_samples,
 /// tiles_requested/loaded/evicted/failed, bytes_read, resident_mb.

@@ -24,12 +24,12 @@ const char* to_string(NodataFill f);
 /// so the grid is centred on the origin. All heights are valid (nodata cells
 /// have been filled by the loader and counted in `nodata_count`).
 struct Heightfield {
-  int width = 0;                    ///< samples along x (>= 1)
-  int height = 0;                   ///< samples along y (>= 1)
-  double spacing_x = 1.0;           ///< metres between samples along x (> 0)
-  double spacing_y = 1.0;           ///< metres between samples along y (> 0)
-  std::vector<float> heights;       ///< width * height values, metres
-  long long nodata_count = 0;       ///< cells that were nodata in the source (filled)
+  int width = 0;                               ///< samples along x (>= 1)
+  int height = 0;                              ///< samples along y (>= 1)
+  double spacing_x = 1.0;                      ///< metres between samples along x (> 0)
+  double spacing_y = 1.0;                      ///< metres between samples along y (> 0)
+  std::vector<float> heights;                  ///< width * height values, metres
+  long long nodata_count = 0;                  ///< cells that were nodata in the source (filled)
   NodataFill fill_method = NodataFill::kAmle;  ///< how they were filled
   /// 1 where a cell was nodata in the source, per sample (row-major, this
   /// grid's size); empty when no cell was.
@@ -38,7 +38,7 @@ struct Heightfield {
   /// Samples of the grid `geo` describes (the source's: a resampled grid
   /// keeps its corners on the source's corner samples).
   int geo_width = 0, geo_height = 0;
-  std::optional<std::pair<int, int>> resampled_to;  ///< set when the grid was resampled
+  std::optional<std::pair<int, int>> resampled_to;    ///< set when the grid was resampled
   std::optional<std::pair<int, int>> resampled_from;  ///< the source's samples, when resampled
   std::string name = "unnamed";
 

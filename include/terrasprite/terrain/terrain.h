@@ -6,8 +6,8 @@
 #include <optional>
 #include <string>
 
-#include "terrasprite/terrain/heightfield.h"
 #include "terrasprite/common/image.h"
+#include "terrasprite/terrain/heightfield.h"
 
 namespace terrasprite {
 
@@ -36,7 +36,7 @@ struct TerrainOptions {
   std::optional<double> spacing;  ///< metres between samples; overrides the file's
   std::optional<double> nodata;   ///< nodata value for files that do not tag one
   NodataFill fill = NodataFill::kAmle;  ///< how nodata cells are filled
-  bool show_voids = false;  ///< tint the drape where the source had nodata (kVoidTint)
+  bool show_voids = false;              ///< tint the drape where the source had nodata (kVoidTint)
   HeightEncoding encoding = HeightEncoding::kAuto;
   double exaggeration = 1.0;  ///< display scale of heights
   int resample = 0;           ///< 0 = keep; else resample to N x N samples (N >= 2)

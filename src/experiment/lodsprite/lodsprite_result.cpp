@@ -81,8 +81,8 @@ std::pair<double, double> median_max(std::vector<double> v) {
 
 std::vector<KeyframeTriggerRow> LodspriteResult::keyframes_by_trigger() const {
   std::vector<KeyframeTriggerRow> rows;
-  for (Trigger t : {Trigger::kFirst, Trigger::kError, Trigger::kFallback, Trigger::kScale,
-                    Trigger::kForced}) {
+  for (Trigger t :
+       {Trigger::kFirst, Trigger::kError, Trigger::kFallback, Trigger::kScale, Trigger::kForced}) {
     std::vector<double> error, measure;
     for (const LodspriteFrame& f : per_frame) {
       if (!f.key() || f.cache_hit || f.trigger != t) continue;

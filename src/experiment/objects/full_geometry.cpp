@@ -63,7 +63,8 @@ ObjectLayout placed_layout(GlSceneObjects& objects) {
   ObjectLayout out;
   for (std::size_t m = 0; m < objects.model_count(); ++m) {
     out.models.push_back(objects.layout_model(m));
-    for (const ObjectInstance& i : objects.instances(m)) out.instances.push_back({int(m), i, false});
+    for (const ObjectInstance& i : objects.instances(m))
+      out.instances.push_back({int(m), i, false});
   }
   return out;
 }

@@ -105,8 +105,8 @@ Opened open_source(const StreamBenchOptions& o, Clock::time_point t_start) {
     return tiles;
   });
   try {
-    op.path = make_path(o.path, stream_bench::path_proxy(op.set), o.frames,
-                        double(o.width) / o.height);
+    op.path =
+        make_path(o.path, stream_bench::path_proxy(op.set), o.frames, double(o.width) / o.height);
   } catch (...) {
     opening.wait();  // never leave the opening thread running past its captures
     throw;
@@ -220,8 +220,7 @@ StreamSummary stream_summary(const StreamRun& run, const Opened& op, const Strea
   out.degraded_samples_total = degraded;
   out.degraded_fraction_after_warmup = degraded_fraction_after_warmup(run.frames);
   out.hit_rate = lookups ? 1.0 - double(misses) / double(lookups) : 1.0;
-  out.hit_rate_after_warmup =
-      lookups_late ? 1.0 - double(misses_late) / double(lookups_late) : 1.0;
+  out.hit_rate_after_warmup = lookups_late ? 1.0 - double(misses_late) / double(lookups_late) : 1.0;
   out.io_mb_s = double(bytes) / 1e6 / std::max(run.wall_ms / 1e3, 1e-9);
   out.bytes_read_mb = double(bytes) / 1e6;
   out.peak_rss_mb = run.peak_rss_mb;

@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: MIT
 // How far a path's warped frames are from their real ones (render --warp's check).
-#include <glm/glm.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <glm/glm.hpp>
 
 #include "terrasprite/experiment/warp.h"
 
@@ -41,8 +40,8 @@ WarpStride warp_stride(const std::vector<Camera>& path, int real_every, const He
     const double move = glm::length(to.position - from.position) / depth;
     s.max_turn_deg = std::max(s.max_turn_deg, turn);
     s.max_move_over_depth = std::max(s.max_move_over_depth, move);
-    const double excess = std::max(turn / (kWarpMaxTurnOfFov * from.fov_y_deg),
-                                   move / kWarpMaxMoveOverDepth);
+    const double excess =
+        std::max(turn / (kWarpMaxTurnOfFov * from.fov_y_deg), move / kWarpMaxMoveOverDepth);
     if (excess > worst_excess) {
       worst_excess = excess;
       s.worst_frame = int(i);

@@ -12,10 +12,10 @@
 #include "terrasprite/common/image.h"
 #include "terrasprite/experiment/experiment.h"
 #include "terrasprite/experiment/lodsprite/async_display.h"
-#include "terrasprite/terrain/terrain_info.h"
 #include "terrasprite/raster/scene.h"
 #include "terrasprite/sprite/error_metric.h"
 #include "terrasprite/sprite/sprite_renderer.h"
+#include "terrasprite/terrain/terrain_info.h"
 
 namespace terrasprite::lodsprite {
 
@@ -171,11 +171,11 @@ struct TargetCheck {
 /// The paper's keyframe budget, speed-up and quality against plain LOD: the
 /// JSON's `targets` and the report's target table, decided here once.
 struct LodspriteTargets {
-  TargetCheck keyframes_at_most_28;  ///< only for the paper's 460 frames along its path
-  TargetCheck efficiency_at_least_0_9;                   ///< needs keyframes and sprite frames
-  TargetCheck ssim_above_lod_on_95pct;                   ///< needs scored sprite frames
-  TargetCheck mean_psnr_above_lod;                       ///< needs scored sprite frames
-  TargetCheck mean_psnr_above_lod_on_sprite_frames;      ///< needs scored sprite frames
+  TargetCheck keyframes_at_most_28;     ///< only for the paper's 460 frames along its path
+  TargetCheck efficiency_at_least_0_9;  ///< needs keyframes and sprite frames
+  TargetCheck ssim_above_lod_on_95pct;  ///< needs scored sprite frames
+  TargetCheck mean_psnr_above_lod;      ///< needs scored sprite frames
+  TargetCheck mean_psnr_above_lod_on_sprite_frames;  ///< needs scored sprite frames
 };
 
 /// The keyframes one trigger fired, and the values it fired at: the error

@@ -45,7 +45,7 @@ struct FullGeometryResult {
   std::vector<double> frame_ms, terrain_ms;
   double median_ms = 0, terrain_median_ms = 0;  ///< common/stats median of the above
   std::vector<FullGeometryModel> models;
-  Image frame;  ///< the last frame with the objects, RGBA8
+  Image frame;          ///< the last frame with the objects, RGBA8
   Camera camera;        ///< the view timed and drawn
   ObjectLayout placed;  ///< every instance where it was drawn (scene-file form: object_layout_json)
 };
